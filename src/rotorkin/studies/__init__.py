@@ -1,0 +1,74 @@
+"""Studies: one per drive type, turning a validated config into results.
+
+A study reads the config (SI values, see :mod:`rotorkin.io.config`), builds
+the drive's parameter dataclass, evaluates the drive over one period and
+returns a :class:`StudyResult`: the flat summary, the per-angle columns of
+``motion.csv`` and a function that draws the figures.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["StudyResult", "DRIVE_TYPES", "evaluate"]
+
+#: drive.type -> module name under rotorkin.studies
+DRIVE_TYPES = {
+    "wobble_cam": "wobble_cam",
+    "eccentric_cam": "eccentric_cam",
+    "guide_bar": "guide_bar",
+    "rhomboid_cam": "rhomboid_cam",
+}
+
+
+@dataclass
+class StudyResult:
+    """What one run of a study produced.
+
+    Attributes
+    ----------
+    drive_type : str
+        ``drive.type`` of the config.
+    title : str
+        One line for people, e.g. ``"Twin-rotor engine, wobble plate + spherical cam"``.
+    summary : dict
+        Flat mapping of metric name (unit as suffix, e.g. ``chamber_swing_deg``)
+        to a float, int, bool or str. Written as ``summary.json``.
+    columns : dict of str -> ndarray
+        1-d arrays of equal length, one row per input angle over one period;
+        names carry their unit as suffix (``theta_deg``, ``z_left_mm``); a
+        dimensionless column has no unit suffix. Written as ``motion.csv``.
+    column_docs : dict of str -> str
+        One sentence per column of ``columns`` (what it is, sign convention).
+    headline : tuple of str
+        Summary keys shown in the printed table, in order.
+    plot : callable
+        ``plot(outdir: Path) -> list[Path]`` writes the PNG figures.
+    """
+
+    drive_type: str
+    title: str
+    summary: dict
+    columns: dict
+    column_docs: dict
+    headline: tuple
+    plot: Callable[[Path], list[Path]] = field(repr=False)
+
+    def __post_init__(self):
+        lengths = {np.shape(v) for v in self.columns.values()}
+        if len(lengths) > 1:
+            raise ValueError(f"columns of unequal shape: {lengths}")
+        missing = set(self.columns) - set(self.column_docs)
+        if missing:
+            raise ValueError(f"undocumented columns: {sorted(missing)}")
+
+
+def evaluate(cfg: dict) -> StudyResult:
+    """Run the study for ``cfg['drive']['type']`` on a validated config."""
+    module = importlib.import_module(f"rotorkin.studies.{DRIVE_TYPES[cfg['drive']['type']]}")
+    return module.evaluate(cfg)
