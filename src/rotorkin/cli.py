@@ -1,0 +1,160 @@
+"""The ``rotorkin`` command: thin; parses, calls the library, prints, sets the exit code.
+
+Exit codes: 0 success, 2 bad input (one line on stderr, no traceback, no
+output files), 1 an internal error (one line; ``ROTORKIN_DEBUG=1`` shows the
+traceback).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from rotorkin import __version__
+from rotorkin.errors import RotorkinError
+
+app = typer.Typer(
+    name="rotorkin",
+    help="Design the drives of rotary variable-volume machines: kinematics, volumes, torques, cams.",
+    add_completion=False,
+    pretty_exceptions_enable=False,
+    rich_markup_mode=None,
+)
+
+
+def _version(value: bool):
+    if value:
+        typer.echo(f"rotorkin {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: Annotated[
+        bool, typer.Option("--version", callback=_version, is_eager=True, help="Print the version.")
+    ] = False,
+):
+    """rotorkin: exact kinematics of wobble-cam, eccentric, guide-bar and rhomboid-cam drives."""
+
+
+@app.command()
+def run(
+    config: Annotated[
+        Path | None, typer.Argument(help="TOML config; default: the wobble-cam-engine example.")
+    ] = None,
+    example: Annotated[
+        str | None, typer.Option("--example", "-e", help="Run a built-in example by name.")
+    ] = None,
+    set_: Annotated[
+        list[str] | None,
+        typer.Option("--set", "-s", help="Override a key: section.key=VALUE (repeatable)."),
+    ] = None,
+    out: Annotated[
+        Path | None,
+        typer.Option("--out", "-o", help="Output folder; default ./rotorkin-out/<name>."),
+    ] = None,
+    quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing on success.")] = False,
+):
+    """Evaluate a drive over one period; write summary.json, motion.csv and figures."""
+    from rotorkin.io.config import load_config
+    from rotorkin.io.output import write_outputs
+    from rotorkin.studies import evaluate
+
+    cfg, raw, name = load_config(config, example, set_ or [])
+    result = evaluate(cfg)
+    outdir = out if out is not None else Path("rotorkin-out") / name
+    meta = {"name": name, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
+    written = write_outputs(result, outdir, raw, meta)
+    if not quiet:
+        _print_summary(result, name, outdir, written)
+
+
+@app.command()
+def examples():
+    """List the built-in examples (run one with: rotorkin run --example NAME)."""
+    from rotorkin.io.config import example_names, example_path, read_toml
+
+    for name in example_names():
+        title = read_toml(example_path(name)).get("title", "")
+        typer.echo(f"{name:20s} {title}")
+
+
+@app.command()
+def keys(
+    drive_type: Annotated[
+        str | None, typer.Argument(help="Only this drive type (wobble_cam, ...).")
+    ] = None,
+):
+    """List every config key with its default and meaning (the glossary)."""
+    from rotorkin.io.config import DRIVE_MODELS, glossary
+
+    if drive_type is not None and drive_type not in DRIVE_MODELS:
+        raise RotorkinError(
+            f"DRIVE_TYPE = {drive_type!r} is not admissible: choose one of {', '.join(DRIVE_MODELS)}"
+        )
+    for kind, key, default, doc in glossary():
+        if drive_type in (None, kind):
+            typer.echo(f"{kind:14s} {key:28s} {default:14s} {doc}")
+
+
+def _print_summary(result, name, outdir, written):
+    from rich.console import Console
+    from rich.table import Table
+
+    console = Console()
+    table = Table(title=f"{name}: {result.title}", title_justify="left")
+    table.add_column("metric")
+    table.add_column("value", justify="right")
+    for key in result.headline:
+        value = result.summary[key]
+        table.add_row(key, f"{value:.6g}" if isinstance(value, float) else str(value))
+    console.print(table)
+    figures = [p.name for p in written if p.suffix == ".png"]
+    console.print(
+        f"wrote {outdir}/: summary.json, motion.csv, config.toml, README.txt, "
+        f"{len(figures)} figures ({', '.join(figures)})",
+        highlight=False,
+        soft_wrap=True,
+    )
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the console script; returns the exit code."""
+    args = sys.argv[1:] if argv is None else list(argv)
+    if not args:
+        args = ["--help"]
+    try:
+        app(args=args, prog_name="rotorkin", standalone_mode=False)
+    except RotorkinError as exc:
+        print(f"rotorkin: error: {exc}", file=sys.stderr)
+        return 2
+    except typer.Exit as exc:
+        return exc.exit_code
+    except typer.Abort:
+        print("rotorkin: aborted", file=sys.stderr)
+        return 130
+    except KeyboardInterrupt:
+        print("rotorkin: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:
+        if hasattr(exc, "format_message") and hasattr(exc, "exit_code"):  # a usage error
+            print(f"rotorkin: error: {exc.format_message()}", file=sys.stderr)
+            return 2
+        # an internal error: one line, the traceback on request
+        if os.environ.get("ROTORKIN_DEBUG"):
+            raise
+        print(
+            f"rotorkin: internal error: {type(exc).__name__}: {exc} "
+            "(set ROTORKIN_DEBUG=1 for the traceback, and please report it)",
+            file=sys.stderr,
+        )
+        return 1
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""Drives: one module per drive family, from the input-shaft angle to two members."""

@@ -1,0 +1,1 @@
+"""Input and output at the edges: config files and units in, data files out."""

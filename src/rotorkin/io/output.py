@@ -1,0 +1,117 @@
+"""Writing a run's results: summary.json, motion.csv, config.toml, README.txt and figures.
+
+Everything is written into a staging folder first and moved into place only
+when all of it has been written, so a failure never leaves a half-written
+output behind.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from rotorkin.errors import ConfigError
+
+__all__ = ["write_outputs", "to_toml"]
+
+
+def write_outputs(result, outdir: Path, raw_config: dict, meta: dict) -> list[Path]:
+    """Write every output file of a study into ``outdir``, atomically per file.
+
+    Parameters
+    ----------
+    result : rotorkin.studies.StudyResult
+    outdir : Path
+        Created if missing; files of the same names are replaced.
+    raw_config : dict
+        The config as written (after ``--set``), saved as ``config.toml``.
+    meta : dict
+        Extra flat entries for ``summary.json`` (name, version).
+
+    Returns
+    -------
+    list of Path
+        The files written, in ``outdir``.
+    """
+    outdir = Path(outdir)
+    if outdir.exists() and not outdir.is_dir():
+        raise ConfigError(f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder")
+    parent = outdir.parent if outdir.parent != Path("") else Path(".")
+    try:
+        parent.mkdir(parents=True, exist_ok=True)
+        stage = Path(tempfile.mkdtemp(prefix=f".{outdir.name}.tmp-", dir=parent))
+    except OSError as exc:
+        raise ConfigError(f"--out = {str(outdir)!r} cannot be written: {exc.strerror}") from None
+    try:
+        summary = {**meta, **result.summary}
+        (stage / "summary.json").write_text(json.dumps(_jsonable(summary), indent=2) + "\n")
+        _write_csv(stage / "motion.csv", result.columns)
+        (stage / "config.toml").write_text(to_toml(raw_config))
+        figures = result.plot(stage)
+        (stage / "README.txt").write_text(_readme(result, [Path(f).name for f in figures]))
+        outdir.mkdir(parents=True, exist_ok=True)
+        written = []
+        for item in sorted(stage.iterdir()):
+            os.replace(item, outdir / item.name)
+            written.append(outdir / item.name)
+        return written
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def _jsonable(summary: dict) -> dict:
+    out = {}
+    for key, value in summary.items():
+        if isinstance(value, np.generic):
+            value = value.item()
+        if isinstance(value, float) and not math.isfinite(value):
+            value = None
+        out[key] = value
+    return out
+
+
+def _write_csv(path: Path, columns: dict) -> None:
+    names = list(columns)
+    data = np.column_stack([np.asarray(columns[n], dtype=float) for n in names])
+    np.savetxt(path, data, delimiter=",", header=",".join(names), comments="", fmt="%.12g")
+
+
+def _readme(result, figures: list[str]) -> str:
+    lines = [
+        f"rotorkin results: {result.title}",
+        "",
+        "summary.json  flat metrics; the unit is the key's suffix (_deg, _mm, _Nm, _J ...)",
+        "motion.csv    one row per input angle over one period, ends included; columns:",
+    ]
+    width = max(len(n) for n in result.columns)
+    lines += [f"  {n.ljust(width)}  {result.column_docs[n]}" for n in result.columns]
+    lines += ["config.toml   the configuration as run (after --set overrides)", "figures:"]
+    lines += [f"  {f}" for f in figures]
+    return "\n".join(lines) + "\n"
+
+
+def to_toml(data: dict) -> str:
+    """A small TOML writer for configs: nested tables of scalars, strings and lists."""
+    top = [(k, v) for k, v in data.items() if not isinstance(v, dict)]
+    tables = [(k, v) for k, v in data.items() if isinstance(v, dict)]
+    lines = [f"{k} = {_toml_value(v)}" for k, v in top]
+    for name, table in tables:
+        lines += ["", f"[{name}]"]
+        lines += [f"{k} = {_toml_value(v)}" for k, v in table.items() if not isinstance(v, dict)]
+    return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def _toml_value(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    return json.dumps(str(value))

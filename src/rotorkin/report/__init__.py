@@ -1,0 +1,1 @@
+"""Report: figures and reports built on the studies."""
