@@ -1,0 +1,586 @@
+"""Wobble plate + spherical figure-eight cam: the differential drive of a twin-rotor engine.
+
+Source: Chen Hu, Xu Haijun, Pan Cunyun, Zou Teng'an, Jiang Lei, "Kinematic
+performance of new-type power transmission mechanism in twin-rotor piston
+engine", J. National University of Defense Technology 37(5), 2015 (in Chinese).
+Equation numbers below are the paper's.
+
+The output shaft turns about the fixed x axis by ``theta``; its middle section
+is tilted by the plate tilt ``phi``; the wobble plate spins on it by ``varphi``
+(the *spin law*, ``varphi = spin_ratio * theta``, paper: ``-2 theta``); the cam
+shell turns by ``psi = -theta``. Four radial roller shafts on the plate, in two
+groups at ``roller_axis_angle = alpha`` to each other in the plate plane, drive
+rotor 1 (group 1) and rotor 2 (group 2) through straight slider rails.
+
+Conventions (the paper is silent on some):
+
+* Fixed frame xyz, x along the output shaft. Frames follow eq. 2-5 and 9:
+  ``r|0 = A_theta A_phi A_varphi r|3``, cam frame ``r|4 = A_psi^T r|0``.
+* A point of the plate at angle ``c`` in the plate plane (from z3 towards y3)
+  and radius r is ``r|3 = r [0, sin c, cos c]``; it is the eq.-8 point with
+  ``varphi -> varphi + c``. Rollers: group 1 at ``c = -alpha/2, pi - alpha/2``,
+  group 2 at ``c = +alpha/2, pi + alpha/2`` (eq. 12).
+* Rotor angle ``Phi_k``: angle of group k's shaft projected on the yz plane,
+  measured from +z towards +y (the direction in which positive ``theta`` turns
+  the shaft frame). ``Phi_k = theta + E(varphi + s_k alpha/2)``,
+  ``s_1 = -1, s_2 = +1``, ``E(u) = atan2(sin u, cos(phi) cos u)`` on its
+  continuous branch. This per-rotor form is derived here; the paper gives only
+  the angle between the rotors, eq. 15.
+* Chambers (4 pistons and 2 rails per rotor, eq. 18-19): ``gamma = pi/8``;
+  rotor 1 pistons at ``Phi_1 + gamma + k pi/2``, rotor 2 pistons at
+  ``Phi_2 - gamma + k pi/2``; chamber kind A (between a rotor-1 piston and the
+  rotor-2 piston ahead of it) ``delta_A = alpha' - 2 gamma - beta``, kind B
+  ``delta_B = pi/2 + 2 gamma - alpha' - beta``.
+
+Misprints of the paper: eq. 5 prints ``A_psi`` for ``A_theta``; eq. 8 and 11
+print ``cos phi cos phi`` for ``cos(phi) cos(varphi)``; eq. 18's text says
+``alpha'_2 = 90 deg - alpha'_1`` where the equation (right) says ``pi``. The
+paper's symbols phi and varphi are swapped against ours in eq. 2-3 and 14-15
+(the OCR's); here ``phi`` is always the plate tilt and ``varphi`` the spin.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorkin._angles import angle_near, fmt_deg, fmt_mm
+from rotorkin.errors import ParameterError
+from rotorkin.motion import Motion, compose
+
+__all__ = [
+    "PISTON_OFFSET",
+    "CHAMBERS",
+    "WobbleCam",
+    "PistonLayout",
+    "max_plate_tilt",
+    "spin_law",
+    "cam_angle",
+    "projected_angle",
+    "rotor_angles_from_spin",
+    "rotor_angles",
+    "motion",
+    "period",
+    "slider_angle",
+    "slider_angle_extremes",
+    "chamber_angles",
+    "min_compression_ratio",
+    "piston_layout",
+    "roller_offsets",
+    "plate_point",
+    "groove_point",
+    "roller_positions",
+    "groove_points",
+    "volume_cycles_per_rev",
+    "power_strokes_per_rev",
+]
+
+#: Angle gamma between a piston's centre line and the nearest rail [rad] (eq. 18-19).
+PISTON_OFFSET = np.pi / 8.0
+#: Number of chambers between the two 4-piston rotors.
+CHAMBERS = 8
+
+
+# --------------------------------------------------------------------------------------------
+# parameters
+# --------------------------------------------------------------------------------------------
+def max_plate_tilt(roller_axis_angle):
+    """Largest plate tilt at which the pistons do not interfere (eq. 20) [rad].
+
+    Eq. 20 asks ``alpha'_max <= 3 pi/4`` and ``alpha'_min >= pi/4``; with eq. 17
+    in closed form (see :func:`slider_angle_extremes`) this gives
+    ``cos(phi_lim) = max(tan(alpha/2) / tan(3 pi/8), tan(pi/8) / tan(alpha/2))``.
+    The paper reads "about 65 deg" off Fig. 13 for ``alpha = 90 deg``; the exact
+    value is 65.53 deg (``cos(phi_lim) = tan(pi/8) = sqrt(2) - 1``).
+
+    Parameters
+    ----------
+    roller_axis_angle : array_like
+        Angle alpha between the roller groups [rad], ``pi/4 < alpha < 3 pi/4``
+        (outside, no tilt is admissible and NaN is returned).
+
+    Returns
+    -------
+    ndarray
+        Limit plate tilt [rad].
+    """
+    t = np.tan(np.asarray(roller_axis_angle, dtype=float) / 2.0)
+    cos_lim = np.maximum(t / np.tan(3.0 * np.pi / 8.0), np.tan(np.pi / 8.0) / t)
+    with np.errstate(invalid="ignore"):
+        return np.where(cos_lim < 1.0, np.arccos(np.minimum(cos_lim, 1.0)), np.nan)
+
+
+def _is_half_integer(x) -> bool:
+    return bool(np.isfinite(x) and x != 0 and abs(2.0 * x - np.round(2.0 * x)) < 1e-9)
+
+
+@dataclass(frozen=True)
+class WobbleCam:
+    """Parameters of the wobble-plate + spherical-cam drive (SI).
+
+    Parameters
+    ----------
+    plate_tilt : float
+        Tilt phi of the shaft's middle section (the plate axis) [rad];
+        ``0 < phi < max_plate_tilt(roller_axis_angle)`` (eq. 20). Table 1: 45 deg.
+    roller_axis_angle : float, optional
+        Angle alpha between the two roller groups in the plate plane [rad];
+        ``pi/4 < alpha < 3 pi/4``. Table 1: 90 deg (default).
+    spin_ratio : float, optional
+        n in the spin law ``varphi = n theta`` (plate spin relative to the
+        tilted shaft section); a nonzero multiple of 0.5 so that the motion
+        repeats every shaft turn. Paper: -2 (default).
+    sphere_radius : float, optional
+        Radius r of the inner roller centres, i.e. of the groove centre-line
+        sphere [m] (default 0.05; the paper gives no value).
+    """
+
+    plate_tilt: float
+    roller_axis_angle: float = np.pi / 2.0
+    spin_ratio: float = -2.0
+    sphere_radius: float = 0.05
+
+    def __post_init__(self):
+        a = float(self.roller_axis_angle)
+        if not (np.isfinite(a) and np.pi / 4.0 < a < 3.0 * np.pi / 4.0):
+            raise ParameterError(
+                "roller_axis_angle",
+                fmt_deg(a),
+                "45 deg < roller_axis_angle < 135 deg (eq. 20: beyond, no plate tilt is "
+                "admissible for 4-piston rotors)",
+            )
+        lim = float(max_plate_tilt(a))
+        p = float(self.plate_tilt)
+        if not (np.isfinite(p) and 0.0 < p < lim):
+            raise ParameterError(
+                "plate_tilt",
+                fmt_deg(p),
+                f"0 deg < plate_tilt < {np.degrees(lim):.2f} deg (eq. 20 limit at "
+                f"roller_axis_angle = {fmt_deg(a)})",
+            )
+        if not _is_half_integer(float(self.spin_ratio)):
+            raise ParameterError(
+                "spin_ratio",
+                f"{float(self.spin_ratio):g}",
+                "a finite nonzero multiple of 0.5 (e.g. -2, the paper's law), so that "
+                "the motion repeats every shaft turn",
+            )
+        r = float(self.sphere_radius)
+        if not (np.isfinite(r) and r > 0.0):
+            raise ParameterError("sphere_radius", fmt_mm(r), "sphere_radius > 0 mm")
+
+
+# --------------------------------------------------------------------------------------------
+# laws of the plate and the cam
+# --------------------------------------------------------------------------------------------
+def spin_law(params: WobbleCam, theta):
+    """Plate spin ``varphi(theta) = n theta`` and its derivatives (paper: n = -2).
+
+    Parameters
+    ----------
+    params : WobbleCam
+    theta : array_like
+        Shaft angle [rad].
+
+    Returns
+    -------
+    tuple of 4 ndarray
+        ``varphi`` [rad], ``dvarphi/dtheta`` [-], ``d2``, ``d3`` [1/rad, 1/rad^2]
+        (the last two are zero for the linear law), all of ``theta``'s shape.
+    """
+    theta = np.asarray(theta, dtype=float)
+    n = float(params.spin_ratio)
+    zero = np.zeros_like(theta)
+    return n * theta, zero + n, zero, zero.copy()
+
+
+def cam_angle(theta):
+    """Cam shell angle ``psi = -theta`` (bevel gearbox, equal and opposite) [rad]."""
+    return -np.asarray(theta, dtype=float)
+
+
+def projected_angle(u, plate_tilt):
+    """Angle of a plate radius projected on the shaft frame's y1z1 plane, and derivatives.
+
+    A plate radius at angle ``u`` in the plate plane (from z2 towards y2) seen
+    along the shaft axis makes the angle ``E(u) = atan2(sin u, cos(phi) cos u)``
+    with z1 (eq. 14 with theta = 0). We use the branch that is continuous in u,
+
+    ``E = u + atan2((1 - c) sin u cos u, sin^2 u + c cos^2 u)``, ``c = cos(phi)``,
+
+    (the second term stays within (-pi/2, pi/2) since c > 0; this is
+    :func:`rotorkin._angles.angle_near` with reference u), so ``E(u + pi) = E(u) + pi``.
+    Derivatives, with ``D = sin^2 u + c^2 cos^2 u = (1 + c^2)/2 - (1 - c^2)/2 cos 2u``:
+    ``E' = c/D``, ``E'' = -c D'/D^2``, ``E''' = -c D''/D^2 + 2 c D'^2/D^3``.
+
+    Parameters
+    ----------
+    u : array_like
+        Angle in the plate plane [rad].
+    plate_tilt : array_like
+        phi [rad], ``0 <= phi < pi/2``.
+
+    Returns
+    -------
+    tuple of 4 ndarray
+        ``E`` [rad], ``dE/du`` [-], ``d2E/du2`` [1/rad], ``d3E/du3`` [1/rad^2].
+    """
+    u = np.asarray(u, dtype=float)
+    c = np.cos(np.asarray(plate_tilt, dtype=float))
+    su, cu = np.sin(u), np.cos(u)
+    # = u + atan2((1 - c) sin u cos u, sin^2 u + c cos^2 u): the vector measured from angle u
+    e0 = angle_near(su, c * cu, u)
+    a, b = 0.5 * (1.0 + c * c), 0.5 * (1.0 - c * c)
+    s2, c2 = np.sin(2.0 * u), np.cos(2.0 * u)
+    d0 = a - b * c2
+    d1 = 2.0 * b * s2
+    d2 = 4.0 * b * c2
+    e1 = c / d0
+    e2 = -c * d1 / d0**2
+    e3 = -c * d2 / d0**2 + 2.0 * c * d1**2 / d0**3
+    return e0, e1, e2, e3
+
+
+def rotor_angles_from_spin(theta, spin, plate_tilt, roller_axis_angle):
+    """Angles of both rotors and their derivatives, for any spin law (eq. 13-14).
+
+    ``Phi_k = theta + E(u_k)``, ``u_k = varphi(theta) + s_k alpha/2``,
+    ``s_1 = -1``, ``s_2 = +1`` (see :func:`projected_angle`); the chain rule
+    (Faa di Bruno, :func:`rotorkin.motion.compose`) gives the derivatives from
+    those of the spin law, so a spin law with a periodic correction only needs
+    its value and three derivatives.
+
+    Parameters
+    ----------
+    theta : array_like, shape (...)
+        Shaft angle [rad].
+    spin : sequence of 4 array_like
+        ``varphi, varphi', varphi'', varphi'''`` at ``theta`` [rad, -, 1/rad, 1/rad^2].
+    plate_tilt, roller_axis_angle : float or array_like
+        phi and alpha [rad] (broadcast with ``theta``).
+
+    Returns
+    -------
+    tuple of 4 ndarray, shape (2, ...)
+        ``Phi``, ``dPhi/dtheta``, ``d2Phi/dtheta2``, ``d3Phi/dtheta3`` of
+        rotor 1 (index 0) and rotor 2 (index 1) [rad, -, 1/rad, 1/rad^2].
+        Angles are measured in the yz plane from +z towards +y; at theta = 0
+        and varphi = 0 rotor 1 is at ``-alpha'_max/2``, rotor 2 at ``+alpha'_max/2``.
+    """
+    theta = np.asarray(theta, dtype=float)
+    spin = [np.asarray(s, dtype=float) for s in spin]
+    half = 0.5 * np.asarray(roller_axis_angle, dtype=float)
+    shape = np.broadcast_shapes(
+        theta.shape, *(s.shape for s in spin), half.shape, np.shape(plate_tilt)
+    )
+    sign = np.array([-1.0, 1.0]).reshape((2,) + (1,) * len(shape))
+    u = spin[0] + sign * half
+    h = compose(projected_angle(u, plate_tilt), (u, spin[1], spin[2], spin[3]))
+    full = (2, *shape)
+    return tuple(np.broadcast_to(x, full).copy() for x in (theta + h[0], 1.0 + h[1], h[2], h[3]))
+
+
+def rotor_angles(params: WobbleCam, theta):
+    """Rotor angles and derivatives under the params' spin law.
+
+    See :func:`rotor_angles_from_spin`; returns 4 arrays of shape ``(2, *theta.shape)``.
+    """
+    theta = np.asarray(theta, dtype=float)
+    return rotor_angles_from_spin(
+        theta, spin_law(params, theta), params.plate_tilt, params.roller_axis_angle
+    )
+
+
+def motion(params: WobbleCam, theta) -> Motion:
+    """Motion of rotor 1 and rotor 2 (``q = (Phi_1, Phi_2)`` [rad]) over shaft angle theta."""
+    theta = np.asarray(theta, dtype=float)
+    q, dq, d2q, d3q = rotor_angles(params, theta)
+    return Motion(theta, q, dq, d2q, d3q, members=("rotor 1", "rotor 2"), unit="rad")
+
+
+def period(params: WobbleCam) -> float:
+    """Shaft angle after which the motion repeats: 2 pi [rad].
+
+    With a spin ratio that is a multiple of 0.5, each rotor has then turned by
+    ``2 pi (1 + n)``, a multiple of pi, which maps its 2 rails and 4 pistons
+    onto themselves; all derivatives are 2 pi periodic (in fact pi/|n|).
+    """
+    return 2.0 * np.pi
+
+
+# --------------------------------------------------------------------------------------------
+# slider angle and chambers
+# --------------------------------------------------------------------------------------------
+def slider_angle(spin_angle, plate_tilt, roller_axis_angle):
+    """Angle alpha' between the rails of rotor 1 and rotor 2 (eq. 15) [rad].
+
+    ``alpha' = Phi_2 - Phi_1 = E(varphi + alpha/2) - E(varphi - alpha/2)``; it
+    depends on the spin angle only (period pi) and lies in (0, pi). Same value
+    as the paper's arccos form, eq. 15, without its loss of sign and precision.
+
+    Parameters
+    ----------
+    spin_angle : array_like
+        Plate spin varphi [rad].
+    plate_tilt, roller_axis_angle : array_like
+        phi and alpha [rad].
+    """
+    half = 0.5 * np.asarray(roller_axis_angle, dtype=float)
+    v = np.asarray(spin_angle, dtype=float)
+    return projected_angle(v + half, plate_tilt)[0] - projected_angle(v - half, plate_tilt)[0]
+
+
+def slider_angle_extremes(plate_tilt, roller_axis_angle):
+    """Largest and smallest slider angle (eq. 17) [rad].
+
+    ``alpha'_max = alpha'(varphi = 0) = 2 atan(tan(alpha/2) / cos phi)``,
+    ``alpha'_min = alpha'(varphi = pi/2) = 2 atan(cos(phi) tan(alpha/2))``
+    (closed forms derived here; ``d alpha'/d varphi = 0`` iff
+    ``sin(2 varphi) sin(alpha) = 0``). Valid for ``0 < alpha < pi``.
+
+    Returns
+    -------
+    (alpha_max, alpha_min) : tuple of ndarray
+    """
+    c = np.cos(np.asarray(plate_tilt, dtype=float))
+    t = np.tan(0.5 * np.asarray(roller_axis_angle, dtype=float))
+    return 2.0 * np.arctan(t / c), 2.0 * np.arctan(c * t)
+
+
+def chamber_angles(slider, piston_width):
+    """Angles of the two chamber kinds from the slider angle (eq. 18-19) [rad].
+
+    ``delta_A = alpha' - 2 gamma - beta`` (rotor-1 piston to the rotor-2 piston
+    ahead of it) and ``delta_B = pi/2 + 2 gamma - alpha' - beta`` (the next
+    chamber), ``gamma = pi/8``; ``delta_A + delta_B + 2 beta = pi/2`` (eq. 18).
+    Kind B is eq. 19 written with the complementary slider angle
+    ``alpha'_2 = pi - alpha'`` (eq. 18). The 8 chambers alternate A, B.
+
+    Parameters
+    ----------
+    slider : array_like
+        alpha' [rad].
+    piston_width : float
+        beta [rad].
+
+    Returns
+    -------
+    (delta_A, delta_B) : tuple of ndarray
+    """
+    slider = np.asarray(slider, dtype=float)
+    a = slider - 2.0 * PISTON_OFFSET - piston_width
+    b = 0.5 * np.pi + 2.0 * PISTON_OFFSET - slider - piston_width
+    return a, b
+
+
+def _gaps(params: WobbleCam):
+    """Smallest and largest centre-line gap of chamber kinds A and B [rad]."""
+    amax, amin = slider_angle_extremes(params.plate_tilt, params.roller_axis_angle)
+    amax, amin = float(amax), float(amin)
+    ga = (amin - 2.0 * PISTON_OFFSET, amax - 2.0 * PISTON_OFFSET)
+    gb = (0.5 * np.pi + 2.0 * PISTON_OFFSET - amax, 0.5 * np.pi + 2.0 * PISTON_OFFSET - amin)
+    return ga, gb
+
+
+def min_compression_ratio(params: WobbleCam) -> float:
+    """Compression ratio reached with zero-width pistons; any design ratio must exceed it.
+
+    The piston width beta of :func:`piston_layout` is positive iff
+    ``eps > g_max / g_min``, the ratio of the largest to the smallest
+    centre-line gap of the tighter chamber kind.
+    """
+    ga, gb = _gaps(params)
+    lo, hi = min((ga, gb), key=lambda g: g[0])
+    return hi / lo
+
+
+@dataclass(frozen=True)
+class PistonLayout:
+    """Piston width and chamber extremes for a design compression ratio.
+
+    Attributes
+    ----------
+    compression_ratio : float
+        Design ratio eps, reached by the tighter chamber kind.
+    piston_width : float
+        beta [rad].
+    chamber_a_min, chamber_a_max, chamber_b_min, chamber_b_max : float
+        Extremes of delta_A and delta_B [rad].
+    compression_ratio_a, compression_ratio_b : float
+        ``delta_max / delta_min`` of each kind.
+    design_kind : str
+        ``"A"`` or ``"B"``: the kind with the smaller minimum (ratio = eps).
+    """
+
+    compression_ratio: float
+    piston_width: float
+    chamber_a_min: float
+    chamber_a_max: float
+    chamber_b_min: float
+    chamber_b_max: float
+    compression_ratio_a: float
+    compression_ratio_b: float
+    design_kind: str
+
+    @property
+    def swing(self) -> float:
+        """``delta_max - delta_min = alpha'_max - alpha'_min`` (eq. 23) [rad]."""
+        return self.chamber_a_max - self.chamber_a_min
+
+
+def piston_layout(params: WobbleCam, compression_ratio: float) -> PistonLayout:
+    """Piston width beta giving the design compression ratio (eq. 21-22, generalised).
+
+    The chamber kind with the smaller minimum angle gets exactly
+    ``eps = delta_max/delta_min`` (volume proportional to angle, no clearance
+    volume): with its centre-line gaps ``g_min, g_max``,
+    ``beta = (eps g_min - g_max) / (eps - 1)``. At ``alpha = 90 deg`` both kinds
+    coincide (``alpha'_max + alpha'_min = pi``) and this is eq. 21,
+    ``beta = (eps+1)/(eps-1) alpha'_min - pi (eps+3) / (4 (eps-1))``. For other
+    alpha the paper's eq. 21 does not hold (it assumes
+    ``alpha'_max + alpha'_min = pi``); the other kind then has a lower ratio
+    (Fig. 11).
+
+    Parameters
+    ----------
+    params : WobbleCam
+    compression_ratio : float
+        eps, ``min_compression_ratio(params) < eps < inf``.
+
+    Raises
+    ------
+    ParameterError
+        named ``"compression_ratio"`` when eps is not admissible.
+    """
+    eps = float(compression_ratio)
+    lo_ratio = min_compression_ratio(params)
+    if not (np.isfinite(eps) and eps > max(lo_ratio, 1.0)):
+        raise ParameterError(
+            "compression_ratio",
+            f"{eps:g}",
+            f"compression_ratio > {lo_ratio:.4g} (the ratio of zero-width pistons at this "
+            "plate tilt and roller axis angle; a smaller one needs a negative piston width, "
+            "eq. 21)",
+        )
+    ga, gb = _gaps(params)
+    kind, (gmin, gmax) = min((("A", ga), ("B", gb)), key=lambda k: k[1][0])
+    beta = (eps * gmin - gmax) / (eps - 1.0)
+    a = (ga[0] - beta, ga[1] - beta)
+    b = (gb[0] - beta, gb[1] - beta)
+    return PistonLayout(
+        compression_ratio=eps,
+        piston_width=beta,
+        chamber_a_min=a[0],
+        chamber_a_max=a[1],
+        chamber_b_min=b[0],
+        chamber_b_max=b[1],
+        compression_ratio_a=a[1] / a[0],
+        compression_ratio_b=b[1] / b[0],
+        design_kind=kind,
+    )
+
+
+# --------------------------------------------------------------------------------------------
+# roller trajectories and groove centre-lines
+# --------------------------------------------------------------------------------------------
+def roller_offsets(roller_axis_angle):
+    """Angles c of the 4 rollers in the plate plane (from z3 towards y3) [rad], shape (4,).
+
+    Order: group 1 (``-alpha/2``, ``pi - alpha/2``), group 2 (``alpha/2``,
+    ``pi + alpha/2``); roller 1 is index 0 (eq. 12).
+    """
+    h = 0.5 * float(roller_axis_angle)
+    return np.array([-h, np.pi - h, h, np.pi + h])
+
+
+def plate_point(theta, spin_angle, offset, plate_tilt, radius):
+    """Plate point at angle ``offset`` and ``radius``, in the fixed frame (eq. 7-8) [m].
+
+    ``r|0 = A_theta A_phi A_varphi r [0, sin c, cos c]
+    = r [sin(phi) cos u, cos(theta) sin u + sin(theta) cos(phi) cos u,
+    -sin(theta) sin u + cos(theta) cos(phi) cos u]``, ``u = varphi + c``.
+
+    Returns
+    -------
+    ndarray, shape (3, ...)
+        x, y, z of the broadcast inputs.
+    """
+    theta = np.asarray(theta, dtype=float)
+    u = np.asarray(spin_angle, dtype=float) + offset
+    sp, cp = np.sin(plate_tilt), np.cos(plate_tilt)
+    su, cu = np.sin(u), np.cos(u)
+    st, ct = np.sin(theta), np.cos(theta)
+    x = sp * cu
+    y = ct * su + st * cp * cu
+    z = -st * su + ct * cp * cu
+    return radius * np.stack(np.broadcast_arrays(x, y, z))
+
+
+def groove_point(theta, cam, spin_angle, offset, plate_tilt, radius):
+    """The plate point of :func:`plate_point` seen in the cam frame (eq. 10-11) [m].
+
+    ``r|4 = A_psi^T r|0``; the first two rotations combine to ``A_(theta - psi)``.
+    With ``psi = -theta`` and ``varphi = -2 theta`` it closes after ``theta = pi``.
+
+    Returns
+    -------
+    ndarray, shape (3, ...)
+    """
+    return plate_point(
+        np.asarray(theta, dtype=float) - np.asarray(cam, dtype=float),
+        spin_angle,
+        offset,
+        plate_tilt,
+        radius,
+    )
+
+
+def _per_roller(params: WobbleCam, theta):
+    theta = np.asarray(theta, dtype=float)
+    c = roller_offsets(params.roller_axis_angle).reshape((4,) + (1,) * theta.ndim)
+    return theta, spin_law(params, theta)[0], c
+
+
+def roller_positions(params: WobbleCam, theta):
+    """Inner-roller centres of the 4 rollers in the fixed frame (Fig. 8) [m].
+
+    Returns
+    -------
+    ndarray, shape (4, 3, ...)
+        Roller (order of :func:`roller_offsets`), coordinate x y z, ``theta``'s shape.
+    """
+    theta, v, c = _per_roller(params, theta)
+    p = plate_point(theta, v, c, params.plate_tilt, params.sphere_radius)
+    return np.moveaxis(p, 0, 1)
+
+
+def groove_points(params: WobbleCam, theta):
+    """Groove centre-line points of the 4 rollers in the cam frame (Fig. 9) [m].
+
+    Returns
+    -------
+    ndarray, shape (4, 3, ...)
+    """
+    theta, v, c = _per_roller(params, theta)
+    p = groove_point(theta, cam_angle(theta), v, c, params.plate_tilt, params.sphere_radius)
+    return np.moveaxis(p, 0, 1)
+
+
+# --------------------------------------------------------------------------------------------
+# counts
+# --------------------------------------------------------------------------------------------
+def volume_cycles_per_rev(params: WobbleCam) -> int:
+    """Volume cycles of each chamber per shaft turn: ``2 |n|`` (alpha' has period pi in varphi).
+
+    Paper section 1.2 and 4.2.3: 4 at n = -2.
+    """
+    return int(round(2.0 * abs(params.spin_ratio)))
+
+
+def power_strokes_per_rev(params: WobbleCam, strokes_per_cycle: int = 4) -> int:
+    """Power strokes per shaft turn: ``8 chambers x 2 |n| / (strokes_per_cycle / 2)``.
+
+    A four-stroke cycle takes two volume cycles: 16 at n = -2 (paper section 1.2).
+    """
+    return int(round(CHAMBERS * volume_cycles_per_rev(params) * 2 / strokes_per_cycle))

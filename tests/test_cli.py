@@ -1,0 +1,99 @@
+"""The command line: every example runs and writes its files; bad input exits 2 with one line."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from rotorkin.cli import main
+
+EXAMPLES = ["eccentric-reactor", "guide-bar-pump", "rhomboid-engine", "wobble-cam-engine"]
+
+
+@pytest.mark.parametrize("name", EXAMPLES)
+def test_every_example_runs_and_writes_its_files(name, tmp_path, capsys):
+    out = tmp_path / name
+    assert main(["run", "--example", name, "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert "summary.json" in printed
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["name"] == name
+    header = (out / "motion.csv").read_text().splitlines()[0].split(",")
+    rows = (out / "motion.csv").read_text().splitlines()[1:]
+    assert len(rows) == 721
+    assert all(len(r.split(",")) == len(header) for r in rows)
+    readme = (out / "README.txt").read_text()
+    assert all(column in readme for column in header)
+    pngs = sorted(out.glob("*.png"))
+    assert len(pngs) >= 3
+    assert all(p.stat().st_size > 10_000 and p.read_bytes()[:4] == b"\x89PNG" for p in pngs)
+    assert not list(tmp_path.glob(".*tmp*")), "staging folder left behind"
+
+
+def test_default_run_is_the_wobble_cam_engine(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert main(["run"]) == 0
+    summary = json.loads((tmp_path / "rotorkin-out/wobble-cam-engine/summary.json").read_text())
+    assert summary["chamber_swing_deg"] == pytest.approx(38.94, abs=0.005)
+    assert summary["power_strokes_per_rev"] == 16
+    assert summary["max_plate_tilt_deg"] == pytest.approx(65.53, abs=0.005)
+    assert "chamber_swing_deg" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["run", "--set", "drive.plate_tilt=66 deg"], "drive.plate_tilt"),
+        (["run", "--set", "drive.plate_tilt=45"], "has no unit"),
+        (["run", "--set", "machine.compression_ratio=1"], "machine.compression_ratio"),
+        (["run", "--set", "drive.bogus=1"], "unknown key drive.bogus"),
+        (["run", "-e", "eccentric-reactor", "--set", "drive.eccentricity=80 mm"], "eccentricity"),
+        (["run", "-e", "guide-bar-pump", "--set", "drive.lambda=1.0"], "drive.lambda"),
+        (["run", "-e", "rhomboid-engine", "--set", "drive.psi_min=95 deg"], "drive.psi_min"),
+        (["run", "-e", "rhomboid-engine", "--set", "drive.a=[1.5]"], "drive.a"),
+        (["run", "no-such-file.toml"], "does not exist"),
+        (["run", "--example", "nope"], "--example"),
+        (["run", "--frobnicate"], "No such option"),
+    ],
+)
+def test_bad_input_exits_2_with_one_line_and_writes_nothing(args, words, tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main([*args, "--out", str(out)]) == 2
+    captured = capsys.readouterr()
+    lines = captured.err.strip().splitlines()
+    assert len(lines) == 1, captured.err
+    assert words in lines[0]
+    assert "Traceback" not in captured.err
+    assert not out.exists()
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_out_that_is_a_file_is_refused(tmp_path, capsys):
+    target = tmp_path / "file"
+    target.write_text("x")
+    assert main(["run", "--out", str(target)]) == 2
+    assert "--out" in capsys.readouterr().err
+    assert target.read_text() == "x"
+
+
+def test_console_script_entry_point_in_a_subprocess(tmp_path):
+    done = subprocess.run(
+        [sys.executable, "-m", "rotorkin.cli", "run", "--set", "drive.plate_tilt=70 deg"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        check=False,
+    )
+    assert done.returncode == 2
+    assert done.stderr.count("\n") == 1
+    assert "65.5" in done.stderr  # the limit is said
+
+
+def test_examples_and_keys_commands(capsys):
+    assert main(["examples"]) == 0
+    listed = capsys.readouterr().out
+    assert all(name in listed for name in EXAMPLES)
+    assert main(["keys", "rhomboid_cam"]) == 0
+    assert "drive.psi_min" in capsys.readouterr().out
+    assert main(["keys", "nope"]) == 2
