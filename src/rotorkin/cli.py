@@ -106,7 +106,8 @@ def _print_summary(result, name, outdir, written):
     from rich.table import Table
 
     console = Console()
-    table = Table(title=f"{name}: {result.title}", title_justify="left")
+    console.print(f"{name}: {result.title}", highlight=False, soft_wrap=True)
+    table = Table()
     table.add_column("metric")
     table.add_column("value", justify="right")
     for key in result.headline:
