@@ -104,7 +104,10 @@ def test_malformed_set_is_refused(item):
         (["drive.plate_tilt=45"], "drive.plate_tilt = 45 has no unit"),
         (["drive.colour=1"], "unknown key drive.colour"),
         (["nonsense.key=1"], "unknown key nonsense"),
-        (['machine.compression_ratio="ten"'], "machine.compression_ratio = 'ten' is not admissible"),
+        (
+            ['machine.compression_ratio="ten"'],
+            "machine.compression_ratio = 'ten' is not admissible",
+        ),
         (["machine.compression_ratio=nan"], "machine.compression_ratio = nan is not admissible"),
         (["run.points=true"], "run.points = True is not admissible"),
         (["run.points=2"], "run.points = 2 is not admissible"),

@@ -19,7 +19,7 @@ from rotorkin.errors import RotorkinError
 
 app = typer.Typer(
     name="rotorkin",
-    help="Design the drives of rotary variable-volume machines: kinematics, volumes, torques, cams.",
+    help="Design the drives of rotary variable-volume machines: kinematics, volumes, torques.",
     add_completion=False,
     pretty_exceptions_enable=False,
     rich_markup_mode=None,
@@ -93,8 +93,9 @@ def keys(
     from rotorkin.io.config import DRIVE_MODELS, glossary
 
     if drive_type is not None and drive_type not in DRIVE_MODELS:
+        choices = ", ".join(DRIVE_MODELS)
         raise RotorkinError(
-            f"DRIVE_TYPE = {drive_type!r} is not admissible: choose one of {', '.join(DRIVE_MODELS)}"
+            f"DRIVE_TYPE = {drive_type!r} is not admissible: choose one of {choices}"
         )
     for kind, key, default, doc in glossary():
         if drive_type in (None, kind):

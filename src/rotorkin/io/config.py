@@ -326,9 +326,7 @@ def _one_line(exc: ValidationError, model: type[BaseModel]) -> str:
         return f"missing required key {loc}: {_describe(model, err['loc'])}"
     if kind == "extra_forbidden":
         parent = _submodel(model, err["loc"][:-1])
-        known = ", ".join(
-            (f.alias or n) for n, f in parent.model_fields.items() if n != "type"
-        )
+        known = ", ".join((f.alias or n) for n, f in parent.model_fields.items() if n != "type")
         where = f"[{'.'.join(map(str, err['loc'][:-1]))}]" if len(err["loc"]) > 1 else "top level"
         return f"unknown key {loc}; known keys at {where}: {known}"
     if kind == "rotorkin_unit":

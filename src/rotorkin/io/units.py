@@ -73,7 +73,7 @@ def parse_quantity(value, kind: str) -> tuple[float, str]:
         return bad, f"is not admissible: needs {describe_kind(kind)}"
     if isinstance(value, (int, float)):
         return bad, (
-            f"has no unit: write it as a string with a unit, e.g. \"{value} {_suggest_unit(kind)}\""
+            f'has no unit: write it as a string with a unit, e.g. "{value} {_suggest_unit(kind)}"'
         )
     import pint
 
