@@ -52,6 +52,29 @@ def _unit(kind: str):
 Angle = Annotated[float, _unit("angle")]
 Length = Annotated[float, _unit("length")]
 Torque = Annotated[float, _unit("torque")]
+Pressure = Annotated[float, _unit("pressure")]
+Inertia = Annotated[float, _unit("inertia")]
+Mass = Annotated[float, _unit("mass")]
+Volume = Annotated[float, _unit("volume")]
+Energy = Annotated[float, _unit("energy")]
+Temperature = Annotated[float, _unit("temperature")]
+Modulus = Annotated[float, _unit("modulus")]
+
+
+def _speeds(value):
+    values = value if isinstance(value, list) else [value]
+    out = []
+    for item in values:
+        number, reason = parse_quantity(item, "speed")
+        if reason:
+            raise PydanticCustomError("rotorkin_unit", reason)
+        out.append(number)
+    return out[0] if not isinstance(value, list) else out
+
+
+_speeds_validator = BeforeValidator(_speeds)
+_speeds_validator.func.kind = "speed"
+Speed = Annotated[float | list[float], _speeds_validator]
 
 
 class _Section(BaseModel):
@@ -68,6 +91,10 @@ class _Section(BaseModel):
 class RunSection(_Section):
     points: int = Field(
         721, ge=3, le=10_000_000, description="input angles sampled over one period, ends included"
+    )
+    speed: Speed = Field(
+        "3000 rpm",
+        description="input shaft speed: one value, or a list sampled evenly over one period",
     )
 
 
@@ -88,9 +115,38 @@ class WobbleDrive(_Section):
     )
 
 
-class WobbleMachine(_Section):
+class _Inertial(_Section):
+    inertia_shaft: Inertia = Field("0 kg*m^2", description="inertia of the input shaft")
+    speed_fluctuation: float = Field(
+        0.02, description="wanted coefficient of speed fluctuation, for the flywheel"
+    )
+
+
+class WobbleMachine(_Inertial):
     compression_ratio: float = Field(
         10.0, description="geometric compression ratio eps = delta_max / delta_min"
+    )
+    pistons_per_rotor: int = Field(4, description="vane pistons on each rotor")
+    section: Literal["rectangular", "circular"] = Field(
+        "rectangular", description="cylinder section: rectangular annulus or circular torus"
+    )
+    inner_radius: Length = Field("40 mm", description="inner radius of a rectangular annulus")
+    outer_radius: Length = Field("80 mm", description="outer radius of a rectangular annulus")
+    axial_width: Length = Field("40 mm", description="axial width of a rectangular annulus")
+    mean_radius: Length = Field("60 mm", description="mean radius of a circular torus")
+    section_diameter: Length = Field("40 mm", description="section diameter of a circular torus")
+    clearance_volume: Volume = Field("0 cm^3", description="clearance volume of each chamber")
+    inertia_rotor_1: Inertia = Field("0.01 kg*m^2", description="inertia of rotor 1")
+    inertia_rotor_2: Inertia = Field("0.01 kg*m^2", description="inertia of rotor 2")
+
+
+class EngineLoads(_Section):
+    ambient_pressure: Pressure = Field("1 bar", description="intake and exhaust pressure")
+    polytropic_exponent: float = Field(
+        1.35, description="exponent n of compression and expansion, p V^n = const"
+    )
+    heat_per_cycle: Energy = Field(
+        "0 J", description="heat added at minimum volume, per chamber and four-stroke cycle"
     )
 
 
@@ -98,7 +154,7 @@ class WobbleConfig(_Section):
     title: str = ""
     drive: WobbleDrive
     machine: WobbleMachine = Field(default_factory=WobbleMachine)
-    loads: EmptySection = Field(default_factory=EmptySection)
+    loads: EngineLoads = Field(default_factory=EngineLoads)
     run: RunSection = Field(default_factory=RunSection)
 
 
@@ -113,10 +169,16 @@ class EccentricDrive(_Section):
     roller_radius: Length = Field("0 mm", description="roller radius r (follower = roller)")
 
 
-class EccentricMachine(_Section):
+class EccentricMachine(_Inertial):
     device_length: Length = Field(
         "1000 mm", description="length L of the reactor between the pistons"
     )
+    bore: Length = Field("50 mm", description="piston and tube bore diameter")
+    fluid: Literal["gas", "liquid"] = Field("liquid", description="working fluid: gas or liquid")
+    initial_pressure: Pressure = Field("1 bar", description="pressure at the starting gap")
+    polytropic_exponent: float = Field(1.0, description="exponent n of the gas, p V^n = const")
+    bulk_modulus: Modulus = Field("1.5 GPa", description="bulk modulus K of the liquid")
+    piston_mass: Mass = Field("0.5 kg", description="mass of each piston with its rod")
 
 
 class EccentricConfig(_Section):
@@ -144,12 +206,26 @@ class GuideBarDrive(_Section):
 class GuideBarLoads(_Section):
     impeller_torque_1: Torque = Field("0 N*m", description="resisting torque M7 on impeller 1")
     impeller_torque_2: Torque = Field("0 N*m", description="resisting torque M8 on impeller 2")
+    suction_pressure: Pressure = Field("1 bar", description="pressure at the inlet port")
+    discharge_pressure: Pressure = Field("1 bar", description="pressure at the outlet port")
+
+
+class VanePumpMachine(_Inertial):
+    vanes_per_impeller: int = Field(2, description="vanes on each impeller")
+    vane_angle: Angle | None = Field(
+        None, description="angular width of a vane; default: the drive's gamma_0"
+    )
+    hub_radius: Length = Field("30 mm", description="impeller hub radius")
+    casing_radius: Length = Field("80 mm", description="casing (vane tip) radius")
+    axial_width: Length = Field("40 mm", description="axial width of the working space")
+    inertia_impeller_1: Inertia = Field("0.005 kg*m^2", description="inertia of impeller 1")
+    inertia_impeller_2: Inertia = Field("0.005 kg*m^2", description="inertia of impeller 2")
 
 
 class GuideBarConfig(_Section):
     title: str = ""
     drive: GuideBarDrive
-    machine: EmptySection = Field(default_factory=EmptySection)
+    machine: VanePumpMachine = Field(default_factory=VanePumpMachine)
     loads: GuideBarLoads = Field(default_factory=GuideBarLoads)
     run: RunSection = Field(default_factory=RunSection)
 
@@ -170,12 +246,30 @@ class RhomboidDrive(_Section):
 class RhomboidLoads(_Section):
     torque_high: Torque = Field("0 N*m", description="torque level M1 of the linear blade model")
     torque_low: Torque = Field("0 N*m", description="torque level M2 of the linear blade model")
+    pressure_model: Literal["linear", "isothermal"] = Field(
+        "linear", description="blade loads: the paper's linear torque model or isothermal gas"
+    )
+    charge_pressure: Pressure = Field(
+        "10 bar", description="isothermal model: pressure at the largest volume, cold"
+    )
+    hot_temperature: Temperature = Field("900 K", description="isothermal model: expansion")
+    cold_temperature: Temperature = Field("330 K", description="isothermal model: compression")
+
+
+class RotaryBladeMachine(_Inertial):
+    blades_per_pair: int = Field(2, description="blades on each of the two blade pairs")
+    blade_thickness: Angle = Field("10 deg", description="angular thickness of one blade")
+    inner_radius: Length = Field("30 mm", description="hub radius of the working space")
+    outer_radius: Length = Field("90 mm", description="casing radius of the working space")
+    axial_width: Length = Field("50 mm", description="axial width of the working space")
+    inertia_blade_pair_1: Inertia = Field("0.01 kg*m^2", description="inertia of blade pair 1")
+    inertia_blade_pair_2: Inertia = Field("0.01 kg*m^2", description="inertia of blade pair 2")
 
 
 class RhomboidConfig(_Section):
     title: str = ""
     drive: RhomboidDrive
-    machine: EmptySection = Field(default_factory=EmptySection)
+    machine: RotaryBladeMachine = Field(default_factory=RotaryBladeMachine)
     loads: RhomboidLoads = Field(default_factory=RhomboidLoads)
     run: RunSection = Field(default_factory=RunSection)
 

@@ -19,6 +19,13 @@ KINDS = {
     "length": ("m", '"80 mm" or "0.08 m"'),
     "torque": ("N*m", '"12 N*m"'),
     "speed": ("rad/s", '"3000 rpm" or "314 rad/s"'),
+    "pressure": ("Pa", '"1 bar" or "101325 Pa"'),
+    "inertia": ("kg*m**2", '"0.02 kg*m^2"'),
+    "mass": ("kg", '"0.5 kg"'),
+    "volume": ("m**3", '"2 cm^3"'),
+    "energy": ("J", '"150 J"'),
+    "temperature": ("K", '"600 K" or "25 degC"'),
+    "modulus": ("Pa", '"2.2 GPa"'),
 }
 
 
@@ -94,4 +101,16 @@ def parse_quantity(value, kind: str) -> tuple[float, str]:
 
 
 def _suggest_unit(kind: str) -> str:
-    return {"angle": "deg", "length": "mm", "torque": "N*m", "speed": "rpm"}[kind]
+    return {
+        "angle": "deg",
+        "length": "mm",
+        "torque": "N*m",
+        "speed": "rpm",
+        "pressure": "bar",
+        "inertia": "kg*m^2",
+        "mass": "kg",
+        "volume": "cm^3",
+        "energy": "J",
+        "temperature": "K",
+        "modulus": "GPa",
+    }[kind]

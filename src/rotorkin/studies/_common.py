@@ -37,3 +37,47 @@ def build_params(cls, section: str, values: dict, aliases: dict | None = None):
 def angle_grid(period: float, points: int) -> np.ndarray:
     """``points`` input angles from 0 to ``period`` inclusive [rad]."""
     return np.linspace(0.0, period, int(points))
+
+
+def time_domain(motion, speed, slugs, period):
+    """Columns and peaks of member velocity, acceleration and jerk in time.
+
+    Parameters
+    ----------
+    motion : rotorkin.motion.Motion
+        Motion over one period (1-d ``theta``).
+    speed : float or sequence of float
+        ``cfg["run"]["speed"]``: constant shaft speed or a profile [rad/s].
+    slugs : tuple of str
+        Column stems of the two members, e.g. ``("rotor1", "rotor2")``.
+    period : float
+        Period of the input angle [rad].
+
+    Returns
+    -------
+    (columns, summary, omega) : dict, dict, tuple
+        Columns ``<slug>_speed_<u>_per_s``, ``_accel_<u>_per_s2``, ``_jerk_<u>_per_s3``
+        (u = rad or m) with their docs, peak values for the summary, and
+        ``(omega, omega_dot, omega_ddot)`` at the samples.
+    """
+    from rotorkin.analysis.timing import shaft_speed
+
+    omega = shaft_speed(motion.theta, speed, period)
+    v, a, j = motion.in_time(*omega)
+    u = motion.unit
+    columns, docs, summary = {}, {}, {}
+    columns["shaft_speed_rpm"] = omega[0] * 30.0 / np.pi
+    docs["shaft_speed_rpm"] = "input shaft speed"
+    for k, slug in enumerate(slugs):
+        name = motion.members[k]
+        for label, values, suffix, what in (
+            ("speed", v[k], f"{u}_per_s", "velocity"),
+            ("accel", a[k], f"{u}_per_s2", "acceleration"),
+            ("jerk", j[k], f"{u}_per_s3", "jerk"),
+        ):
+            key = f"{slug}_{label}_{suffix}"
+            columns[key] = values
+            docs[key] = f"{what} of {name} in time, at the shaft speed of shaft_speed_rpm"
+            summary[f"{slug}_{label}_peak_{suffix}"] = float(np.max(np.abs(values)))
+    summary["shaft_speed_mean_rpm"] = float(np.mean(omega[0][:-1]) * 30.0 / np.pi)
+    return columns, docs, summary, omega
