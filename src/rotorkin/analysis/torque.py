@@ -149,6 +149,9 @@ def cycle_integral(values, theta, axis=-1):
 def torque_ripple(torque, axis=-1):
     """``(max - min) / |mean|`` of a torque over a period (NaN when the mean is 0).
 
+    A mean below ``1e-12`` of the span counts as zero (round-off of a torque
+    whose mean is zero in exact arithmetic).
+
     ``torque`` holds one period sampled with both ends included; the repeated
     end is left out of the mean.
     """
@@ -156,5 +159,6 @@ def torque_ripple(torque, axis=-1):
     core = np.take(t, np.arange(t.shape[axis] - 1), axis=axis)
     mean = np.mean(core, axis=axis)
     span = np.max(t, axis=axis) - np.min(t, axis=axis)
+    zero = np.abs(mean) <= 1e-12 * span
     with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(mean != 0, span / np.abs(mean), np.nan)
+        return np.where(zero, np.nan, span / np.abs(mean))
