@@ -80,7 +80,7 @@ def test_time_derivatives_match_finite_differences_in_time():
     np.testing.assert_allclose(
         a, (q_of(t + h) - 2 * q_of(t) + q_of(t - h)) / h**2, rtol=1e-4, atol=1e-2
     )
-    h3 = 1e-3
+    h3 = 1e-4
     fd3 = (q_of(t + 2 * h3) - 2 * q_of(t + h3) + 2 * q_of(t - h3) - q_of(t - 2 * h3)) / (2 * h3**3)
     np.testing.assert_allclose(j, fd3, rtol=1e-3, atol=20)
 
