@@ -307,3 +307,34 @@ def test_fig13_extremes_spread_faster_and_faster_with_phi():
         assert np.all(np.diff(amax) > 0) and np.all(np.diff(amin) < 0)
         assert np.all(np.diff(amax, 2) > 0) and np.all(np.diff(amin, 2) < 0)
         assert np.all(np.diff(amax - amin) > 0)
+
+
+# --------------------------------------------------------------------------------------------
+# the engine statements of section 1.2 through the four-stroke assignment of the machine
+# --------------------------------------------------------------------------------------------
+def test_sixteen_power_strokes_and_two_chambers_firing_through_the_machine():
+    """Section 1.2: "each output-shaft turn ... 16 power strokes"; "at every instant 2 working
+    chambers are in the power stroke". Counted on the machine's four-stroke assignment over one
+    turn (exact integers), sampled inside every stroke interval (0.1 deg steps)."""
+    from rotorkin.analysis.engine_cycle import POWER
+    from rotorkin.machines import twin_rotor as tr
+
+    p, m = table1(), tr.TwinRotor()
+    theta = np.arange(0.05, 360.0, 0.1) * D
+    s = tr.strokes(p, m, theta)
+    assert s.shape == (8, theta.size)
+    assert np.all(np.sum(s == POWER, axis=0) == 2)
+    starts = np.sum((s == POWER) & (np.roll(s, 1, axis=1) != POWER))
+    assert starts == 16
+    summary = study.evaluate(table1_cfg()).summary
+    assert summary["chambers_in_power_stroke"] == 2
+    assert summary["intake_strokes_per_rev"] == 16
+
+
+def test_table1_compression_ratio_is_the_geometric_one_without_clearance():
+    """Table 1: eps = 10 with the paper's pure annular-sector chamber (no clearance volume):
+    V_max/V_min = 10 for both chamber kinds (exact up to rounding, 1e-12)."""
+    s = study.evaluate(table1_cfg()).summary
+    assert s["compression_ratio_geometric"] == pytest.approx(10.0, rel=1e-12)
+    assert s["compression_ratio_geometric_b"] == pytest.approx(10.0, rel=1e-12)
+    assert s["chamber_volume_max_cm3"] / s["chamber_volume_min_cm3"] == pytest.approx(10.0)

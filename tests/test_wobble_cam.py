@@ -588,3 +588,142 @@ def test_plot_writes_pngs(tmp_path):
         for p in paths:
             assert p.exists() and p.stat().st_size > 10_000
             assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+# --------------------------------------------------------------------------------------------
+# N pistons per rotor (issue 3): eq. 18-22 generalised
+# --------------------------------------------------------------------------------------------
+def explicit_chambers_n(phi1, phi2, beta, n_p, gamma):
+    """Place 2N pistons (N per rotor, 2 pi/N apart) and measure the 2N gaps minus the width."""
+    k = np.arange(n_p) * 2 * np.pi / n_p
+    pist = np.concatenate([phi1[..., None] + gamma + k, phi2[..., None] - gamma + k], -1)
+    pist = np.sort(np.mod(pist, 2 * np.pi), -1)
+    gaps = np.diff(np.concatenate([pist, pist[..., :1] + 2 * np.pi], -1), axis=-1)
+    return np.sort(gaps - beta, -1)
+
+
+def random_params_n(rng, n_p):
+    lo, hi = np.pi / 2 - np.pi / n_p, np.pi / 2 + np.pi / n_p
+    alpha = rng.uniform(lo + 0.02, hi - 0.02) if n_p > 2 else rng.uniform(0.2, np.pi - 0.2)
+    lim = min(float(wc.max_plate_tilt(alpha, n_p)), 1.45)
+    phi = rng.uniform(0.03, lim - 0.01)
+    n = float(rng.choice([-3.0, -2.0, -1.5, -1.0, 1.0, 2.0]))
+    return wc.WobbleCam(phi, alpha, n, 0.05, n_p)
+
+
+@pytest.mark.parametrize("n_p", [2, 4, 6, 8, 12])
+def test_piston_offset_from_eq18_19(n_p):
+    """gamma = pi/4 - pi/(2N): the only offset for which eq. 19 holds for both kinds, i.e. kind B
+    at the complementary slider angle pi - alpha' (eq. 18) is kind A at alpha'."""
+    g = float(wc.piston_offset(n_p))
+    assert g == pytest.approx(np.pi / 4 - np.pi / (2 * n_p), abs=1e-15)
+    rng = np.random.default_rng(n_p)
+    s, beta = rng.uniform(0.5, 2.5, 50), rng.uniform(0, 0.2)
+    da, db = wc.chamber_angles(s, beta, n_p)
+    np.testing.assert_allclose(db, wc.chamber_angles(np.pi - s, beta, n_p)[0], atol=1e-14)
+    np.testing.assert_allclose(da + db + 2 * beta, 2 * np.pi / n_p, atol=1e-14)  # eq. 18
+    lo, hi = wc.slider_angle_limits(n_p)
+    assert (lo, hi) == pytest.approx((2 * g, 2 * np.pi / n_p + 2 * g))
+    assert wc.chamber_count(n_p) == 2 * n_p
+    if n_p == 4:
+        assert g == wc.PISTON_OFFSET and (lo, hi) == pytest.approx((np.pi / 4, 3 * np.pi / 4))
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_chamber_angles_n_against_explicit_pistons(seed):
+    rng = np.random.default_rng(1000 + seed)
+    n_p = int(rng.choice([2, 4, 6, 8]))
+    p = random_params_n(rng, n_p)
+    beta = rng.uniform(0.0, 0.05)
+    theta = rng.uniform(-5, 5, 100)
+    q = wc.rotor_angles(p, theta)[0]
+    da, db = wc.chamber_angles(q[1] - q[0], beta, n_p)
+    ours = np.sort(
+        np.concatenate([np.repeat(da[:, None], n_p, 1), np.repeat(db[:, None], n_p, 1)], 1), 1
+    )
+    g = np.pi / 4 - np.pi / (2 * n_p)
+    np.testing.assert_allclose(ours, explicit_chambers_n(q[0], q[1], beta, n_p, g), atol=1e-9)
+
+
+@pytest.mark.parametrize("n_p", [2, 6, 8])
+@pytest.mark.parametrize("alpha_frac", [0.15, 0.4, 0.5, 0.7, 0.9])
+def test_max_plate_tilt_n_by_root_finding(n_p, alpha_frac):
+    """Eq. 20 with N: alpha'_max <= pi/2 + pi/N, alpha'_min >= pi/2 - pi/N, solved on eq. 15."""
+    lo, hi = np.pi / 2 - np.pi / n_p, np.pi / 2 + np.pi / n_p
+    alpha = lo + alpha_frac * (hi - lo)
+    got = float(wc.max_plate_tilt(alpha, n_p))
+    if n_p == 2:
+        assert got == pytest.approx(np.pi / 2, abs=1e-12)  # no limit before the geometric one
+        return
+    f_max = optimize.brentq(
+        lambda p: eq15_printed(0.0, p, alpha) - hi, 1e-9, np.pi / 2 - 1e-9, xtol=1e-14
+    )
+    f_min = optimize.brentq(
+        lambda p: eq15_printed(np.pi / 2, p, alpha) - lo, 1e-9, np.pi / 2 - 1e-9, xtol=1e-14
+    )
+    assert got == pytest.approx(min(f_max, f_min), abs=1e-9)
+    # at the limit the centre lines of two neighbouring pistons just touch (zero-width pistons)
+    p = wc.WobbleCam(got - 1e-12, alpha, -2.0, 0.05, n_p)
+    q = wc.rotor_angles(p, np.linspace(0, np.pi, 20001))[0]
+    gaps = explicit_chambers_n(q[0], q[1], 0.0, n_p, np.pi / 4 - np.pi / (2 * n_p))
+    assert gaps.min() == pytest.approx(0.0, abs=1e-6)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_piston_layout_n_against_dense_simulation(seed):
+    rng = np.random.default_rng(1100 + seed)
+    n_p = int(rng.choice([2, 6, 8]))
+    p = random_params_n(rng, n_p)
+    eps = wc.min_compression_ratio(p) * rng.uniform(1.05, 5.0)
+    lay = wc.piston_layout(p, eps)
+    assert lay.piston_width > 0
+    q = wc.rotor_angles(p, np.linspace(0, np.pi, 20001))[0]
+    g = np.pi / 4 - np.pi / (2 * n_p)
+    ch = explicit_chambers_n(q[0], q[1], lay.piston_width, n_p, g)
+    da, db = wc.chamber_angles(q[1] - q[0], lay.piston_width, n_p)
+    tight = {"A": da, "B": db}[lay.design_kind]
+    assert tight.min() == pytest.approx(ch.min(), abs=1e-9)
+    assert tight.max() / tight.min() == pytest.approx(eps, rel=1e-6)
+
+
+@pytest.mark.parametrize("n_p", [2, 4, 6, 8])
+def test_eq21_generalised_at_90deg(n_p):
+    """beta = (eps+1)/(eps-1) alpha'_min - (pi + (eps-1)(pi/2 - pi/N))/(eps-1); N = 4 is eq. 21."""
+    lim = float(wc.max_plate_tilt(np.pi / 2, n_p))
+    phi = min(0.7 * lim, 1.2)
+    p = wc.WobbleCam(phi, np.pi / 2, -2.0, 0.05, n_p)
+    eps = wc.min_compression_ratio(p) * 2.0
+    amin = eq15_printed(np.pi / 2, phi, np.pi / 2)
+    beta = (eps + 1) / (eps - 1) * amin - (np.pi + (eps - 1) * (np.pi / 2 - np.pi / n_p)) / (
+        eps - 1
+    )
+    assert wc.piston_layout(p, eps).piston_width == pytest.approx(beta, abs=1e-12)
+
+
+@pytest.mark.parametrize("n_p", [2, 4, 6])
+def test_power_strokes_with_n(n_p):
+    p = wc.WobbleCam(0.3, np.pi / 2, -2.0, 0.05, n_p)
+    assert wc.power_strokes_per_rev(p) == 2 * n_p * 4 // 2
+
+
+@pytest.mark.parametrize("bad", [3, 0, -2, 1, 4.0, True, "4"])
+def test_pistons_per_rotor_errors(bad):
+    with pytest.raises(ParameterError, match="pistons_per_rotor") as info:
+        wc.WobbleCam(0.5, pistons_per_rotor=bad)
+    assert info.value.name == "pistons_per_rotor" and "even" in str(info.value)
+
+
+def test_roller_axis_and_tilt_ranges_follow_n():
+    with pytest.raises(ParameterError, match="roller_axis_angle") as info:
+        wc.WobbleCam(0.3, 55 * D, pistons_per_rotor=6)
+    assert "60 deg" in str(info.value) and "120 deg" in str(info.value)
+    wc.WobbleCam(0.3, 65 * D, pistons_per_rotor=6)
+    wc.WobbleCam(80 * D, 10 * D, pistons_per_rotor=2)  # N = 2: any tilt below 90 deg
+    with pytest.raises(ParameterError, match="plate_tilt") as info:
+        wc.WobbleCam(56 * D, pistons_per_rotor=6)
+    assert "54.74 deg" in str(info.value) and "6 pistons per rotor" in str(info.value)
+    # default N = 4 is unchanged
+    assert wc.WobbleCam(0.5).pistons_per_rotor == 4
+    s = np.linspace(1.0, 2.0, 5)
+    np.testing.assert_array_equal(wc.chamber_angles(s, 0.1), wc.chamber_angles(s, 0.1, 4))
+    assert float(wc.max_plate_tilt(1.2)) == float(wc.max_plate_tilt(1.2, 4))

@@ -26,11 +26,13 @@ Conventions (the paper is silent on some):
   ``s_1 = -1, s_2 = +1``, ``E(u) = atan2(sin u, cos(phi) cos u)`` on its
   continuous branch. This per-rotor form is derived here; the paper gives only
   the angle between the rotors, eq. 15.
-* Chambers (4 pistons and 2 rails per rotor, eq. 18-19): ``gamma = pi/8``;
-  rotor 1 pistons at ``Phi_1 + gamma + k pi/2``, rotor 2 pistons at
-  ``Phi_2 - gamma + k pi/2``; chamber kind A (between a rotor-1 piston and the
-  rotor-2 piston ahead of it) ``delta_A = alpha' - 2 gamma - beta``, kind B
-  ``delta_B = pi/2 + 2 gamma - alpha' - beta``.
+* Chambers (N pistons and 2 rails per rotor, eq. 18-19 generalised from the
+  paper's N = 4): ``gamma = pi/4 - pi/(2N)`` (pi/8 at N = 4); rotor 1 pistons
+  at ``Phi_1 + gamma + 2 pi k/N``, rotor 2 pistons at ``Phi_2 - gamma + 2 pi k/N``;
+  chamber kind A (between a rotor-1 piston and the rotor-2 piston ahead of it)
+  ``delta_A = alpha' - 2 gamma - beta``, kind B
+  ``delta_B = 2 pi/N + 2 gamma - alpha' - beta``. N must be even: the two rails
+  of a rotor are pi apart and eq. 18-19 need the pistons to repeat every pi.
 
 Misprints of the paper: eq. 5 prints ``A_psi`` for ``A_theta``; eq. 8 and 11
 print ``cos phi cos phi`` for ``cos(phi) cos(varphi)``; eq. 18's text says
@@ -52,6 +54,9 @@ from rotorkin.motion import Motion, compose
 __all__ = [
     "PISTON_OFFSET",
     "CHAMBERS",
+    "piston_offset",
+    "chamber_count",
+    "slider_angle_limits",
     "WobbleCam",
     "PistonLayout",
     "max_plate_tilt",
@@ -76,29 +81,77 @@ __all__ = [
     "power_strokes_per_rev",
 ]
 
-#: Angle gamma between a piston's centre line and the nearest rail [rad] (eq. 18-19).
+#: Angle gamma between a piston's centre line and the nearest rail [rad] (eq. 18-19, N = 4).
 PISTON_OFFSET = np.pi / 8.0
 #: Number of chambers between the two 4-piston rotors.
 CHAMBERS = 8
 
 
+def piston_offset(pistons=4):
+    """Angle gamma between a piston's centre line and the nearest rail [rad] (eq. 18-19).
+
+    With 2 rails per rotor (pi apart) and N pistons (2 pi/N apart): eq. 18 gives
+    ``alpha'_1 + alpha'_2 = pi`` and ``delta_A + delta_B + 2 beta = 2 pi/N``; eq. 19,
+    ``alpha' = delta + beta + 2 gamma``, written for both chamber kinds then
+    gives ``gamma = pi/4 - pi/(2N)`` (pi/8 at the paper's N = 4; 0 at N = 2).
+    """
+    return np.pi / 4.0 - np.pi / (2.0 * np.asarray(pistons, dtype=float))
+
+
+def chamber_count(pistons=4) -> int:
+    """Chambers between two rotors of N pistons each: ``2 N`` (8 in the paper)."""
+    return 2 * int(pistons)
+
+
+def slider_angle_limits(pistons=4):
+    """Interference limits of the slider angle, eq. 20 generalised [rad].
+
+    The centre lines of neighbouring pistons must not cross:
+    ``alpha'_min >= 2 gamma = pi/2 - pi/N`` (kind A) and
+    ``alpha'_max <= 2 pi/N + 2 gamma = pi/2 + pi/N`` (kind B); pi/4 and 3 pi/4 at N = 4.
+
+    Returns
+    -------
+    (lower, upper) : tuple of float
+    """
+    g2 = 2.0 * float(piston_offset(pistons))
+    return g2, 2.0 * np.pi / float(pistons) + g2
+
+
+def _check_pistons(pistons):
+    """ParameterError unless N is an even integer >= 2."""
+    ok = isinstance(pistons, (int, np.integer)) and not isinstance(pistons, bool)
+    if not (ok and pistons >= 2 and pistons % 2 == 0):
+        raise ParameterError(
+            "pistons_per_rotor",
+            repr(pistons),
+            "an even integer >= 2 (each rotor has 2 rails 180 deg apart, so its pistons must "
+            "repeat every 180 deg for eq. 18-19 and the period of one shaft turn)",
+        )
+
+
 # --------------------------------------------------------------------------------------------
 # parameters
 # --------------------------------------------------------------------------------------------
-def max_plate_tilt(roller_axis_angle):
+def max_plate_tilt(roller_axis_angle, pistons=4):
     """Largest plate tilt at which the pistons do not interfere (eq. 20) [rad].
 
-    Eq. 20 asks ``alpha'_max <= 3 pi/4`` and ``alpha'_min >= pi/4``; with eq. 17
-    in closed form (see :func:`slider_angle_extremes`) this gives
-    ``cos(phi_lim) = max(tan(alpha/2) / tan(3 pi/8), tan(pi/8) / tan(alpha/2))``.
-    The paper reads "about 65 deg" off Fig. 13 for ``alpha = 90 deg``; the exact
-    value is 65.53 deg (``cos(phi_lim) = tan(pi/8) = sqrt(2) - 1``).
+    Eq. 20 asks ``alpha'_max <= 3 pi/4`` and ``alpha'_min >= pi/4`` (N = 4; in
+    general :func:`slider_angle_limits`); with eq. 17 in closed form (see
+    :func:`slider_angle_extremes`) this gives, with ``t_N = tan(pi/4 - pi/(2N))``,
+    ``cos(phi_lim) = max(t_N tan(alpha/2), t_N / tan(alpha/2))``.
+    The paper reads "about 65 deg" off Fig. 13 for ``alpha = 90 deg``, N = 4; the
+    exact value is 65.53 deg (``cos(phi_lim) = tan(pi/8) = sqrt(2) - 1``). At
+    N = 2 the limit is 90 deg for every alpha.
 
     Parameters
     ----------
     roller_axis_angle : array_like
-        Angle alpha between the roller groups [rad], ``pi/4 < alpha < 3 pi/4``
-        (outside, no tilt is admissible and NaN is returned).
+        Angle alpha between the roller groups [rad],
+        ``pi/2 - pi/N < alpha < pi/2 + pi/N`` (outside, no tilt is admissible and
+        NaN is returned).
+    pistons : int, optional
+        Pistons per rotor N (even, default 4).
 
     Returns
     -------
@@ -106,7 +159,8 @@ def max_plate_tilt(roller_axis_angle):
         Limit plate tilt [rad].
     """
     t = np.tan(np.asarray(roller_axis_angle, dtype=float) / 2.0)
-    cos_lim = np.maximum(t / np.tan(3.0 * np.pi / 8.0), np.tan(np.pi / 8.0) / t)
+    tn = np.tan(np.pi / 4.0 - np.pi / (2.0 * float(pistons)))
+    cos_lim = np.maximum(t * tn, tn / t)
     with np.errstate(invalid="ignore"):
         return np.where(cos_lim < 1.0, np.arccos(np.minimum(cos_lim, 1.0)), np.nan)
 
@@ -134,30 +188,37 @@ class WobbleCam:
     sphere_radius : float, optional
         Radius r of the inner roller centres, i.e. of the groove centre-line
         sphere [m] (default 0.05; the paper gives no value).
+    pistons_per_rotor : int, optional
+        Pistons N on each rotor, even, >= 2 (paper: 4, default). It only sets the
+        interference limits of eq. 20 (and the chamber bookkeeping).
     """
 
     plate_tilt: float
     roller_axis_angle: float = np.pi / 2.0
     spin_ratio: float = -2.0
     sphere_radius: float = 0.05
+    pistons_per_rotor: int = 4
 
     def __post_init__(self):
+        n_p = self.pistons_per_rotor
+        _check_pistons(n_p)
         a = float(self.roller_axis_angle)
-        if not (np.isfinite(a) and np.pi / 4.0 < a < 3.0 * np.pi / 4.0):
+        lo, hi = np.pi / 2.0 - np.pi / n_p, np.pi / 2.0 + np.pi / n_p
+        if not (np.isfinite(a) and lo < a < hi):
             raise ParameterError(
                 "roller_axis_angle",
                 fmt_deg(a),
-                "45 deg < roller_axis_angle < 135 deg (eq. 20: beyond, no plate tilt is "
-                "admissible for 4-piston rotors)",
+                f"{fmt_deg(lo)} < roller_axis_angle < {fmt_deg(hi)} (eq. 20: beyond, no plate "
+                f"tilt is admissible for {n_p}-piston rotors)",
             )
-        lim = float(max_plate_tilt(a))
+        lim = float(max_plate_tilt(a, n_p))
         p = float(self.plate_tilt)
         if not (np.isfinite(p) and 0.0 < p < lim):
             raise ParameterError(
                 "plate_tilt",
                 fmt_deg(p),
                 f"0 deg < plate_tilt < {np.degrees(lim):.2f} deg (eq. 20 limit at "
-                f"roller_axis_angle = {fmt_deg(a)})",
+                f"roller_axis_angle = {fmt_deg(a)}, {n_p} pistons per rotor)",
             )
         if not _is_half_integer(float(self.spin_ratio)):
             raise ParameterError(
@@ -348,14 +409,15 @@ def slider_angle_extremes(plate_tilt, roller_axis_angle):
     return 2.0 * np.arctan(t / c), 2.0 * np.arctan(c * t)
 
 
-def chamber_angles(slider, piston_width):
+def chamber_angles(slider, piston_width, pistons=4):
     """Angles of the two chamber kinds from the slider angle (eq. 18-19) [rad].
 
     ``delta_A = alpha' - 2 gamma - beta`` (rotor-1 piston to the rotor-2 piston
-    ahead of it) and ``delta_B = pi/2 + 2 gamma - alpha' - beta`` (the next
-    chamber), ``gamma = pi/8``; ``delta_A + delta_B + 2 beta = pi/2`` (eq. 18).
-    Kind B is eq. 19 written with the complementary slider angle
-    ``alpha'_2 = pi - alpha'`` (eq. 18). The 8 chambers alternate A, B.
+    ahead of it) and ``delta_B = 2 pi/N + 2 gamma - alpha' - beta`` (the next
+    chamber), ``gamma = pi/4 - pi/(2N)`` (:func:`piston_offset`);
+    ``delta_A + delta_B + 2 beta = 2 pi/N`` (eq. 18; pi/2 at N = 4). Kind B is
+    eq. 19 written with the complementary slider angle ``alpha'_2 = pi - alpha'``
+    (eq. 18). The 2N chambers alternate A, B.
 
     Parameters
     ----------
@@ -363,14 +425,17 @@ def chamber_angles(slider, piston_width):
         alpha' [rad].
     piston_width : float
         beta [rad].
+    pistons : int, optional
+        N, pistons per rotor (default 4, the paper's).
 
     Returns
     -------
     (delta_A, delta_B) : tuple of ndarray
     """
     slider = np.asarray(slider, dtype=float)
-    a = slider - 2.0 * PISTON_OFFSET - piston_width
-    b = 0.5 * np.pi + 2.0 * PISTON_OFFSET - slider - piston_width
+    g2 = 2.0 * float(piston_offset(pistons))
+    a = slider - g2 - piston_width
+    b = 2.0 * np.pi / float(pistons) + g2 - slider - piston_width
     return a, b
 
 
@@ -378,9 +443,8 @@ def _gaps(params: WobbleCam):
     """Smallest and largest centre-line gap of chamber kinds A and B [rad]."""
     amax, amin = slider_angle_extremes(params.plate_tilt, params.roller_axis_angle)
     amax, amin = float(amax), float(amin)
-    ga = (amin - 2.0 * PISTON_OFFSET, amax - 2.0 * PISTON_OFFSET)
-    gb = (0.5 * np.pi + 2.0 * PISTON_OFFSET - amax, 0.5 * np.pi + 2.0 * PISTON_OFFSET - amin)
-    return ga, gb
+    lo, hi = slider_angle_limits(params.pistons_per_rotor)
+    return (amin - lo, amax - lo), (hi - amax, hi - amin)
 
 
 def min_compression_ratio(params: WobbleCam) -> float:
@@ -436,8 +500,9 @@ def piston_layout(params: WobbleCam, compression_ratio: float) -> PistonLayout:
     ``eps = delta_max/delta_min`` (volume proportional to angle, no clearance
     volume): with its centre-line gaps ``g_min, g_max``,
     ``beta = (eps g_min - g_max) / (eps - 1)``. At ``alpha = 90 deg`` both kinds
-    coincide (``alpha'_max + alpha'_min = pi``) and this is eq. 21,
-    ``beta = (eps+1)/(eps-1) alpha'_min - pi (eps+3) / (4 (eps-1))``. For other
+    coincide (``alpha'_max + alpha'_min = pi``) and this is eq. 21 (N = 4),
+    ``beta = (eps+1)/(eps-1) alpha'_min - pi (eps+3) / (4 (eps-1))``; for N pistons
+    ``beta = (eps+1)/(eps-1) alpha'_min - (pi + (eps-1)(pi/2 - pi/N)) / (eps-1)``. For other
     alpha the paper's eq. 21 does not hold (it assumes
     ``alpha'_max + alpha'_min = pi``); the other kind then has a lower ratio
     (Fig. 11).
@@ -579,8 +644,9 @@ def volume_cycles_per_rev(params: WobbleCam) -> int:
 
 
 def power_strokes_per_rev(params: WobbleCam, strokes_per_cycle: int = 4) -> int:
-    """Power strokes per shaft turn: ``8 chambers x 2 |n| / (strokes_per_cycle / 2)``.
+    """Power strokes per shaft turn: ``2N chambers x 2 |n| / (strokes_per_cycle / 2)``.
 
-    A four-stroke cycle takes two volume cycles: 16 at n = -2 (paper section 1.2).
+    A four-stroke cycle takes two volume cycles: 16 at N = 4, n = -2 (paper section 1.2).
     """
-    return int(round(CHAMBERS * volume_cycles_per_rev(params) * 2 / strokes_per_cycle))
+    chambers = chamber_count(params.pistons_per_rotor)
+    return int(round(chambers * volume_cycles_per_rev(params) * 2 / strokes_per_cycle))

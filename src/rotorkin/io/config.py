@@ -124,7 +124,9 @@ class _Inertial(_Section):
 
 class WobbleMachine(_Inertial):
     compression_ratio: float = Field(
-        10.0, description="geometric compression ratio eps = delta_max / delta_min"
+        10.0,
+        description="compression ratio eps = delta_max / delta_min of the chamber angles "
+        "(Table 1); the geometric volume ratio when there is no clearance volume",
     )
     pistons_per_rotor: int = Field(4, description="vane pistons on each rotor")
     section: Literal["rectangular", "circular"] = Field(

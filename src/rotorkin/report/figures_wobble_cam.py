@@ -1,4 +1,6 @@
-"""Figures of the wobble-plate + spherical-cam drive (Chen Hu et al. 2015, Fig. 8-10).
+"""Figures of the wobble-plate + spherical-cam drive (Chen Hu et al. 2015, Fig. 8-10)
+and of the twin-rotor engine built on it (chamber volumes, p-V diagram, shaft
+torque with and without inertia, four-stroke timing: ours, the paper has none).
 
 matplotlib is imported lazily inside the functions (Agg backend).
 """
@@ -17,6 +19,10 @@ __all__ = [
     "fig_groove_centreline",
     "fig_chamber_angle",
     "fig_rotor_kinematics",
+    "fig_chamber_volumes",
+    "fig_pv_diagram",
+    "fig_shaft_torque",
+    "fig_four_stroke",
 ]
 
 _DPI = 120
@@ -163,7 +169,7 @@ def fig_chamber_angle(params, layout, outdir: Path, points: int = 1441) -> Path:
     plt = _plt()
     theta = np.linspace(0.0, 2.0 * np.pi, points)
     q = wc.rotor_angles(params, theta)[0]
-    da, db = wc.chamber_angles(q[1] - q[0], layout.piston_width)
+    da, db = wc.chamber_angles(q[1] - q[0], layout.piston_width, params.pistons_per_rotor)
     fig, ax = plt.subplots(figsize=(9, 5))
     t = np.degrees(theta)
     ax.plot(t, np.degrees(da), color="C0", lw=1.8, label="chamber kind A, delta_A (eq. 19)")
@@ -231,13 +237,335 @@ def fig_rotor_kinematics(params, outdir: Path, points: int = 2881) -> Path:
     return path
 
 
-def plot_all(params, layout, outdir: Path) -> list[Path]:
-    """Write Fig. 8, 9, 10 and the rotor kinematics figure into ``outdir``; return the paths."""
+# --------------------------------------------------------------------------------------------
+# the engine
+# --------------------------------------------------------------------------------------------
+_STROKE_COLOURS = (
+    "#9ecae1",
+    "#fdd0a2",
+    "#fc9272",
+    "#d9d9d9",
+)  # intake, compression, power, exhaust
+
+
+def _xaxis(ax, end_deg, label=True):
+    ax.set_xlim(0, end_deg)
+    step = 45 if end_deg <= 360 else 90
+    ax.set_xticks(np.arange(0, end_deg + 1, step))
+    ax.grid(True, alpha=0.4)
+    if label:
+        ax.set_xlabel("shaft angle theta [deg]")
+
+
+def _engine_tag(params, machine, cycle) -> str:
+    if machine.section == "rectangular":
+        sec = (
+            f"annulus {machine.inner_radius * 1e3:.4g}/{machine.outer_radius * 1e3:.4g} mm x "
+            f"{machine.axial_width * 1e3:.4g} mm"
+        )
+    else:
+        sec = (
+            f"torus R_m {machine.mean_radius * 1e3:.4g} mm, d {machine.section_diameter * 1e3:.4g}"
+            " mm"
+        )
+    return (
+        f"N = {machine.pistons_per_rotor} pistons/rotor, {sec}, "
+        f"V_c = {machine.clearance_volume * 1e6:.3g} cm^3, eps = {machine.compression_ratio:g}, "
+        f"n = {cycle.polytropic_exponent:g}, Q = {cycle.heat_per_cycle:.4g} J"
+    )
+
+
+def _stroke_bands(ax, theta_deg, stroke, alpha=0.35, labels=True):
+    """Shade the strokes of one chamber along the x axis."""
+    from rotorkin.analysis.engine_cycle import STROKE_NAMES
+
+    edges = np.flatnonzero(np.diff(stroke)) + 1
+    starts = np.concatenate([[0], edges])
+    ends = np.concatenate([edges, [len(stroke) - 1]])
+    seen = set()
+    for a, b in zip(starts, ends, strict=True):
+        k = int(stroke[a])
+        label = STROKE_NAMES[k] if labels and k not in seen else None
+        seen.add(k)
+        ax.axvspan(
+            theta_deg[a], theta_deg[b], color=_STROKE_COLOURS[k], alpha=alpha, lw=0, label=label
+        )
+
+
+def fig_chamber_volumes(params, layout, machine, cycle, outdir: Path, points: int = 2881) -> Path:
+    """Chamber volumes of both kinds and dV/dtheta over one turn; chamber 1 strokes shaded."""
+    from rotorkin.machines import twin_rotor as tr
+
+    plt = _plt()
+    theta = np.linspace(0.0, 2.0 * np.pi, points)
+    ch = tr.chambers(params, machine, theta, layout)
+    stroke = tr.strokes(params, machine, theta)[0]
+    t = np.degrees(theta)
+    v_min, v_max = tr.volume_limits(machine, layout)
+    fig, (ax, ax2) = plt.subplots(
+        2, 1, figsize=(10, 7.5), sharex=True, gridspec_kw={"height_ratios": (3, 2)}
+    )
+    _stroke_bands(ax, t, stroke)
+    ax.plot(t, ch.volume[0] * 1e6, color="C0", lw=2.0, label="kind A (chambers 1, 3, ...)")
+    ax.plot(t, ch.volume[1] * 1e6, color="C3", lw=1.6, ls="--", label="kind B (chambers 2, 4, ...)")
+    for v in (v_min[0], v_max[0]):
+        ax.axhline(v * 1e6, color="0.4", lw=0.7, ls=":")
+    eps_a, eps_b = tr.compression_ratio_geometric(machine, layout)
+    ax.set_title(
+        f"(a) V_max = {v_max.max() * 1e6:.2f} cm^3, V_min = {v_min.min() * 1e6:.2f} cm^3, "
+        f"swept {tr.swept_volume(machine, layout) * 1e6:.2f} cm^3 per stroke,\n"
+        f"eps_geo A/B = {eps_a:.3g}/{eps_b:.3g}, "
+        f"displacement {tr.displacement_per_rev(params, machine, layout) * 1e6:.0f} cm^3/rev; "
+        "shading: strokes of chamber 1",
+        fontsize=9,
+    )
+    ax.set_ylim(0, v_max.max() * 1e6 * 1.32)
+    ax.set_ylabel("chamber volume V [cm^3]")
+    ax.legend(loc="upper center", ncol=6, fontsize=8)
+    _xaxis(ax, 360, label=False)
+    ax2.plot(t, ch.dvolume[0] * 1e6, color="C0", lw=1.8, label="dV_A/dtheta")
+    ax2.plot(t, ch.dvolume[1] * 1e6, color="C3", lw=1.4, ls="--", label="dV_B/dtheta")
+    ax2.axhline(0, color="0.3", lw=0.6)
+    ax2.set_ylabel("dV/dtheta [cm^3/rad]")
+    ax2.set_title("(b) exact derivatives", fontsize=9)
+    ax2.legend(loc="upper right", fontsize=8)
+    _xaxis(ax2, 360)
+    fig.suptitle(
+        "Chamber volumes over one shaft turn\n" + _engine_tag(params, machine, cycle), fontsize=10
+    )
+    fig.tight_layout()
+    path = Path(outdir) / "fig_chamber_volumes.png"
+    fig.savefig(path, dpi=_DPI)
+    plt.close(fig)
+    return path
+
+
+def fig_pv_diagram(params, layout, machine, cycle, outdir: Path, points: int = 4001) -> Path:
+    """p-V diagram of one four-stroke cycle of chamber 1 (kind A) and 2 (kind B), lin and log."""
+    from rotorkin.analysis import engine_cycle as ec
+    from rotorkin.machines import twin_rotor as tr
+
+    plt = _plt()
+    span = 2.0 * np.pi / abs(params.spin_ratio)  # four strokes
+    theta = np.linspace(0.0, span, points)
+    st = tr.engine_state(params, machine, cycle, theta)
+    v_min, v_max = tr.volume_limits(machine, layout)
+    eps_a, eps_b = tr.compression_ratio_geometric(machine, layout)
+    work = ec.indicated_work(cycle, v_max[:2], v_min[:2])
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5.2))
+    for ax, log in zip(axes, (False, True), strict=True):
+        for j, style in (
+            (0, {"color": "C0", "lw": 2.0}),
+            (1, {"color": "C3", "lw": 1.3, "ls": "--"}),
+        ):
+            ax.plot(
+                st.chambers.volume[j] * 1e6,
+                st.pressure[j] / 1e5,
+                label=f"chamber {j + 1} (kind {'AB'[j]}), W = {work[j]:.2f} J",
+                **style,
+            )
+        if log:
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+        ax.axhline(cycle.ambient_pressure / 1e5, color="0.5", lw=0.7, ls=":")
+        ax.set_xlabel("chamber volume V [cm^3]")
+        ax.set_ylabel("absolute pressure p [bar]")
+        ax.grid(True, which="both" if log else "major", alpha=0.35)
+    ax = axes[0]
+    p2 = ec.compression_end_pressure(cycle, v_max[0], v_min[0]) / 1e5
+    p3 = ec.peak_pressure(cycle, v_max[0], v_min[0]) / 1e5
+    p4 = ec.expansion_end_pressure(cycle, v_max[0], v_min[0]) / 1e5
+    for x, y, text in (
+        (v_min[0], p2, "2: end of compression"),
+        (v_min[0], p3, "3: after heat Q"),
+        (v_max[0], p4, "4: end of expansion"),
+        (v_max[0], cycle.ambient_pressure / 1e5, "1: BDC"),
+    ):
+        ax.plot([x * 1e6], [y], "ko", ms=4)
+        ax.annotate(text, (x * 1e6, y), textcoords="offset points", xytext=(8, 4), fontsize=8)
+    ax.text(
+        0.45,
+        0.75,
+        f"eps_geo A/B = {eps_a:.3g}/{eps_b:.3g}\np_peak = {p3:.1f} bar\n"
+        f"efficiency = {float(ec.otto_efficiency(eps_a, cycle.polytropic_exponent)):.3f} "
+        f"(Otto, n = {cycle.polytropic_exponent:g})",
+        transform=ax.transAxes,
+        fontsize=9,
+        bbox={"facecolor": "white", "alpha": 0.85, "edgecolor": "0.7"},
+    )
+    ax.legend(loc="upper right", fontsize=8)
+    ax.set_title("(a) linear axes")
+    axes[1].set_title("(b) logarithmic axes: polytropes are straight lines")
+    fig.suptitle(
+        "p-V diagram, ideal four-stroke cycle\n" + _engine_tag(params, machine, cycle), fontsize=10
+    )
+    fig.tight_layout()
+    path = Path(outdir) / "fig_pv_diagram.png"
+    fig.savefig(path, dpi=_DPI)
+    plt.close(fig)
+    return path
+
+
+def fig_shaft_torque(
+    params, layout, machine, cycle, speed, outdir: Path, points: int = 2881
+) -> Path:
+    """Shaft torque without and with inertia, the inertia torque and the rotors' gas torques."""
+    from rotorkin.analysis.timing import shaft_speed
+    from rotorkin.analysis.torque import inertia_torque
+    from rotorkin.machines import twin_rotor as tr
+
+    plt = _plt()
+    theta = np.linspace(0.0, 2.0 * np.pi, points)
+    st = tr.engine_state(params, machine, cycle, theta)
+    m = st.chambers.motion
+    w = shaft_speed(theta, speed, 2.0 * np.pi)
+    t_in = inertia_torque(machine.inertia_shaft, machine.member_inertias, m.dq, m.d2q, w[0], w[1])
+    net = st.shaft_torque - t_in
+    mean = tr.indicated_work_per_rev(params, machine, cycle, layout) / (2.0 * np.pi)
+    t = np.degrees(theta)
+    rpm = float(np.mean(w[0])) * 30.0 / np.pi
+    fig, axes = plt.subplots(3, 1, figsize=(10, 10), sharex=True)
+    ax = axes[0]
+    ax.plot(t, st.shaft_torque, color="C0", lw=1.8, label="gas torque on the shaft (no inertia)")
+    ax.axhline(mean, color="C2", lw=1.2, ls="--", label=f"mean {mean:.1f} N m")
+    ax.axhline(0, color="0.3", lw=0.6)
+    ax.set_ylabel("torque [N m]")
+    ax.set_title("(a) shaft torque from the chamber pressures, sum M_i dPhi_i/dtheta")
+    ax.legend(loc="upper right", fontsize=8)
+    _xaxis(ax, 360, label=False)
+    ax = axes[1]
+    ax.plot(t, net, color="C3", lw=1.6, label="with inertia: gas - inertia torque")
+    ax.plot(t, t_in, color="C1", lw=1.0, ls=":", label="inertia torque of shaft and rotors")
+    ax.plot(t, st.shaft_torque, color="C0", lw=1.0, alpha=0.7, label="without inertia")
+    ax.axhline(0, color="0.3", lw=0.6)
+    ax.set_ylabel("torque [N m]")
+    ax.set_title(
+        f"(b) at {rpm:.0f} rpm (mean), J_rotor = {machine.inertia_rotor_1:g}/"
+        f"{machine.inertia_rotor_2:g} kg m^2, J_shaft = {machine.inertia_shaft:g} kg m^2"
+    )
+    ax.legend(loc="upper right", fontsize=8)
+    _xaxis(ax, 360, label=False)
+    ax = axes[2]
+    ax.plot(t, st.member_torque[0], color="C0", lw=1.6, label="gas torque on rotor 1, M_1")
+    ax.plot(t, st.member_torque[1], color="C3", lw=1.2, ls="--", label="gas torque on rotor 2, M_2")
+    ax.axhline(0, color="0.3", lw=0.6)
+    ax.set_ylabel("torque [N m]")
+    ax.set_title("(c) member torques M_i = sum_j p_j dV_j/dPhi_i (M_1 = -M_2)")
+    ax.legend(loc="upper right", fontsize=8)
+    _xaxis(ax, 360)
+    fig.suptitle("Shaft torque over one turn\n" + _engine_tag(params, machine, cycle), fontsize=10)
+    fig.tight_layout()
+    path = Path(outdir) / "fig_shaft_torque.png"
+    fig.savefig(path, dpi=_DPI)
+    plt.close(fig)
+    return path
+
+
+def fig_four_stroke(params, layout, machine, cycle, outdir: Path, points: int = 2881) -> Path:
+    """Four-stroke timing of every chamber over one shaft turn and the chamber pressures."""
+    from rotorkin.analysis.engine_cycle import STROKE_NAMES
+    from rotorkin.machines import twin_rotor as tr
+
+    plt = _plt()
+    theta = np.linspace(0.0, 2.0 * np.pi, points)
+    st = tr.engine_state(params, machine, cycle, theta)
+    t = np.degrees(theta)
+    nch = machine.chambers
+    fig, (ax, ax2) = plt.subplots(
+        2,
+        1,
+        figsize=(11, 3.5 + 0.35 * nch + 3.0),
+        sharex=True,
+        gridspec_kw={"height_ratios": (3.5, 1.0 + 0.35 * nch)},
+    )
+    # chambers of one kind whose indices differ by 2 run in phase: one curve per group
+    groups = {}
+    for j in range(nch):
+        groups.setdefault((j % 2, (j // 2) % 2), []).append(j)
+    for i, members in enumerate(groups.values()):
+        names = ", ".join(str(j + 1) for j in members)
+        ax.plot(
+            t,
+            st.pressure[members[0]] / 1e5,
+            lw=2.0 if i == 0 else 1.3,
+            color=f"C{i}",
+            label=f"chambers {names} ({'AB'[members[0] % 2]})",
+        )
+    ax.set_ylabel("absolute pressure p [bar]")
+    ax.set_title("(a) chamber pressures (chambers listed together run in phase)")
+    ax.set_ylim(0, ax.get_ylim()[1] * 1.15)
+    ax.legend(loc="upper center", ncol=4, fontsize=8)
+    _xaxis(ax, 360, label=False)
+    for j in range(nch):
+        s = st.stroke[j]
+        edges = np.flatnonzero(np.diff(s)) + 1
+        starts = np.concatenate([[0], edges])
+        ends = np.concatenate([edges, [len(s) - 1]])
+        for a, b in zip(starts, ends, strict=True):
+            k = int(s[a])
+            ax2.broken_barh(
+                [(t[a], t[b] - t[a])],
+                (nch - j - 0.4, 0.8),
+                facecolors=_STROKE_COLOURS[k],
+                edgecolors="0.3",
+                linewidth=0.4,
+            )
+            if t[b] - t[a] > 20:
+                ax2.text(
+                    0.5 * (t[a] + t[b]),
+                    nch - j,
+                    STROKE_NAMES[k],
+                    ha="center",
+                    va="center",
+                    fontsize=7,
+                )
+    ax2.set_yticks(np.arange(nch, 0, -1))
+    ax2.set_yticklabels([f"{j + 1} ({'AB'[j % 2]})" for j in range(nch)])
+    ax2.set_ylim(0.4, nch + 0.6)
+    ax2.set_ylabel("chamber")
+    ax2.set_title(
+        f"(b) four-stroke timing: {machine.pistons_per_rotor // 2} chambers on the power stroke "
+        f"at every instant, {wc.power_strokes_per_rev(params)} power strokes per turn"
+    )
+    _xaxis(ax2, 360)
+    fig.suptitle("Four-stroke assignment\n" + _engine_tag(params, machine, cycle), fontsize=10)
+    fig.tight_layout()
+    path = Path(outdir) / "fig_four_stroke.png"
+    fig.savefig(path, dpi=_DPI)
+    plt.close(fig)
+    return path
+
+
+def plot_all(params, layout, outdir: Path, machine=None, cycle=None, speed=None) -> list[Path]:
+    """Write Fig. 8, 9, 10, the rotor kinematics and (with a machine) the engine figures.
+
+    Parameters
+    ----------
+    params : WobbleCam
+    layout : PistonLayout
+    outdir : Path
+    machine : TwinRotor, optional
+    cycle : IdealCycle, optional
+    speed : float or list of float, optional
+        Shaft speed [rad/s] (default 3000 rpm).
+    """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    return [
+    paths = [
         fig_roller_trajectory(params, outdir),
         fig_groove_centreline(params, outdir),
         fig_chamber_angle(params, layout, outdir),
         fig_rotor_kinematics(params, outdir),
     ]
+    if machine is not None:
+        from rotorkin.analysis.engine_cycle import IdealCycle
+
+        cycle = IdealCycle() if cycle is None else cycle
+        speed = 100.0 * np.pi if speed is None else speed
+        paths += [
+            fig_chamber_volumes(params, layout, machine, cycle, outdir),
+            fig_pv_diagram(params, layout, machine, cycle, outdir),
+            fig_shaft_torque(params, layout, machine, cycle, speed, outdir),
+            fig_four_stroke(params, layout, machine, cycle, outdir),
+        ]
+    return paths

@@ -1,0 +1,1 @@
+"""Machines built on the drives: chambers, volumes, pressures and torques."""

@@ -1,0 +1,472 @@
+"""Twin-rotor vane-piston engine on the wobble-plate + spherical-cam drive.
+
+The machine of Chen Hu et al. (2015, ``papers/wobble_cam.md``): two coaxial
+rotors in one annular cylinder, each with N vane pistons and 2 slider rails;
+the rails are driven by :mod:`rotorkin.drives.wobble_cam`. The paper gives the
+angles only (eq. 18-23); the cylinder section, the clearance volume, the
+four-stroke timing, pressures, torques and inertias are ours.
+
+Geometry and conventions:
+
+* Rotor k's rail is at ``Phi_k`` (drive); rotor 1's pistons are centred at
+  ``Phi_1 + gamma + 2 pi m/N``, rotor 2's at ``Phi_2 - gamma + 2 pi m/N``,
+  ``m = 0 .. N-1``, ``gamma = pi/4 - pi/(2N)``; each piston is ``beta`` wide
+  (:func:`rotorkin.drives.wobble_cam.piston_layout`).
+* Chambers ``j = 0 .. 2N-1`` in the sense of increasing ``Phi``, starting at
+  rotor 1's piston ``m = 0``: chamber ``2m`` (kind A) lies between rotor-1 piston m
+  and rotor-2 piston m, chamber ``2m+1`` (kind B) between rotor-2 piston m and
+  rotor-1 piston m+1. People count from 1: chamber 1 is ``j = 0``.
+  ``delta_A = (Phi_2 - Phi_1) - 2 gamma - beta``,
+  ``delta_B = 2 pi/N + 2 gamma - beta - (Phi_2 - Phi_1)``: all chambers of one kind
+  have the same volume at every instant.
+* Volume ``V_j = K delta_j + V_c`` with ``K = (R_o^2 - R_i^2) w / 2`` (rectangular
+  annulus) or ``K = R_m pi d^2/4`` (circular torus, Pappus) [m^3/rad] and the
+  clearance volume ``V_c`` of each chamber (a recess in the housing, say).
+  ``dV_j/dPhi_1 = -s_j K``, ``dV_j/dPhi_2 = +s_j K``, ``s_j = +1`` (A), ``-1`` (B).
+* Four-stroke timing: with ``n`` the spin ratio, the slider angle has period
+  ``pi/|n|`` in theta and is even, so all volume extremes fall at
+  ``theta = m pi/(2|n|)``: kind A is largest (BDC) at even m, kind B at odd m.
+  Every stroke lasts ``pi/(2|n|)`` of shaft angle (45 deg at n = -2). The stroke
+  counter of chamber ``j = 2m + b`` is ``c_j = 2|n| theta/pi + 1 - b + 2m``
+  (strokes since the start of an intake, mod 4): chamber 1 starts its
+  compression stroke at theta = 0, chamber 2 its intake; in each kind the
+  chambers alternate by two strokes, so of the N chambers of the expanding kind
+  N/2 are on the power stroke at every instant (paper section 1.2: 2 at N = 4).
+* Sign: a torque on the shaft is positive when it drives the shaft (engine
+  output positive), see :mod:`rotorkin.analysis.torque`.
+
+Every function broadcasts: theta of shape ``(...)`` gives chamber arrays of shape
+``(2N, ...)`` and member arrays of shape ``(2, ...)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorkin._angles import fmt_mm
+from rotorkin.analysis import engine_cycle as ec
+from rotorkin.analysis.torque import member_torques, shaft_torque_from_members
+from rotorkin.drives import wobble_cam as wc
+from rotorkin.errors import ParameterError
+from rotorkin.motion import Motion
+
+__all__ = [
+    "TwinRotor",
+    "Chambers",
+    "EngineState",
+    "volume_per_radian",
+    "annulus_volume",
+    "chamber_kinds",
+    "piston_layout",
+    "volume_gradient",
+    "chamber_volumes_from_rotors",
+    "chambers",
+    "volume_limits",
+    "swept_volume",
+    "compression_ratio_geometric",
+    "cycles_per_rev",
+    "displacement_per_rev",
+    "swept_volume_per_rev",
+    "stroke_counter",
+    "strokes",
+    "chamber_pressures",
+    "engine_state",
+    "indicated_work_per_rev",
+]
+
+
+def _positive(name, value, admissible, fmt=fmt_mm):
+    v = float(value)
+    if not (np.isfinite(v) and v > 0.0):
+        raise ParameterError(name, fmt(v), admissible)
+
+
+@dataclass(frozen=True)
+class TwinRotor:
+    """Geometry and inertias of the twin-rotor engine (SI; config section ``[machine]``).
+
+    Parameters
+    ----------
+    compression_ratio : float, optional
+        Angular ratio ``eps = delta_max/delta_min`` of the tighter chamber kind; it
+        sets the piston width (eq. 21-22). Table 1: 10 (default).
+    pistons_per_rotor : int, optional
+        N, even, >= 2 (paper: 4).
+    section : {"rectangular", "circular"}, optional
+        Cylinder section: rectangular annulus or circular torus.
+    inner_radius, outer_radius, axial_width : float, optional
+        Rectangular annulus ``R_i < R_o`` and its axial width w [m].
+    mean_radius, section_diameter : float, optional
+        Circular torus: radius ``R_m`` of the section centre and diameter d,
+        ``d/2 < R_m`` [m].
+    clearance_volume : float, optional
+        ``V_c`` added to every chamber, >= 0 [m^3] (default 0, as in the paper).
+    inertia_shaft : float, optional
+        Output shaft with the wobble plate [kg m^2] (the plate's kinetic energy is
+        ``1/2 J omega^2`` with a constant J for a linear spin law).
+    inertia_rotor_1, inertia_rotor_2 : float, optional
+        Rotors with their pistons and rails [kg m^2].
+    speed_fluctuation : float, optional
+        Wanted coefficient of speed fluctuation for the flywheel, in (0, 1).
+    """
+
+    compression_ratio: float = 10.0
+    pistons_per_rotor: int = 4
+    section: str = "rectangular"
+    inner_radius: float = 0.04
+    outer_radius: float = 0.08
+    axial_width: float = 0.04
+    mean_radius: float = 0.06
+    section_diameter: float = 0.04
+    clearance_volume: float = 0.0
+    inertia_shaft: float = 0.0
+    inertia_rotor_1: float = 0.01
+    inertia_rotor_2: float = 0.01
+    speed_fluctuation: float = 0.02
+
+    def __post_init__(self):
+        eps = float(self.compression_ratio)
+        if not (np.isfinite(eps) and eps > 1.0):
+            raise ParameterError(
+                "compression_ratio",
+                f"{eps:g}",
+                "compression_ratio > 1 (and above the ratio of zero-width pistons, eq. 21)",
+            )
+        wc._check_pistons(self.pistons_per_rotor)
+        if self.section not in ("rectangular", "circular"):
+            raise ParameterError("section", repr(self.section), '"rectangular" or "circular"')
+        if self.section == "rectangular":
+            ri, ro = float(self.inner_radius), float(self.outer_radius)
+            _positive("outer_radius", ro, "outer_radius > 0 mm")
+            if not (np.isfinite(ri) and 0.0 < ri < ro):
+                raise ParameterError(
+                    "inner_radius",
+                    fmt_mm(ri),
+                    f"0 mm < inner_radius < outer_radius = {fmt_mm(ro)} (rectangular annulus)",
+                )
+            _positive("axial_width", self.axial_width, "axial_width > 0 mm")
+        else:
+            _positive("mean_radius", self.mean_radius, "mean_radius > 0 mm")
+            d, rm = float(self.section_diameter), float(self.mean_radius)
+            if not (np.isfinite(d) and 0.0 < d < 2.0 * rm):
+                raise ParameterError(
+                    "section_diameter",
+                    fmt_mm(d),
+                    f"0 mm < section_diameter < 2 mean_radius = {fmt_mm(2.0 * rm)} "
+                    "(the torus section must not reach the axis)",
+                )
+        vc = float(self.clearance_volume)
+        if not (np.isfinite(vc) and vc >= 0.0):
+            raise ParameterError("clearance_volume", f"{vc * 1e6:.4g} cm^3", "clearance >= 0")
+        for name in ("inertia_shaft", "inertia_rotor_1", "inertia_rotor_2"):
+            j = float(getattr(self, name))
+            if not (np.isfinite(j) and j >= 0.0):
+                raise ParameterError(name, f"{j:g} kg*m^2", f"{name} >= 0")
+        cs = float(self.speed_fluctuation)
+        if not (np.isfinite(cs) and 0.0 < cs < 1.0):
+            raise ParameterError("speed_fluctuation", f"{cs:g}", "0 < speed_fluctuation < 1")
+
+    @property
+    def chambers(self) -> int:
+        """Number of chambers, 2N."""
+        return wc.chamber_count(self.pistons_per_rotor)
+
+    @property
+    def member_inertias(self) -> tuple[float, float]:
+        """``(inertia_rotor_1, inertia_rotor_2)`` [kg m^2]."""
+        return float(self.inertia_rotor_1), float(self.inertia_rotor_2)
+
+
+@dataclass(frozen=True)
+class Chambers:
+    """Chamber volumes over the shaft angle.
+
+    Attributes
+    ----------
+    theta : ndarray, shape (...)
+        Shaft angle [rad].
+    volume : ndarray, shape (2N, ...)
+        ``V_j`` [m^3].
+    dvolume, d2volume : ndarray, shape (2N, ...)
+        ``dV_j/dtheta`` [m^3/rad], ``d2V_j/dtheta2`` [m^3/rad^2] (exact).
+    dvolume_dq : ndarray, shape (2, 2N)
+        ``dV_j/dPhi_i`` [m^3/rad] (constant).
+    motion : Motion
+        The rotors' motion (``q = (Phi_1, Phi_2)``).
+    layout : PistonLayout
+        Piston width and chamber angle extremes.
+    """
+
+    theta: np.ndarray
+    volume: np.ndarray
+    dvolume: np.ndarray
+    d2volume: np.ndarray
+    dvolume_dq: np.ndarray
+    motion: Motion
+    layout: wc.PistonLayout
+
+
+@dataclass(frozen=True)
+class EngineState:
+    """Chambers, strokes, pressures and gas torques over the shaft angle.
+
+    Attributes
+    ----------
+    chambers : Chambers
+    stroke : ndarray of int, shape (2N, ...)
+        Stroke of each chamber (:data:`rotorkin.analysis.engine_cycle.INTAKE` ...).
+    pressure : ndarray, shape (2N, ...)
+        Absolute chamber pressures [Pa].
+    member_torque : ndarray, shape (2, ...)
+        Gas torques on rotor 1 and 2, ``M_i = sum_j p_j dV_j/dPhi_i`` [N m].
+    shaft_torque : ndarray, shape (...)
+        Gas torque on the shaft by virtual work, ``sum_i M_i Phi_i'`` [N m],
+        positive when it drives the shaft.
+    """
+
+    chambers: Chambers
+    stroke: np.ndarray
+    pressure: np.ndarray
+    member_torque: np.ndarray
+    shaft_torque: np.ndarray
+
+
+# --------------------------------------------------------------------------------------------
+# geometry
+# --------------------------------------------------------------------------------------------
+def volume_per_radian(machine: TwinRotor) -> float:
+    """Volume of the cylinder per radian of chamber angle, K [m^3/rad].
+
+    Rectangular annulus: ``(R_o^2 - R_i^2) w / 2``; circular torus (Pappus):
+    ``R_m pi d^2 / 4``.
+    """
+    if machine.section == "rectangular":
+        ro, ri = machine.outer_radius, machine.inner_radius
+        return 0.5 * (ro * ro - ri * ri) * machine.axial_width
+    return machine.mean_radius * np.pi * machine.section_diameter**2 / 4.0
+
+
+def annulus_volume(machine: TwinRotor) -> float:
+    """Volume of the whole annular cylinder, ``2 pi K`` [m^3] (no clearance)."""
+    return 2.0 * np.pi * volume_per_radian(machine)
+
+
+def chamber_kinds(machine: TwinRotor) -> np.ndarray:
+    """Kind of each chamber, 0 = A, 1 = B; shape (2N,): ``[0, 1, 0, 1, ...]``."""
+    return np.arange(machine.chambers) % 2
+
+
+def _signs(machine, ndim=0):
+    """``s_j = +1`` (A), ``-1`` (B), shaped (2N, 1, ...) for ``ndim`` trailing axes."""
+    return (1.0 - 2.0 * chamber_kinds(machine)).reshape((-1,) + (1,) * ndim)
+
+
+def _check(drive: wc.WobbleCam, machine: TwinRotor):
+    if drive.pistons_per_rotor != machine.pistons_per_rotor:
+        raise ValueError(
+            f"the drive has {drive.pistons_per_rotor} pistons per rotor, the machine "
+            f"{machine.pistons_per_rotor}: build both from the same machine.pistons_per_rotor"
+        )
+
+
+def piston_layout(drive: wc.WobbleCam, machine: TwinRotor) -> wc.PistonLayout:
+    """Piston width and chamber angle extremes for the machine's compression ratio.
+
+    :func:`rotorkin.drives.wobble_cam.piston_layout` (eq. 21-22 generalised to N);
+    raises ParameterError named ``compression_ratio`` if eps is too small.
+    """
+    _check(drive, machine)
+    return wc.piston_layout(drive, machine.compression_ratio)
+
+
+def volume_gradient(machine: TwinRotor) -> np.ndarray:
+    """``dV_j/dPhi_i`` [m^3/rad], shape (2, 2N): row 0 rotor 1 (``-s_j K``), row 1 rotor 2."""
+    k = volume_per_radian(machine)
+    s = _signs(machine)
+    return np.stack([-k * s, k * s])
+
+
+def _offsets(machine, layout, ndim=0):
+    """``delta_j = s_j (Phi_2 - Phi_1) + o_j``: the constant o_j, shaped (2N, 1, ...)."""
+    n = machine.pistons_per_rotor
+    g2 = 2.0 * float(wc.piston_offset(n))
+    beta = layout.piston_width
+    o = np.where(chamber_kinds(machine) == 0, -g2 - beta, 2.0 * np.pi / n + g2 - beta)
+    return o.reshape((-1,) + (1,) * ndim)
+
+
+def chamber_volumes_from_rotors(machine: TwinRotor, layout: wc.PistonLayout, q1, q2):
+    """Chamber volumes from the rotor angles, ``V_j = K delta_j + V_c`` [m^3].
+
+    Parameters
+    ----------
+    machine : TwinRotor
+    layout : PistonLayout
+    q1, q2 : array_like
+        ``Phi_1``, ``Phi_2`` [rad] (broadcast together).
+
+    Returns
+    -------
+    ndarray, shape (2N, ...)
+    """
+    rel = np.asarray(q2, dtype=float) - np.asarray(q1, dtype=float)
+    delta = _signs(machine, rel.ndim) * rel + _offsets(machine, layout, rel.ndim)
+    return volume_per_radian(machine) * delta + machine.clearance_volume
+
+
+def chambers(drive: wc.WobbleCam, machine: TwinRotor, theta, layout=None) -> Chambers:
+    """Volumes of all chambers and their exact derivatives over the shaft angle.
+
+    ``dV_j/dtheta = s_j K (Phi_2' - Phi_1')``, ``d2V_j/dtheta2 = s_j K (Phi_2'' - Phi_1'')``.
+    """
+    _check(drive, machine)
+    layout = piston_layout(drive, machine) if layout is None else layout
+    theta = np.asarray(theta, dtype=float)
+    m = wc.motion(drive, theta)
+    k = volume_per_radian(machine)
+    s = _signs(machine, theta.ndim)
+    return Chambers(
+        theta=theta,
+        volume=chamber_volumes_from_rotors(machine, layout, m.q[0], m.q[1]),
+        dvolume=k * s * (m.dq[1] - m.dq[0]),
+        d2volume=k * s * (m.d2q[1] - m.d2q[0]),
+        dvolume_dq=volume_gradient(machine),
+        motion=m,
+        layout=layout,
+    )
+
+
+def volume_limits(machine: TwinRotor, layout: wc.PistonLayout):
+    """Smallest and largest volume of every chamber [m^3].
+
+    Returns
+    -------
+    (v_min, v_max) : tuple of ndarray, shape (2N,)
+    """
+    k, vc = volume_per_radian(machine), machine.clearance_volume
+    a = chamber_kinds(machine) == 0
+    lo = np.where(a, layout.chamber_a_min, layout.chamber_b_min)
+    hi = np.where(a, layout.chamber_a_max, layout.chamber_b_max)
+    return k * lo + vc, k * hi + vc
+
+
+def swept_volume(machine: TwinRotor, layout: wc.PistonLayout) -> float:
+    """Volume swept by one chamber in one stroke, ``K (alpha'_max - alpha'_min)`` [m^3] (eq. 23)."""
+    return volume_per_radian(machine) * layout.swing
+
+
+def compression_ratio_geometric(machine: TwinRotor, layout: wc.PistonLayout):
+    """``V_max / V_min`` of chamber kind A and B, with the clearance volume.
+
+    With ``V_s`` the swept volume and ``V_0 = K delta_min`` the smallest volume
+    of the sector itself, ``eps_geo = (V_s + V_0 + V_c) / (V_0 + V_c)``; it equals
+    the angular ratio (config ``compression_ratio``) when ``V_c = 0``.
+
+    Returns
+    -------
+    (eps_a, eps_b) : tuple of float
+    """
+    v_min, v_max = volume_limits(machine, layout)
+    return float(v_max[0] / v_min[0]), float(v_max[1] / v_min[1])
+
+
+def cycles_per_rev(drive: wc.WobbleCam) -> float:
+    """Four-stroke cycles of each chamber per shaft turn, ``2|n| / 2 = |n|``."""
+    return wc.volume_cycles_per_rev(drive) / 2.0
+
+
+def displacement_per_rev(drive: wc.WobbleCam, machine: TwinRotor, layout) -> float:
+    """Engine displacement per shaft turn, four-stroke convention [m^3].
+
+    The volume the intake strokes draw in per shaft turn: swept volume per
+    chamber times the intake strokes per turn of all chambers,
+    ``V_s x 2N x |n|`` (16 V_s at N = 4, n = -2). A conventional four-stroke
+    piston engine of capacity ``V_d`` draws ``V_d / 2`` per turn: the capacity
+    equivalent to this engine is twice this value, :func:`swept_volume_per_rev`.
+    """
+    _check(drive, machine)
+    return swept_volume(machine, layout) * machine.chambers * cycles_per_rev(drive)
+
+
+def swept_volume_per_rev(drive: wc.WobbleCam, machine: TwinRotor, layout) -> float:
+    """Volume swept per shaft turn by all volume cycles of all chambers [m^3].
+
+    ``V_s x 2N x 2|n|`` (32 V_s at N = 4, n = -2): every expansion counted,
+    intake and power alike; the capacity of the equivalent conventional
+    four-stroke engine (twice :func:`displacement_per_rev`).
+    """
+    return 2.0 * displacement_per_rev(drive, machine, layout)
+
+
+# --------------------------------------------------------------------------------------------
+# four-stroke timing, pressures, torques
+# --------------------------------------------------------------------------------------------
+def stroke_counter(drive: wc.WobbleCam, machine: TwinRotor, theta):
+    """Stroke counter ``c_j = 2|n| theta/pi + 1 - b_j + 2 m_j`` of chamber ``j = 2 m_j + b_j``.
+
+    ``floor(c_j) mod 4`` is the chamber's stroke (see the module docstring);
+    integers of ``c_j`` fall on the volume extremes of the chamber.
+
+    Returns
+    -------
+    ndarray, shape (2N, ...)
+    """
+    theta = np.asarray(theta, dtype=float)
+    j = np.arange(machine.chambers).reshape((-1,) + (1,) * theta.ndim)
+    b, m = j % 2, j // 2
+    return 2.0 * abs(float(drive.spin_ratio)) * theta / np.pi + 1.0 - b + 2.0 * m
+
+
+def strokes(drive: wc.WobbleCam, machine: TwinRotor, theta):
+    """Stroke of every chamber at every shaft angle, shape (2N, ...) of int.
+
+    0 intake, 1 compression, 2 power, 3 exhaust
+    (:data:`rotorkin.analysis.engine_cycle.STROKE_NAMES`); at a volume extreme,
+    the stroke that starts there.
+    """
+    return ec.stroke_from_count(stroke_counter(drive, machine, theta))
+
+
+def chamber_pressures(cycle: ec.IdealCycle, machine: TwinRotor, layout, stroke, volume):
+    """Pressures of all chambers from their strokes and volumes [Pa], shape (2N, ...)."""
+    v_min, v_max = volume_limits(machine, layout)
+    extra = (1,) * (np.ndim(volume) - 1)
+    return ec.cycle_pressure(
+        cycle, stroke, volume, v_max.reshape((-1,) + extra), v_min.reshape((-1,) + extra)
+    )
+
+
+def engine_state(drive: wc.WobbleCam, machine: TwinRotor, cycle: ec.IdealCycle, theta):
+    """Volumes, strokes, pressures, member torques and shaft gas torque at ``theta``.
+
+    Member torques by ``M_i = sum_j p_j dV_j/dPhi_i``
+    (:func:`rotorkin.analysis.torque.member_torques`); the shaft torque by
+    virtual work ``sum_i M_i dPhi_i/dtheta``
+    (:func:`rotorkin.analysis.torque.shaft_torque_from_members`). Since
+    ``dV_j/dPhi_1 = -dV_j/dPhi_2``, ``M_1 = -M_2``: the gas pushes the rotors
+    apart, and the shaft torque is ``M_2 (Phi_2' - Phi_1') = sum_j p_j dV_j/dtheta``.
+    """
+    ch = chambers(drive, machine, theta)
+    stroke = strokes(drive, machine, ch.theta)
+    p = chamber_pressures(cycle, machine, ch.layout, stroke, ch.volume)
+    grad = ch.dvolume_dq.reshape(ch.dvolume_dq.shape + (1,) * ch.theta.ndim)
+    members = member_torques(p, grad)
+    return EngineState(
+        chambers=ch,
+        stroke=stroke,
+        pressure=p,
+        member_torque=members,
+        shaft_torque=shaft_torque_from_members(members, ch.motion.dq),
+    )
+
+
+def indicated_work_per_rev(drive, machine: TwinRotor, cycle: ec.IdealCycle, layout) -> float:
+    """Indicated work of all chambers per shaft turn, closed form [J].
+
+    ``sum_j |n| Q (1 - eps_geo,j^(1-k))``: each chamber runs ``|n|`` four-stroke
+    cycles per turn (:func:`rotorkin.analysis.engine_cycle.indicated_work`).
+    """
+    v_min, v_max = volume_limits(machine, layout)
+    return float(np.sum(ec.indicated_work(cycle, v_max, v_min)) * cycles_per_rev(drive))
