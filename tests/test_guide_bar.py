@@ -432,13 +432,13 @@ def test_defaults():
 # --------------------------------------------------------------------------------------------
 # study
 # --------------------------------------------------------------------------------------------
-def _cfg(**drive):
+def _cfg(machine=None, **drive):
     d = {"type": "guide_bar", "lambda": 0.5, "gear_ratio": 2.0, "input_gear_ratio": 2.0,
          "phase": np.pi, "driver": "crank"}  # fmt: skip
     d.update(drive)
     return {
         "drive": d,
-        "machine": {},
+        "machine": dict(machine or {}),
         "loads": {"impeller_torque_1": 10.0, "impeller_torque_2": 6.0},
         "run": {"points": 361},
     }
@@ -460,8 +460,9 @@ REQUIRED = (
 )  # fmt: skip
 def test_study_summary(driver, lam, u, i12, phase_deg):
     phase = np.radians(phase_deg)
+    # with the default vane angle gamma_0 at most floor(u) vanes per impeller fit (pump)
     res = evaluate(_cfg(driver=driver, **{"lambda": lam}, gear_ratio=u, input_gear_ratio=i12,
-                        phase=phase))  # fmt: skip
+                        phase=phase, machine={"vanes_per_impeller": int(u)}))  # fmt: skip
     s = res.summary
     for key in REQUIRED + ("vane_angle_other_driver_deg", "equal_speed_driving_angle_1_deg",
                            "input_torque_mean_Nm", "input_torque_fluctuation_ratio",
@@ -513,7 +514,7 @@ def test_study_plot_writes_pngs(tmp_path):
     cfg = _cfg(driver="guide", phase=np.radians(120.0))
     cfg["loads"] = {"impeller_torque_1": 0.0, "impeller_torque_2": 0.0}
     paths = evaluate(cfg).plot(tmp_path)
-    assert len(paths) == 6
+    assert len(paths) == 10  # 6 of the drive (paper) + 4 of the pump
     for p in paths:
         assert p.exists() and p.suffix == ".png" and p.stat().st_size > 1000
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

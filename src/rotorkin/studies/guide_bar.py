@@ -1,9 +1,22 @@
 """Study of the differential vane pump driven by two rotating guide bars + gears (JHIT 2012).
 
-Config keys (SI, defaults filled by :mod:`rotorkin.io.config`):
+Config keys (SI, defaults filled by :mod:`rotorkin.io.config`; a key missing from
+``cfg`` takes the schema's default):
 ``drive.lambda``, ``drive.gear_ratio``, ``drive.input_gear_ratio``,
-``drive.phase``, ``drive.driver``, ``loads.impeller_torque_1``,
-``loads.impeller_torque_2``, ``run.points``.
+``drive.phase``, ``drive.driver``; ``machine.vanes_per_impeller``,
+``machine.vane_angle``, ``machine.hub_radius``, ``machine.casing_radius``,
+``machine.axial_width``, ``machine.inertia_shaft``, ``machine.inertia_impeller_1``,
+``machine.inertia_impeller_2``, ``machine.speed_fluctuation``;
+``loads.impeller_torque_1``, ``loads.impeller_torque_2`` (the paper's constant
+torques, ``input_torque_*`` keys), ``loads.suction_pressure``,
+``loads.discharge_pressure`` (the pump, :mod:`rotorkin.machines.vane_pump`);
+``run.points``, ``run.speed``.
+
+Torque sign of the pump keys (``shaft_torque_*``, ``mean_torque_Nm``,
+``indicated_work_J``): positive when the machine drives the input shaft, so a
+pump's are negative (the motor supplies their opposite). The paper's
+``input_torque_*`` keys keep the paper's sense: the torque input gear 1 needs
+against the resisting torques M7, M8.
 """
 
 from __future__ import annotations
@@ -12,9 +25,14 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorkin.analysis import flywheel as fw
+from rotorkin.analysis import torque as tq
+from rotorkin.analysis.timing import shaft_speed
 from rotorkin.drives import guide_bar as gb
+from rotorkin.errors import ParameterError
+from rotorkin.machines import vane_pump as vp
 from rotorkin.studies import StudyResult
-from rotorkin.studies._common import angle_grid, build_params
+from rotorkin.studies._common import angle_grid, build_params, time_domain
 
 __all__ = ["evaluate", "HEADLINE"]
 
@@ -28,6 +46,12 @@ HEADLINE = (
     "input_torque_min_Nm",
     "input_torque_max_Nm",
     "input_torque_mean_Nm",
+    "displacement_cm3_per_rev",
+    "flow_mean_l_per_min",
+    "flow_ripple",
+    "mean_torque_Nm",
+    "torque_ripple",
+    "flywheel_inertia_kgm2",
 )
 
 #: Samples per period used for extremes and peaks (independent of run.points).
@@ -128,6 +152,192 @@ def _columns(params: gb.GuideBar, m7: float, m8: float, points: int) -> dict:
     return cols
 
 
+# --------------------------------------------------------------------------------------------
+# the pump
+# --------------------------------------------------------------------------------------------
+_M3_TO_L_PER_MIN = 60.0e3
+
+_PUMP_DOCS = {
+    "chamber_a_volume_cm3": "Volume of each chamber A (from a vane of impeller 1 to the next "
+    "vane of impeller 2; chambers 1, 3, ...).",
+    "chamber_b_volume_cm3": "Volume of each chamber B (from a vane of impeller 2 to the next "
+    "vane of impeller 1; chambers 2, 4, ...).",
+    "chamber_a_dvolume_cm3_per_rad": "dV/dtheta of a chamber A; negative while it discharges.",
+    "chamber_b_dvolume_cm3_per_rad": "dV/dtheta of a chamber B; negative while it discharges.",
+    "chamber_a_pressure_bar": "Pressure in a chamber A, ideal ports: discharge while it "
+    "shrinks, suction while it grows.",
+    "chamber_b_pressure_bar": "Pressure in a chamber B, ideal ports.",
+    "flow_l_per_min": "Delivered flow, sum over the shrinking chambers of -dV/dt at the shaft "
+    "speed.",
+    "impeller1_torque_Nm": "Torque of the chamber pressures on impeller 1, sum p_j dV_j/dq_1, "
+    "positive in its sense of rotation.",
+    "impeller2_torque_Nm": "Torque of the chamber pressures on impeller 2, sum p_j dV_j/dq_2.",
+    "shaft_torque_Nm": "Torque of the fluid on input gear 1 by virtual work, sum M_i dq_i/dtheta; "
+    "positive when it drives the shaft (a pump's is negative).",
+    "inertia_torque_Nm": "Torque the input shaft spends on the inertia of shaft and impellers, "
+    "d(KE)/dtheta.",
+    "shaft_torque_with_inertia_Nm": "shaft_torque_Nm minus inertia_torque_Nm: the net torque the "
+    "machine puts on the input shaft (the motor supplies its opposite).",
+    "equivalent_inertia_kgm2": "Inertia seen at the input shaft, "
+    "J_shaft + sum J_i (dq_i/dtheta)^2.",
+}
+
+
+def _nonnegative(key: str, value: float, unit: str) -> float:
+    v = float(value)
+    if not (np.isfinite(v) and v >= 0.0):
+        raise ParameterError(key, f"{v:g} {unit}", f"{key.split('.')[-1]} >= 0 {unit}")
+    return v
+
+
+def _defaults(cfg: dict):
+    """Machine, loads and run sections with the schema's defaults for missing keys."""
+    from rotorkin.io.config import GuideBarLoads, RunSection, VanePumpMachine
+
+    machine = {**VanePumpMachine().model_dump(), **(cfg.get("machine") or {})}
+    loads = {**GuideBarLoads().model_dump(), **(cfg.get("loads") or {})}
+    run = {**RunSection().model_dump(), **(cfg.get("run") or {})}
+    return machine, loads, run
+
+
+def _inertias(machine: dict) -> tuple[float, tuple[float, float]]:
+    js = _nonnegative("machine.inertia_shaft", machine["inertia_shaft"], "kg*m^2")
+    j1 = _nonnegative("machine.inertia_impeller_1", machine["inertia_impeller_1"], "kg*m^2")
+    j2 = _nonnegative("machine.inertia_impeller_2", machine["inertia_impeller_2"], "kg*m^2")
+    return js, (j1, j2)
+
+
+def pump_state(pump: vp.VanePump, ports: vp.PortPressures, inertia, speed, theta) -> dict:
+    """Chambers, pressures, flow and torques of the pump at the input angles ``theta``.
+
+    Parameters
+    ----------
+    pump : VanePump
+    ports : PortPressures
+    inertia : (float, (float, float))
+        ``J_shaft`` and the impeller inertias [kg*m^2].
+    speed : float or sequence of float
+        ``run.speed`` [rad/s] (constant or a profile over one period).
+    theta : ndarray, shape (n,)
+        Input angles [rad].
+
+    Returns
+    -------
+    dict of ndarray
+        ``V``, ``dV``, ``p`` (2 Z, n); ``M`` (2, n); ``shaft``, ``inertia``,
+        ``net``, ``J_eq``, ``flow``, ``omega``, ``omega_dot`` (n,).
+    """
+    period = gb.period(pump.drive)
+    _, dq, d2q, _ = gb.impeller_angles(pump.drive, theta)
+    V, dV = vp.chamber_volumes(pump, theta)
+    p = vp.chamber_pressures(dV, ports)
+    M = tq.member_torques(p, vp.volume_derivatives_dq(pump, theta))
+    shaft = tq.shaft_torque_from_members(M, dq)
+    omega, omega_dot, _ = shaft_speed(theta, speed, period)
+    js, jm = inertia
+    t_in = tq.inertia_torque(js, jm, dq, d2q, omega, omega_dot)
+    return {
+        "V": V,
+        "dV": dV,
+        "p": p,
+        "M": M,
+        "shaft": shaft,
+        "inertia": t_in,
+        "net": shaft - t_in,
+        "J_eq": tq.equivalent_inertia(js, jm, dq),
+        "flow": vp.flow_rate(pump, theta, omega),
+        "omega": omega,
+        "omega_dot": omega_dot,
+    }
+
+
+def _pump_summary(pump, ports, inertia, speed, coefficient) -> dict:
+    drive = pump.drive
+    period = gb.period(drive)
+    i12 = float(drive.input_gear_ratio)
+    fine = np.linspace(0.0, period, _PEAK_SAMPLES)
+    st = pump_state(pump, ports, inertia, speed, fine)
+    disp = vp.displacement(pump)
+    k = pump.volume_per_angle
+    phi_min, phi_max = pump.chamber_angle_range
+    dp = float(ports.discharge_pressure) - float(ports.suction_pressure)
+    # every chamber takes in Delta V at p_s and delivers it at p_d once per period (exact)
+    work_period = -dp * disp["per_period"]
+    mean_torque = work_period / period
+    omega_mean = float(np.mean(st["omega"][:-1]))
+    # time-averaged flow: volume per period over the time of a period
+    dt = 1.0 / st["omega"]
+    t_period = float(np.trapezoid(dt, fine))
+    flow_mean = disp["per_period"] / t_period
+    # flywheel: net torque at the mean speed (member inertia included), J_eq already present
+    _, dq, d2q, _ = gb.impeller_angles(drive, fine)
+    js, jm = inertia
+    net_const = st["shaft"] - tq.inertia_torque(js, jm, dq, d2q, omega_mean, 0.0)
+    delta_e = float(fw.energy_fluctuation(net_const, fine))
+    j_mean = float(np.trapezoid(st["J_eq"], fine) / period)
+    cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
+    out = {
+        "vanes_per_impeller": int(pump.vanes_per_impeller),
+        "chambers": pump.n_chambers,
+        "pump_vane_angle_deg": float(np.degrees(pump.vane_angle)),
+        "pump_vane_angle_max_deg": float(
+            np.degrees(vp.vane_angle_max(drive, pump.vanes_per_impeller))
+        ),
+        "chamber_angle_min_deg": float(np.degrees(phi_min)),
+        "chamber_angle_max_deg": float(np.degrees(phi_max)),
+        "chamber_volume_min_cm3": k * phi_min * 1e6,
+        "chamber_volume_max_cm3": k * phi_max * 1e6,
+        "displacement_cm3_per_rev": disp["per_input_turn"] * 1e6,
+        "displacement_per_period_cm3": disp["per_period"] * 1e6,
+        "displacement_per_impeller_rev_cm3": disp["per_impeller_rev"] * 1e6,
+        "flow_mean_l_per_min": flow_mean * _M3_TO_L_PER_MIN,
+        "flow_max_l_per_min": float(np.max(st["flow"])) * _M3_TO_L_PER_MIN,
+        "flow_min_l_per_min": float(np.min(st["flow"])) * _M3_TO_L_PER_MIN,
+        "flow_ripple": vp.flow_ripple(st["flow"], dt),
+        "pressure_rise_bar": dp / 1e5,
+        "hydraulic_power_W": dp * flow_mean,
+        "indicated_work_J": work_period / i12,
+        "indicated_work_per_period_J": work_period,
+        "mean_torque_Nm": mean_torque,
+        "shaft_torque_min_Nm": float(np.min(st["shaft"])),
+        "shaft_torque_max_Nm": float(np.max(st["shaft"])),
+        "torque_ripple": float(tq.torque_ripple(st["shaft"])),
+        "shaft_torque_with_inertia_min_Nm": float(np.min(st["net"])),
+        "shaft_torque_with_inertia_max_Nm": float(np.max(st["net"])),
+        "torque_ripple_with_inertia": float(tq.torque_ripple(st["net"])),
+        "equivalent_inertia_mean_kgm2": j_mean,
+        "energy_fluctuation_J": delta_e,
+        "speed_fluctuation_without_flywheel": cs,
+        "speed_fluctuation": float(coefficient),
+        "flywheel_inertia_kgm2": float(
+            fw.flywheel_inertia(delta_e, omega_mean, coefficient, j_mean)
+        ),
+    }
+    motion = gb.motion(drive, fine)
+    out.update(time_domain(motion, speed, ("impeller1", "impeller2"), period)[2])
+    return out
+
+
+def _pump_columns(pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
+    st = pump_state(pump, ports, inertia, speed, theta)
+    cols = {}
+    for j, tag in ((0, "a"), (1, "b")):
+        cols[f"chamber_{tag}_volume_cm3"] = st["V"][j] * 1e6
+        cols[f"chamber_{tag}_dvolume_cm3_per_rad"] = st["dV"][j] * 1e6
+        cols[f"chamber_{tag}_pressure_bar"] = st["p"][j] / 1e5
+    cols["flow_l_per_min"] = st["flow"] * _M3_TO_L_PER_MIN
+    cols["impeller1_torque_Nm"] = st["M"][0]
+    cols["impeller2_torque_Nm"] = st["M"][1]
+    cols["shaft_torque_Nm"] = st["shaft"]
+    cols["inertia_torque_Nm"] = st["inertia"]
+    cols["shaft_torque_with_inertia_Nm"] = st["net"]
+    cols["equivalent_inertia_kgm2"] = st["J_eq"]
+    tcols, tdocs, _, _ = time_domain(gb.motion(pump.drive, theta), speed,
+                                     ("impeller1", "impeller2"), gb.period(pump.drive))  # fmt: skip
+    cols.update(tcols)
+    return cols, {**_PUMP_DOCS, **tdocs}
+
+
 def evaluate(cfg: dict) -> StudyResult:
     """Run the guide-bar pump study on a validated config (SI values).
 
@@ -135,13 +345,17 @@ def evaluate(cfg: dict) -> StudyResult:
     ----------
     cfg : dict
         ``cfg["drive"]``: ``lambda``, ``gear_ratio``, ``input_gear_ratio``,
-        ``phase`` [rad], ``driver``; ``cfg["loads"]``: ``impeller_torque_1``,
-        ``impeller_torque_2`` [N*m]; ``cfg["run"]["points"]``.
+        ``phase`` [rad], ``driver``; ``cfg["machine"]``: the pump geometry and
+        inertias; ``cfg["loads"]``: ``impeller_torque_1``, ``impeller_torque_2``
+        [N*m], ``suction_pressure``, ``discharge_pressure`` [Pa];
+        ``cfg["run"]``: ``points``, ``speed`` [rad/s]. Missing machine, loads
+        and run keys take the schema's defaults.
 
     Returns
     -------
     StudyResult
-        Summary keys: see :data:`HEADLINE` and ``docs/drives/guide_bar.md``.
+        Summary keys: see :data:`HEADLINE`, ``docs/drives/guide_bar.md`` and
+        ``docs/machines/vane_pump.md``.
     """
     d = cfg["drive"]
     params = build_params(
@@ -156,23 +370,54 @@ def evaluate(cfg: dict) -> StudyResult:
         },
         aliases={"lam": "lambda"},
     )
-    loads = cfg.get("loads", {})
-    m7 = float(loads.get("impeller_torque_1", 0.0))
-    m8 = float(loads.get("impeller_torque_2", 0.0))
+    machine, loads, run = _defaults(cfg)
+    m7 = float(loads["impeller_torque_1"])
+    m8 = float(loads["impeller_torque_2"])
+    pump = build_params(
+        vp.VanePump,
+        "machine",
+        {
+            "drive": params,
+            "vanes_per_impeller": machine["vanes_per_impeller"],
+            "vane_angle": machine["vane_angle"],
+            "hub_radius": machine["hub_radius"],
+            "casing_radius": machine["casing_radius"],
+            "axial_width": machine["axial_width"],
+        },
+    )
+    ports = build_params(
+        vp.PortPressures,
+        "loads",
+        {
+            "suction_pressure": loads["suction_pressure"],
+            "discharge_pressure": loads["discharge_pressure"],
+        },
+    )
+    inertia = _inertias(machine)
+    speed = run["speed"]
     summary = _summary(params, m7, m8)
-    columns = _columns(params, m7, m8, cfg["run"]["points"])
+    summary.update(_pump_summary(pump, ports, inertia, speed, float(machine["speed_fluctuation"])))
+    columns = _columns(params, m7, m8, run["points"])
+    theta = angle_grid(gb.period(params), run["points"])
+    pump_cols, pump_docs = _pump_columns(pump, ports, inertia, speed, theta)
+    columns.update(pump_cols)
 
     def plot(outdir: Path) -> list[Path]:
         from rotorkin.report import figures_guide_bar
 
-        return figures_guide_bar.plot_all(params, m7, m8, Path(outdir))
+        grid = angle_grid(gb.period(params), 1441)
+        state = pump_state(pump, ports, inertia, speed, grid)
+        return figures_guide_bar.plot_all(
+            params, m7, m8, Path(outdir), pump=pump, ports=ports, theta=grid, state=state,
+            summary=summary,
+        )  # fmt: skip
 
     return StudyResult(
         drive_type="guide_bar",
         title="Differential vane pump, rotating guide-bar + gear drive",
         summary=summary,
         columns=columns,
-        column_docs=dict(_DOCS),
+        column_docs={**_DOCS, **pump_docs},
         headline=HEADLINE,
         plot=plot,
     )
