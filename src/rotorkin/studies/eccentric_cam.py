@@ -1,8 +1,17 @@
 """Study of the opposed-piston reactor driven by double eccentric discs (Zhu & Zhu 2012).
 
-Config keys (SI, defaults filled by :mod:`rotorkin.io.config`):
+Config keys (SI, defaults filled by :mod:`rotorkin.io.config`; a key missing from
+``cfg`` takes the schema's default):
 ``drive.disc_radius``, ``drive.eccentricity``, ``drive.follower``,
-``drive.roller_radius``, ``machine.device_length``, ``run.points``.
+``drive.roller_radius``; ``machine.device_length``, ``machine.bore``,
+``machine.fluid``, ``machine.initial_pressure``, ``machine.polytropic_exponent``,
+``machine.bulk_modulus``, ``machine.piston_mass``, ``machine.inertia_shaft``,
+``machine.speed_fluctuation`` (the reactor, :mod:`rotorkin.machines.opposed_piston`);
+``run.points``, ``run.speed``.
+
+Torque sign (``shaft_torque_*``, ``mean_torque_Nm``): positive when the machine
+drives the shaft. Piston forces are positive towards the reactor centre (the
+sense of the travels ``z``, ``z'``).
 """
 
 from __future__ import annotations
@@ -11,11 +20,14 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorkin._angles import fmt_mm
+from rotorkin.analysis import flywheel as fw
+from rotorkin.analysis import torque as tq
+from rotorkin.analysis.timing import shaft_speed
 from rotorkin.drives import eccentric_cam as ec
 from rotorkin.errors import ParameterError
+from rotorkin.machines import opposed_piston as op
 from rotorkin.studies import StudyResult
-from rotorkin.studies._common import angle_grid, build_params
+from rotorkin.studies._common import angle_grid, build_params, time_domain
 
 __all__ = ["evaluate", "HEADLINE"]
 
@@ -28,6 +40,14 @@ HEADLINE = (
     "gap_change_to_length_percent",
     "piston_stroke_mm",
     "pressure_angle_max_deg",
+    "fluid",
+    "chamber_volume_max_cm3",
+    "pressure_min_bar",
+    "pressure_ripple_bar",
+    "cavitation",
+    "piston_left_accel_peak_m_per_s2",
+    "shaft_torque_peak_Nm",
+    "flywheel_inertia_kgm2",
 )
 
 #: Samples per shaft turn used for the peaks of the piston derivatives (independent of run.points).
@@ -107,20 +127,181 @@ def _columns(params: ec.EccentricCam, points: int) -> dict:
     return cols
 
 
+# --------------------------------------------------------------------------------------------
+# the reactor
+# --------------------------------------------------------------------------------------------
+_SLUGS = ("piston_left", "piston_right")
+
+_REACTOR_DOCS = {
+    "volume_cm3": "Enclosed volume V = A (L - Delta) between the inner faces of the pistons.",
+    "dvolume_cm3_per_rad": "dV/dbeta, exact (-A dDelta/dbeta).",
+    "pressure_bar": "Absolute pressure of the enclosed fluid (gas: p0 (V0/V)^n; liquid: "
+    "p0 - K ln(V/V0)); below 0: the liquid would cavitate.",
+    "piston_left_force_N": "Force of the fluid on the left piston, -p A, positive towards the "
+    "reactor centre.",
+    "piston_right_force_N": "Force of the fluid on the right piston, -p A, positive towards the "
+    "reactor centre.",
+    "shaft_torque_Nm": "Torque of the fluid on the shaft by virtual work, sum F_i dq_i/dbeta = "
+    "p dV/dbeta; positive when it drives the shaft.",
+    "inertia_torque_Nm": "Torque the shaft spends on the inertia of shaft and pistons, "
+    "d(KE)/dbeta.",
+    "shaft_torque_with_inertia_Nm": "shaft_torque_Nm minus inertia_torque_Nm: the net torque of "
+    "the machine on the shaft (the motor supplies its opposite).",
+    "equivalent_inertia_kgm2": "Inertia seen at the shaft, J_shaft + m (z'^2 + z''^2) with "
+    "z' = dz/dbeta [m/rad].",
+}
+
+
+def _defaults(cfg: dict):
+    """Machine and run sections with the schema's defaults for missing keys."""
+    from rotorkin.io.config import EccentricMachine, RunSection
+
+    machine = {**EccentricMachine().model_dump(), **(cfg.get("machine") or {})}
+    run = {**RunSection().model_dump(), **(cfg.get("run") or {})}
+    return machine, run
+
+
+def _inertias(machine: dict) -> tuple[float, tuple[float, float]]:
+    js = float(machine["inertia_shaft"])
+    if not (np.isfinite(js) and js >= 0.0):
+        raise ParameterError("machine.inertia_shaft", f"{js:g} kg*m^2", "inertia_shaft >= 0")
+    m = float(machine["piston_mass"])
+    if not (np.isfinite(m) and m >= 0.0):
+        raise ParameterError("machine.piston_mass", f"{m:g} kg", "piston_mass >= 0 kg")
+    return js, (m, m)
+
+
+def reactor_state(reactor: op.OpposedPiston, inertia, speed, beta) -> dict:
+    """Volume, pressure, piston forces and shaft torques at the shaft angles ``beta``.
+
+    Parameters
+    ----------
+    reactor : OpposedPiston
+    inertia : (float, (float, float))
+        ``J_shaft`` [kg*m^2] and the piston masses [kg].
+    speed : float or sequence of float
+        ``run.speed`` [rad/s].
+    beta : ndarray, shape (n,)
+        Shaft angles [rad].
+
+    Returns
+    -------
+    dict of ndarray
+        ``V``, ``dV``, ``p`` (1, n); ``F`` (2, n); ``shaft``, ``inertia``, ``net``,
+        ``J_eq``, ``omega``, ``omega_dot`` (n,).
+    """
+    _, dq, d2q, _ = ec.piston_travels(reactor.drive, beta)
+    V, dV, _, _ = op.enclosed_volume(reactor, beta)
+    p, _ = op.pressure(reactor, beta)
+    F = tq.member_torques(p, op.volume_derivatives_dq(reactor, beta))
+    shaft = tq.shaft_torque_from_members(F, dq)
+    omega, omega_dot, _ = shaft_speed(beta, speed, ec.period(reactor.drive))
+    js, masses = inertia
+    t_in = tq.inertia_torque(js, masses, dq, d2q, omega, omega_dot)
+    return {
+        "V": V,
+        "dV": dV,
+        "p": p,
+        "F": F,
+        "shaft": shaft,
+        "inertia": t_in,
+        "net": shaft - t_in,
+        "J_eq": tq.equivalent_inertia(js, masses, dq),
+        "omega": omega,
+        "omega_dot": omega_dot,
+    }
+
+
+def _reactor_summary(reactor: op.OpposedPiston, inertia, speed, coefficient) -> dict:
+    drive = reactor.drive
+    period = ec.period(drive)
+    fine = np.linspace(0.0, period, _PEAK_SAMPLES)
+    st = reactor_state(reactor, inertia, speed, fine)
+    vmin, vmax = op.volume_extremes(reactor)
+    p0 = float(reactor.initial_pressure)
+    p_at_vmax = float(op.pressure_from_volume(reactor, vmax))
+    omega_mean = float(np.mean(st["omega"][:-1]))
+    _, dq, d2q, _ = ec.piston_travels(drive, fine)
+    js, masses = inertia
+    net_const = st["shaft"] - tq.inertia_torque(js, masses, dq, d2q, omega_mean, 0.0)
+    delta_e = float(fw.energy_fluctuation(net_const, fine))
+    j_mean = float(np.trapezoid(st["J_eq"], fine) / period)
+    cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
+    work = float(tq.cycle_integral(st["shaft"], fine))
+    out = {
+        "fluid": reactor.fluid,
+        "bore_mm": float(reactor.bore) * 1e3,
+        "piston_area_cm2": reactor.area * 1e4,
+        "enclosed_volume_min_cm3": vmin * 1e6,
+        "enclosed_volume_max_cm3": vmax * 1e6,
+        "chamber_volume_min_cm3": vmin * 1e6,
+        "chamber_volume_max_cm3": vmax * 1e6,
+        "volume_change_cm3": (vmax - vmin) * 1e6,
+        "volume_change_relative": (vmax - vmin) / vmin,
+        "compression_ratio_geometric": vmax / vmin,
+        "initial_pressure_bar": p0 / 1e5,
+        "pressure_max_bar": p0 / 1e5,
+        "pressure_min_bar": p_at_vmax / 1e5,
+        "pressure_ripple_bar": (p0 - p_at_vmax) / 1e5,
+        "pressure_ripple_relative": (p0 - p_at_vmax) / p0,
+        "cavitation": bool(p_at_vmax <= 0.0),
+        "piston_force_peak_N": float(np.max(np.abs(st["F"]))),
+        "indicated_work_J": work,
+        "mean_torque_Nm": work / period,
+        "shaft_torque_min_Nm": float(np.min(st["shaft"])),
+        "shaft_torque_max_Nm": float(np.max(st["shaft"])),
+        "shaft_torque_peak_Nm": float(np.max(np.abs(st["shaft"]))),
+        "shaft_torque_with_inertia_peak_Nm": float(np.max(np.abs(st["net"]))),
+        "inertia_torque_peak_Nm": float(np.max(np.abs(st["inertia"]))),
+        "equivalent_inertia_mean_kgm2": j_mean,
+        "energy_fluctuation_J": delta_e,
+        "speed_fluctuation_without_flywheel": cs,
+        "speed_fluctuation": float(coefficient),
+        "flywheel_inertia_kgm2": float(
+            fw.flywheel_inertia(delta_e, omega_mean, coefficient, j_mean)
+        ),
+    }
+    out.update(time_domain(ec.motion(drive, fine), speed, _SLUGS, period)[2])
+    return out
+
+
+def _reactor_columns(reactor, inertia, speed, beta) -> tuple[dict, dict]:
+    st = reactor_state(reactor, inertia, speed, beta)
+    cols = {
+        "volume_cm3": st["V"][0] * 1e6,
+        "dvolume_cm3_per_rad": st["dV"][0] * 1e6,
+        "pressure_bar": st["p"][0] / 1e5,
+        "piston_left_force_N": st["F"][0],
+        "piston_right_force_N": st["F"][1],
+        "shaft_torque_Nm": st["shaft"],
+        "inertia_torque_Nm": st["inertia"],
+        "shaft_torque_with_inertia_Nm": st["net"],
+        "equivalent_inertia_kgm2": st["J_eq"],
+    }
+    tcols, tdocs, _, _ = time_domain(ec.motion(reactor.drive, beta), speed, _SLUGS,
+                                     ec.period(reactor.drive))  # fmt: skip
+    cols.update(tcols)
+    return cols, {**_REACTOR_DOCS, **tdocs}
+
+
 def evaluate(cfg: dict) -> StudyResult:
-    """Run the eccentric-cam study on a validated config (SI values).
+    """Run the eccentric-cam reactor study on a validated config (SI values).
 
     Parameters
     ----------
     cfg : dict
         ``cfg["drive"]``: ``disc_radius`` [m], ``eccentricity`` [m], ``follower``,
-        ``roller_radius`` [m]; ``cfg["machine"]["device_length"]`` [m];
-        ``cfg["run"]["points"]``.
+        ``roller_radius`` [m]; ``cfg["machine"]``: ``device_length``, ``bore`` [m],
+        ``fluid``, ``initial_pressure`` [Pa], ``polytropic_exponent``,
+        ``bulk_modulus`` [Pa], ``piston_mass`` [kg], ``inertia_shaft`` [kg*m^2],
+        ``speed_fluctuation``; ``cfg["run"]``: ``points``, ``speed`` [rad/s].
+        Missing machine and run keys take the schema's defaults.
 
     Returns
     -------
     StudyResult
-        Summary keys: see :data:`HEADLINE` and ``docs/drives/eccentric_cam.md``.
+        Summary keys: see :data:`HEADLINE`, ``docs/drives/eccentric_cam.md`` and
+        ``docs/machines/opposed_piston.md``.
     """
     d = cfg["drive"]
     params = build_params(
@@ -133,23 +314,44 @@ def evaluate(cfg: dict) -> StudyResult:
             "roller_radius": d.get("roller_radius", 0.0),
         },
     )
-    length = float(cfg["machine"]["device_length"])
-    if not (np.isfinite(length) and length > 0.0):
-        raise ParameterError("machine.device_length", fmt_mm(length), "device_length > 0 mm")
-    summary = _summary(params, length)
-    columns = _columns(params, cfg["run"]["points"])
+    machine, run = _defaults(cfg)
+    reactor = build_params(
+        op.OpposedPiston,
+        "machine",
+        {
+            "drive": params,
+            "device_length": machine["device_length"],
+            "bore": machine["bore"],
+            "fluid": machine["fluid"],
+            "initial_pressure": machine["initial_pressure"],
+            "polytropic_exponent": machine["polytropic_exponent"],
+            "bulk_modulus": machine["bulk_modulus"],
+        },
+    )
+    inertia = _inertias(machine)
+    speed = run["speed"]
+    summary = _summary(params, float(reactor.device_length))
+    summary.update(_reactor_summary(reactor, inertia, speed, float(machine["speed_fluctuation"])))
+    columns = _columns(params, run["points"])
+    beta = angle_grid(ec.period(params), run["points"])
+    more, more_docs = _reactor_columns(reactor, inertia, speed, beta)
+    columns.update(more)
 
     def plot(outdir: Path) -> list[Path]:
         from rotorkin.report import figures_eccentric_cam
 
-        return figures_eccentric_cam.plot_all(params, Path(outdir))
+        grid = angle_grid(ec.period(params), 1441)
+        state = reactor_state(reactor, inertia, speed, grid)
+        return figures_eccentric_cam.plot_all(
+            params, Path(outdir), reactor=reactor, beta=grid, state=state, summary=summary
+        )
 
     return StudyResult(
         drive_type="eccentric_cam",
         title="Opposed-piston reactor, double eccentric cams",
         summary=summary,
         columns=columns,
-        column_docs=dict(_DOCS),
+        column_docs={**_DOCS, **more_docs},
         headline=HEADLINE,
         plot=plot,
     )
