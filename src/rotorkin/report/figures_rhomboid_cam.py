@@ -1,4 +1,5 @@
-"""Figures of the rhomboid lever-cam converter (Zhuravlev et al. 2012: Fig. 1, eq. 13-34).
+"""Figures of the rhomboid lever-cam converter (Zhuravlev et al. 2012: Fig. 1, eq. 13-34)
+and of the rotary-blade engine built on it (chambers, p-V diagram, torques, blade layout).
 
 matplotlib is imported lazily inside the functions (Agg backend).
 """
@@ -18,6 +19,11 @@ __all__ = [
     "fig_psi_law",
     "fig_blade_motion",
     "fig_work_loop",
+    "plot_machine",
+    "fig_chamber_volumes",
+    "fig_pv_diagram",
+    "fig_shaft_torque",
+    "fig_blade_layout",
 ]
 
 _DPI = 120
@@ -223,3 +229,259 @@ def plot_all(params, torque_high, torque_low, outdir: Path) -> list[Path]:
         fig_blade_motion(params, outdir),
         fig_work_loop(params, float(torque_high), float(torque_low), outdir),
     ]
+
+
+# --- the rotary-blade engine ---------------------------------------------------------------
+def _machine_tag(machine, loads) -> str:
+    m = machine
+    geo = (
+        f"B = {m.blades_per_pair} blades/pair, t = {np.degrees(m.blade_thickness):.4g} deg, "
+        f"R_i = {m.inner_radius * 1e3:.4g} mm, R_o = {m.outer_radius * 1e3:.4g} mm, "
+        f"w = {m.axial_width * 1e3:.4g} mm"
+    )
+    if loads.model == "isothermal":
+        g = loads.gas
+        return (
+            f"{geo}; isothermal gas: p_charge = {g.charge_pressure * 1e-5:.4g} bar, "
+            f"T_h = {g.hot_temperature:.4g} K, T_c = {g.cold_temperature:.4g} K"
+        )
+    return (
+        f"{geo}; linear blade torque (eq. 29): M1 = {loads.torque_high:.4g} N m, "
+        f"M2 = {loads.torque_low:.4g} N m"
+    )
+
+
+def _families(machine):
+    """(index, label, colour) of the even and odd chambers (identical within a family)."""
+    B = machine.blades_per_pair
+    s = "s" if B > 1 else ""
+    even = ", ".join(str(j + 1) for j in range(0, 2 * B, 2))
+    odd = ", ".join(str(j + 1) for j in range(1, 2 * B, 2))
+    return (
+        (0, f"chamber{s} {even} (angle psi - t)", "C0"),
+        (1, f"chamber{s} {odd} (angle {360 / B:.4g} deg - psi - t)", "C3"),
+    )
+
+
+def _save(fig, plt, outdir, name, rect=(0.0, 0.0, 1.0, 1.0)) -> Path:
+    fig.tight_layout(rect=rect)
+    path = Path(outdir) / name
+    fig.savefig(path, dpi=_DPI)
+    plt.close(fig)
+    return path
+
+
+def fig_chamber_volumes(machine, loads, state, summary, outdir: Path) -> Path:
+    """Chamber volumes and ``dV/dalpha`` over one output-shaft revolution."""
+    plt = _plt()
+    al = np.linspace(0.0, 2.0 * np.pi, 1441)
+    st = state(al)
+    ad = np.degrees(al)
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(9.5, 8), sharex=True)
+    for j, label, c in _families(machine):
+        ax.plot(ad, st.volume[j] * 1e6, color=c, lw=2.0, label=label)
+        bx.plot(ad, st.dvolume[j] * 1e6, color=c, lw=2.0, label=label)
+    vmax, vmin = summary["chamber_volume_max_cm3"], summary["chamber_volume_min_cm3"]
+    for v, name in ((vmax, "V_max"), (vmin, "V_min")):
+        ax.axhline(v, color="0.4", lw=0.8, ls="--")
+        ax.annotate(f"{name} = {v:.4g} cm^3", (358, v), xytext=(0, 3),
+                    textcoords="offset points", ha="right", fontsize=8)  # fmt: skip
+    ax.set_ylabel("chamber volume [cm^3]")
+    ax.set_ylim(0.0, 1.3 * vmax)
+    ax.set_title(
+        f"compression ratio {summary['compression_ratio_geometric']:.4g}, displacement "
+        f"{summary['displacement_cm3_per_rev']:.5g} cm^3 per output-shaft revolution",
+        fontsize=10,
+    )
+    k = summary["sector_volume_cm3_per_rad"]
+    right = ax.secondary_yaxis(
+        "right", functions=(lambda v: np.degrees(v / k), lambda g: np.radians(g) * k)
+    )
+    right.set_ylabel("chamber angle [deg]")
+    bx.axhline(0.0, color="k", lw=0.6)
+    bx.set_ylabel("dV/dalpha [cm^3/rad]")
+    bx.set_xlabel("output-shaft angle alpha [deg]")
+    bx.set_xticks(np.arange(0, 361, 45))
+    for a in (ax, bx):
+        a.grid(True, alpha=0.4)
+    ax.legend(fontsize=8, loc="upper center", ncol=2)
+    fig.suptitle(f"Rotary-blade engine: chambers\n{_machine_tag(machine, loads)}", fontsize=9)
+    return _save(fig, plt, outdir, "fig05_chamber_volumes.png")
+
+
+def fig_pv_diagram(machine, loads, state, summary, outdir: Path) -> Path:
+    """p-V diagram of the chambers, isothermal model (the ideal Stirling loop)."""
+    plt = _plt()
+    al = np.linspace(0.0, np.pi, 4001)
+    st = state(al)
+    g = loads.gas
+    fig, ax = plt.subplots(figsize=(9.5, 6.5))
+    dT = g.hot_temperature - g.cold_temperature
+    for j, label, c in _families(machine):
+        v, p = st.volume[j] * 1e6, st.pressure[j] * 1e-5
+        lo, hi = float(np.min(st.volume[j])), float(np.max(st.volume[j]))
+        w = float(loads.charge[j] * dT * np.log(hi / lo))
+        vv, pp = np.append(v, v[0]), np.append(p, p[0])  # close the loop
+        ax.fill(vv, pp, color=c, alpha=0.12 if j == 0 else 0.05)
+        ax.plot(vv, pp, "-" if j == 0 else "--", color=c, lw=2.0,
+                label=f"{label}: {w:.4g} J per cycle")  # fmt: skip
+    v, p = st.volume[0] * 1e6, st.pressure[0] * 1e-5
+    for sign, text in ((1, f"expansion at T_h = {g.hot_temperature:.4g} K"),
+                       (-1, f"compression at T_c = {g.cold_temperature:.4g} K")):  # fmt: skip
+        idx = np.flatnonzero(st.stroke == sign)
+        m, n = idx[len(idx) // 3], idx[len(idx) // 3 + 60]
+        ax.annotate("", (v[n], p[n]), (v[m], p[m]),
+                    arrowprops={"arrowstyle": "-|>", "color": "k", "lw": 1.5,
+                                "mutation_scale": 18})  # fmt: skip
+        ax.annotate(text, (v[m], p[m]), xytext=(12 * sign, 12 * sign), fontsize=9,
+                    textcoords="offset points", va="bottom" if sign > 0 else "top",
+                    ha="left" if sign > 0 else "right")  # fmt: skip
+    vmin, vmax = summary["chamber_volume_min_cm3"], summary["chamber_volume_max_cm3"]
+    ax.annotate("isochoric heating\n(regenerator)", (vmin, 0.55 * p.max()),
+                xytext=(8, 0), textcoords="offset points", fontsize=8, color="0.3")  # fmt: skip
+    ax.annotate("isochoric cooling", (vmax, 1.6 * p.min()), xytext=(-8, 0),
+                textcoords="offset points", fontsize=8, color="0.3", ha="right")  # fmt: skip
+    ax.set_xlabel("chamber volume V [cm^3]")
+    ax.set_ylabel("absolute pressure p [bar]")
+    ax.set_xlim(0.0, 1.08 * vmax)
+    ax.set_ylim(0.0, 1.08 * summary["pressure_max_bar"])
+    ax.grid(True, alpha=0.4)
+    ax.legend(fontsize=8, loc="upper right")
+    ax.set_title(
+        f"p-V diagram, isothermal gas: W = m R (T_h - T_c) ln(V_max/V_min) per cycle; "
+        f"{summary['indicated_work_J']:.5g} J/rev, {summary['indicated_power_kW']:.4g} kW "
+        f"at {summary['shaft_speed_mean_rpm']:.5g} rpm",
+        fontsize=9,
+    )
+    fig.suptitle(_machine_tag(machine, loads), fontsize=8)
+    return _save(fig, plt, outdir, "fig06_pv_diagram.png")
+
+
+def fig_shaft_torque(machine, loads, curves, summary, outdir: Path) -> Path:
+    """Output-shaft torque with and without inertia, ``J_eq`` and the energy swing."""
+    plt = _plt()
+    al = curves["alpha"]
+    ad = np.degrees(al)
+    gas, inert = curves["state"].torque, curves["inertia_torque"]
+    mean = summary["mean_torque_Nm"]
+    fig, (ax, bx, cx) = plt.subplots(3, 1, figsize=(9.5, 10), sharex=True,
+                                     gridspec_kw={"height_ratios": [2.2, 1, 1.2]})  # fmt: skip
+    ax.plot(ad, gas, "C2", lw=2.0, label=f"loads ({loads.model} model), without inertia")
+    ax.plot(ad, gas - inert, "k", lw=1.4, label="with inertia (loads - inertia torque)")
+    ax.plot(ad, inert, "C1", lw=1.0, ls="--", label="inertia torque of shaft and blade pairs")
+    ax.axhline(mean, color="C2", ls=":", lw=1.2, label=f"mean {mean:.4g} N m")
+    ax.axhline(0.0, color="0.3", lw=0.6)
+    ax.set_ylabel("output-shaft torque [N m]")
+    ax.set_title(
+        f"torque ripple (max - min)/mean {summary['torque_ripple']:.3g}; with inertia "
+        f"{summary['torque_ripple_with_inertia']:.3g} at {summary['shaft_speed_mean_rpm']:.5g} rpm",
+        fontsize=10,
+    )
+    lo, hi = min(np.min(gas), np.min(inert)), max(np.max(gas), np.max(inert), np.max(gas - inert))
+    ax.set_ylim(lo - 0.05 * (hi - lo), hi + 0.4 * (hi - lo))
+    ax.legend(fontsize=8, loc="upper center", ncol=2)
+    bx.plot(ad, curves["equivalent_inertia"], "C4", lw=1.8)
+    bx.set_ylabel("J_eq [kg m^2]")
+    energy = np.concatenate(([0.0], np.cumsum(0.5 * (curves["steady"][1:] + curves["steady"][:-1])
+                                              * np.diff(al))))  # fmt: skip
+    energy -= energy[-1] / (al[-1] - al[0]) * (al - al[0])  # remove the mean torque's share
+    label = "E = integral (T_loads - T_inertia - T_mean) d alpha, inertia at the mean speed"
+    cx.plot(ad, energy, "C0", lw=1.8, label=label)
+    cx.axhspan(energy.min(), energy.max(), color="C0", alpha=0.08)
+    cx.set_ylabel("energy [J]")
+    cx.set_title(
+        f"Delta E = {summary['energy_fluctuation_J']:.4g} J: speed fluctuation "
+        f"{summary['speed_fluctuation_without_flywheel']:.3g} without flywheel; flywheel "
+        f"{summary['flywheel_inertia_kgm2']:.3g} kg m^2 for {summary['speed_fluctuation']:.3g}",
+        fontsize=10,
+    )
+    span = energy.max() - energy.min()
+    cx.set_ylim(energy.min() - 0.05 * span, energy.max() + 0.45 * span)
+    cx.legend(fontsize=8, loc="upper center")
+    cx.set_xlabel("output-shaft angle alpha [deg] (one period of the machine)")
+    cx.set_xticks(np.arange(0, 181, 30))
+    for a in (ax, bx, cx):
+        a.grid(True, alpha=0.4)
+    fig.suptitle(f"Output-shaft torque and flywheel\n{_machine_tag(machine, loads)}", fontsize=9)
+    return _save(fig, plt, outdir, "fig07_shaft_torque.png")
+
+
+def fig_blade_layout(params, machine, loads, state, outdir: Path,
+                     alphas_deg=(0.0, 30.0, 60.0, 90.0)) -> Path:  # fmt: skip
+    """Cross-sections of the working space at a few shaft angles: blades and chambers."""
+    plt = _plt()
+    from matplotlib.patches import Circle, Wedge
+
+    al = np.radians(np.asarray(alphas_deg, dtype=float))
+    st = state(al)
+    q = st.motion.q
+    B, t = machine.blades_per_pair, np.degrees(machine.blade_thickness)
+    ri, ro = machine.inner_radius * 1e3, machine.outer_radius * 1e3
+    fig, axes = plt.subplots(2, 2, figsize=(10, 10.5))
+    for n, ax in enumerate(axes.flat[: len(alphas_deg)]):
+        ax.add_patch(Circle((0, 0), ro, fill=False, lw=1.5, color="k"))
+        ax.add_patch(Circle((0, 0), ri, color="0.85", ec="k", lw=1.0))
+        p1, p2 = np.degrees(q[0, n]), np.degrees(q[1, n])
+        for m in range(B):
+            step = 360.0 * m / B
+            for j, (a0, a1) in enumerate(
+                ((p2 + step, p1 + step), (p1 + step, p2 + step + 360 / B))
+            ):
+                c = "C0" if j == 0 else "C3"
+                ax.add_patch(Wedge((0, 0), ro, a0 + t / 2, a1 - t / 2, width=ro - ri,
+                                   color=c, alpha=0.15))  # fmt: skip
+                mid = np.radians(0.5 * (a0 + a1))
+                k = 2 * m + j
+                text = f"{k + 1}\n{st.volume[k, n] * 1e6:.0f} cm3"
+                if st.pressure is not None:
+                    text += f"\n{st.pressure[k, n] * 1e-5:.3g} bar"
+                rr = 0.5 * (ri + ro)
+                ax.text(rr * np.cos(mid), rr * np.sin(mid), text, ha="center", va="center",
+                        fontsize=7)  # fmt: skip
+            for ang, c in ((p1 + step, "C0"), (p2 + step, "C3")):
+                ax.add_patch(Wedge((0, 0), ro, ang - t / 2, ang + t / 2, width=ro - ri,
+                                   color=c, ec="k", lw=0.6))  # fmt: skip
+        a = al[n]
+        ax.annotate("", (0.9 * ri * np.cos(a), 0.9 * ri * np.sin(a)), (0, 0),
+                    arrowprops={"arrowstyle": "-|>", "color": "k", "lw": 1.5})  # fmt: skip
+        psi = np.degrees(q[0, n] - q[1, n])
+        ax.set_title(f"alpha = {alphas_deg[n]:g} deg, psi = {psi:.4g} deg", fontsize=10)
+        ax.set_xlim(-1.1 * ro, 1.1 * ro)
+        ax.set_ylim(-1.1 * ro, 1.1 * ro)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [mm]")
+        ax.set_ylabel("y [mm]")
+        ax.grid(True, alpha=0.3)
+    axes.flat[0].plot([], [], "s", color="C0", label="blade pair 1 (phi_1 = alpha + psi/2)")
+    axes.flat[0].plot([], [], "s", color="C3", label="blade pair 2 (phi_2 = alpha - psi/2)")
+    axes.flat[0].plot([], [], "k-", label="arrow: output-shaft angle alpha")
+    fig.legend(*axes.flat[0].get_legend_handles_labels(), loc="lower center", ncol=3, fontsize=8)
+    fig.suptitle(
+        f"Working space: chambers numbered counter-clockwise from blade pair 2\n"
+        f"{_machine_tag(machine, loads)}",
+        fontsize=9,
+    )
+    return _save(fig, plt, outdir, "fig08_blade_layout.png", rect=(0.0, 0.03, 1.0, 1.0))
+
+
+def plot_machine(params, machine, loads, state, curves, summary, outdir: Path) -> list[Path]:
+    """Write the engine's figures (fig05-fig08; fig06, the p-V diagram, needs pressures).
+
+    Parameters
+    ----------
+    state : callable
+        ``state(alpha) -> rotorkin.studies.rhomboid_cam.State``.
+    curves : dict
+        The study's fine samples over one period (``alpha``, ``state``,
+        ``inertia_torque``, ``steady``, ``equivalent_inertia``).
+    summary : dict
+        The study's summary.
+    """
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    paths = [fig_chamber_volumes(machine, loads, state, summary, outdir)]
+    if loads.model == "isothermal":
+        paths.append(fig_pv_diagram(machine, loads, state, summary, outdir))
+    paths.append(fig_shaft_torque(machine, loads, curves, summary, outdir))
+    paths.append(fig_blade_layout(params, machine, loads, state, outdir))
+    return paths

@@ -1,0 +1,447 @@
+"""Rotary-blade engine: two blade pairs on one axis, working chambers between the blades.
+
+The machine of Zhuravlev, Donchenko, Sherstyukov (2012, ``papers/rhomboid_cam.md``):
+a Stirling-type engine with external heat supply whose two blade pairs turn about
+one axis at the angles ``phi_1`` and ``phi_2`` given by a drive (the rhomboid
+lever-cam converter, :mod:`rotorkin.drives.rhomboid_cam`). The paper gives no
+geometry of the working space; the model here is ours.
+
+Geometry (not in the paper):
+
+* The working space is an annulus between the hub (``inner_radius`` ``R_i``) and
+  the casing (``outer_radius`` ``R_o``), ``axial_width`` ``w`` long.
+* Each pair carries ``B = blades_per_pair`` radial blades, evenly spaced: pair 1
+  at ``phi_1 + 2 pi m / B``, pair 2 at ``phi_2 + 2 pi m / B``, ``m = 0 .. B-1``;
+  a blade is a sector of angular thickness ``t`` (``blade_thickness``) centred on
+  its axis. The paper's engine has ``B = 2`` (4 blades, 4 chambers).
+* Counter-clockwise from the blade of pair 2 at ``phi_2`` the ``2B`` chambers are
+  numbered ``j = 0 .. 2B-1``: even chambers lie between ``phi_2 + 2 pi m/B`` and
+  ``phi_1 + 2 pi m/B``, odd chambers between ``phi_1 + 2 pi m/B`` and
+  ``phi_2 + 2 pi (m+1)/B``. With ``psi = phi_1 - phi_2`` their angles are
+
+      even:  gamma_j = psi - t,          odd:  gamma_j = 2 pi / B - psi - t
+
+  (for ``B = 2``: ``psi - t`` and ``pi - psi - t``, alternating), and both must
+  stay positive over the whole motion (:func:`check_swing`).
+* Volume of a sector chamber: ``V_j = gamma_j (R_o^2 - R_i^2) w / 2``, so with
+  ``k = (R_o^2 - R_i^2) w / 2`` [m^3/rad] and the chamber sign ``s_j = +1`` (even),
+  ``-1`` (odd): ``dV_j/dphi_1 = s_j k``, ``dV_j/dphi_2 = -s_j k`` and
+  ``d^n V_j / d theta^n = s_j k (phi_1^(n) - phi_2^(n))``, exactly.
+
+Pressure models:
+
+* ``linear``: the paper's blade-torque model (eq. 29) gives the torque ``M_1`` on
+  pair 1 directly, and ``M_2 = -M_1`` (eq. 24) - see :func:`linear_member_torques`.
+* ``isothermal`` (ideal Stirling cycle, ours): each chamber holds a fixed gas mass
+  ``m_j``; while it *expands* (``dV_j > 0``) the gas is at the hot temperature
+  ``T_h``, while it is *compressed* (``dV_j < 0``) at the cold temperature
+  ``T_c``; the change of temperature at the turning points is isochoric (an ideal
+  regenerator). ``p_j = m_j R T / V_j`` with ``m_j R = p_charge V_max,j / T_c``:
+  the charge pressure is the pressure at the chamber's largest volume, cold.
+
+All functions broadcast: member positions ``q`` have shape ``(2, ...)``, chamber
+arrays shape ``(2B, ...)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorkin._angles import fmt_deg, fmt_mm
+from rotorkin.analysis.torque import member_torques
+from rotorkin.errors import ParameterError
+
+__all__ = [
+    "IsothermalGas",
+    "RotaryBlade",
+    "chamber_angles",
+    "chamber_offsets",
+    "chamber_signs",
+    "chamber_strokes",
+    "chamber_volume_derivative",
+    "chamber_volumes",
+    "check_swing",
+    "displacement_per_rev",
+    "gas_charge",
+    "gas_member_torques",
+    "isothermal_cycle_work",
+    "isothermal_pressure",
+    "isothermal_stroke_work",
+    "linear_member_torques",
+    "sector_constant",
+    "volume_gradient",
+    "volume_range",
+]
+
+_TWO_PI = 2.0 * np.pi
+
+
+def _finite(x) -> bool:
+    return bool(np.isfinite(x))
+
+
+# --- parameters ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class RotaryBlade:
+    """Geometry and inertias of the rotary-blade engine.
+
+    Attributes
+    ----------
+    blade_thickness : float
+        Angular thickness ``t`` of one blade [rad], ``0 <= t < pi / B``; the drive's
+        swing of ``psi`` narrows it further (:func:`check_swing`).
+    inner_radius : float
+        Hub radius ``R_i`` of the working space [m], ``0 <= R_i < R_o``.
+    outer_radius : float
+        Casing radius ``R_o`` [m], > 0.
+    axial_width : float
+        Axial width ``w`` of the working space [m], > 0.
+    blades_per_pair : int
+        ``B`` blades on each pair, ``>= 1`` (the paper: 2).
+    inertia_shaft : float
+        Inertia of the output shaft with the cam carrier [kg m^2], >= 0.
+    inertia_blade_pair_1, inertia_blade_pair_2 : float
+        Inertias of the blade pairs with their hubs and arms [kg m^2], >= 0.
+    """
+
+    blade_thickness: float
+    inner_radius: float
+    outer_radius: float
+    axial_width: float
+    blades_per_pair: int = 2
+    inertia_shaft: float = 0.0
+    inertia_blade_pair_1: float = 0.0
+    inertia_blade_pair_2: float = 0.0
+
+    def __post_init__(self):
+        B = self.blades_per_pair
+        if isinstance(B, bool) or not isinstance(B, int | np.integer) or B < 1:
+            raise ParameterError("blades_per_pair", repr(B), "an integer >= 1")
+        ro = float(self.outer_radius)
+        if not (_finite(ro) and ro > 0.0):
+            raise ParameterError("outer_radius", fmt_mm(ro), "outer_radius > 0 mm")
+        ri = float(self.inner_radius)
+        if not (_finite(ri) and 0.0 <= ri < ro):
+            raise ParameterError(
+                "inner_radius", fmt_mm(ri), f"0 mm <= inner_radius < outer_radius = {fmt_mm(ro)}"
+            )
+        w = float(self.axial_width)
+        if not (_finite(w) and w > 0.0):
+            raise ParameterError("axial_width", fmt_mm(w), "axial_width > 0 mm")
+        t = float(self.blade_thickness)
+        if not (_finite(t) and 0.0 <= t < np.pi / B):
+            raise ParameterError(
+                "blade_thickness",
+                fmt_deg(t),
+                f"0 deg <= blade_thickness < {fmt_deg(np.pi / B)} "
+                f"(the {2 * B} blades must fit around the rotor)",
+            )
+        for name in ("inertia_shaft", "inertia_blade_pair_1", "inertia_blade_pair_2"):
+            j = float(getattr(self, name))
+            if not (_finite(j) and j >= 0.0):
+                raise ParameterError(name, f"{j:g} kg*m^2", f"{name} >= 0 kg*m^2")
+            object.__setattr__(self, name, j)
+        object.__setattr__(self, "blades_per_pair", int(B))
+        object.__setattr__(self, "blade_thickness", t)
+        object.__setattr__(self, "inner_radius", ri)
+        object.__setattr__(self, "outer_radius", ro)
+        object.__setattr__(self, "axial_width", w)
+
+    @property
+    def chambers(self) -> int:
+        """Number of working chambers, ``2B``."""
+        return 2 * self.blades_per_pair
+
+    @property
+    def member_inertias(self) -> tuple[float, float]:
+        """``(J_1, J_2)`` of the blade pairs [kg m^2]."""
+        return (self.inertia_blade_pair_1, self.inertia_blade_pair_2)
+
+
+@dataclass(frozen=True)
+class IsothermalGas:
+    """Loads of the isothermal (ideal Stirling) pressure model.
+
+    Attributes
+    ----------
+    charge_pressure : float
+        Pressure of each chamber at its largest volume, cold [Pa], > 0.
+    hot_temperature : float
+        Gas temperature while a chamber expands [K], > 0.
+    cold_temperature : float
+        Gas temperature while a chamber is compressed [K], > 0. ``T_h > T_c`` makes
+        an engine; ``T_h < T_c`` gives negative work (the cycle run as a heat pump).
+    """
+
+    charge_pressure: float
+    hot_temperature: float
+    cold_temperature: float
+
+    def __post_init__(self):
+        p = float(self.charge_pressure)
+        if not (_finite(p) and p > 0.0):
+            raise ParameterError("charge_pressure", f"{p / 1e5:g} bar", "charge_pressure > 0 bar")
+        for name in ("hot_temperature", "cold_temperature"):
+            T = float(getattr(self, name))
+            if not (_finite(T) and T > 0.0):
+                raise ParameterError(name, f"{T:g} K", f"{name} > 0 K")
+            object.__setattr__(self, name, T)
+        object.__setattr__(self, "charge_pressure", p)
+
+
+def check_swing(machine: RotaryBlade, psi_lo: float, psi_hi: float) -> None:
+    """Refuse blades that collide somewhere in the drive's swing of ``psi``.
+
+    The chamber angles ``psi - t`` and ``2 pi/B - psi - t`` must stay > 0 for
+    ``psi_lo <= psi <= psi_hi``, i.e. ``t < t_max = min(psi_lo, 2 pi/B - psi_hi)``.
+    For the rhomboid drive (``psi_hi = pi - psi_lo``) and ``B = 2`` that is
+    ``t < psi_min``.
+
+    Raises
+    ------
+    ParameterError
+        Named ``blade_thickness`` with ``t_max`` when thinner blades would fit, else
+        ``blades_per_pair`` with the largest ``B`` that fits.
+    """
+    B, t = machine.blades_per_pair, machine.blade_thickness
+    t_max = min(float(psi_lo), _TWO_PI / B - float(psi_hi))
+    if t < t_max:
+        return
+    swing = f"psi from {fmt_deg(psi_lo)} to {fmt_deg(psi_hi)}"
+    if t_max > 0.0:
+        raise ParameterError(
+            "blade_thickness",
+            fmt_deg(t),
+            f"0 deg <= blade_thickness < {fmt_deg(t_max)}: the chamber angles psi - "
+            f"blade_thickness and {fmt_deg(_TWO_PI / B)} - psi - blade_thickness must stay "
+            f"> 0 for {swing} (thicker blades of the two pairs collide)",
+        )
+    b_max = int(np.ceil(_TWO_PI / (float(psi_hi) + t))) - 1
+    raise ParameterError(
+        "blades_per_pair",
+        str(B),
+        f"1 <= blades_per_pair <= {b_max}: 360 deg / blades_per_pair - psi - blade_thickness "
+        f"must stay > 0 for {swing} (blade_thickness = {fmt_deg(t)})",
+    )
+
+
+# --- chambers -----------------------------------------------------------------------------
+def sector_constant(machine: RotaryBlade) -> float:
+    """``k = (R_o^2 - R_i^2) w / 2``: volume of the annulus per radian [m^3/rad]."""
+    return 0.5 * (machine.outer_radius**2 - machine.inner_radius**2) * machine.axial_width
+
+
+def chamber_signs(machine: RotaryBlade) -> np.ndarray:
+    """``s_j = +1, -1, +1, ...``: how chamber ``j``'s angle follows ``psi``, shape ``(2B,)``."""
+    return np.tile([1.0, -1.0], machine.blades_per_pair)
+
+
+def chamber_offsets(machine: RotaryBlade) -> np.ndarray:
+    """Constant part of the chamber angles: ``-t`` (even), ``2 pi/B - t`` (odd) [rad], ``(2B,)``."""
+    B, t = machine.blades_per_pair, machine.blade_thickness
+    return np.tile([-t, _TWO_PI / B - t], B)
+
+
+def _expand(vec, ndim):
+    return np.asarray(vec).reshape((-1,) + (1,) * ndim)
+
+
+def chamber_angles(machine: RotaryBlade, q) -> np.ndarray:
+    """Angular widths ``gamma_j`` of the chambers [rad].
+
+    Parameters
+    ----------
+    q : array_like, shape (2, ...)
+        ``(phi_1, phi_2)`` [rad].
+
+    Returns
+    -------
+    ndarray, shape (2B, ...)
+        ``psi - t`` (even ``j``), ``2 pi/B - psi - t`` (odd ``j``), ``psi = phi_1 - phi_2``.
+    """
+    q = np.asarray(q, dtype=float)
+    psi = q[0] - q[1]
+    return _expand(chamber_signs(machine), psi.ndim) * psi + _expand(
+        chamber_offsets(machine), psi.ndim
+    )
+
+
+def chamber_volumes(machine: RotaryBlade, q) -> np.ndarray:
+    """Chamber volumes ``V_j = k gamma_j`` [m^3], shape ``(2B, ...)``; ``q`` shape ``(2, ...)``."""
+    return sector_constant(machine) * chamber_angles(machine, q)
+
+
+def chamber_volume_derivative(machine: RotaryBlade, dq) -> np.ndarray:
+    """Exact ``d^n V_j / d theta^n = s_j k (phi_1^(n) - phi_2^(n))`` for any order ``n >= 1``.
+
+    Parameters
+    ----------
+    dq : array_like, shape (2, ...)
+        The n-th derivatives of ``(phi_1, phi_2)`` with respect to the input angle
+        (``Motion.dq``, ``d2q`` or ``d3q``) [rad/rad^n].
+
+    Returns
+    -------
+    ndarray, shape (2B, ...)
+        [m^3/rad^n].
+    """
+    dq = np.asarray(dq, dtype=float)
+    dpsi = dq[0] - dq[1]
+    return sector_constant(machine) * _expand(chamber_signs(machine), dpsi.ndim) * dpsi
+
+
+def volume_gradient(machine: RotaryBlade, ndim: int = 0) -> np.ndarray:
+    """``dV_j/dq_i``: ``+s_j k`` for pair 1, ``-s_j k`` for pair 2 [m^3/rad].
+
+    Parameters
+    ----------
+    ndim : int
+        Trailing unit axes to append, to broadcast against pressures of shape
+        ``(2B, *shape)`` with ``len(shape) = ndim``.
+
+    Returns
+    -------
+    ndarray, shape (2, 2B) + (1,) * ndim
+    """
+    g = sector_constant(machine) * chamber_signs(machine)
+    return np.stack([g, -g]).reshape((2, -1) + (1,) * ndim)
+
+
+def volume_range(machine: RotaryBlade, psi_lo: float, psi_hi: float):
+    """Smallest and largest volume of each chamber over a swing of ``psi`` [m^3].
+
+    Even chambers are smallest at ``psi_lo``, odd ones at ``psi_hi``.
+
+    Returns
+    -------
+    (v_min, v_max) : ndarray, shape (2B,)
+    """
+    k, s, c = sector_constant(machine), chamber_signs(machine), chamber_offsets(machine)
+    v_lo = k * (s * psi_lo + c)
+    v_hi = k * (s * psi_hi + c)
+    return np.minimum(v_lo, v_hi), np.maximum(v_lo, v_hi)
+
+
+def displacement_per_rev(machine: RotaryBlade, psi_travel_per_rev) -> np.ndarray:
+    """Swept volume per output-shaft revolution [m^3].
+
+    The volume every chamber takes in while it expands, summed over the chambers:
+    ``sum_j integral max(dV_j, 0) = B k TV``, where ``TV`` is the total travel
+    ``integral |d psi|`` of ``psi`` per revolution. For a law monotone between
+    ``psi_min`` and ``psi_max`` with two cycles per revolution (the rhomboid drive),
+    ``TV = 4 (psi_max - psi_min)`` and this is ``2B x 2 x (V_max - V_min)``.
+
+    Parameters
+    ----------
+    psi_travel_per_rev : array_like
+        ``TV`` [rad].
+    """
+    return machine.blades_per_pair * sector_constant(machine) * np.asarray(psi_travel_per_rev)
+
+
+def chamber_strokes(machine: RotaryBlade, psi_stroke) -> np.ndarray:
+    """Stroke of each chamber: +1 expanding, -1 compressed, 0 at rest; shape ``(2B, ...)``.
+
+    ``psi_stroke`` is +1 while ``psi`` rises (see
+    :func:`rotorkin.drives.rhomboid_cam.stroke_direction`); even chambers expand
+    with ``psi``, odd ones against it.
+    """
+    s = np.asarray(psi_stroke, dtype=float)
+    return _expand(chamber_signs(machine), s.ndim) * s
+
+
+# --- pressures and torques ----------------------------------------------------------------
+def gas_charge(gas: IsothermalGas, volume_max) -> np.ndarray:
+    """``m_j R = p_charge V_max,j / T_c`` [J/K]: the gas of each chamber (isothermal model).
+
+    The gas constant drops out of every result; only the product ``m R`` matters.
+    """
+    return gas.charge_pressure * np.asarray(volume_max, dtype=float) / gas.cold_temperature
+
+
+def isothermal_pressure(gas: IsothermalGas, charge, volume, stroke) -> np.ndarray:
+    """Chamber pressures of the isothermal model, ``p_j = m_j R T / V_j`` [Pa].
+
+    ``T = T_h`` where the chamber expands (``stroke > 0``, ``dV_j > 0``), else
+    ``T_c`` (compression, and at rest).
+
+    Parameters
+    ----------
+    charge : array_like, shape (2B,)
+        ``m_j R`` from :func:`gas_charge` [J/K].
+    volume : array_like, shape (2B, ...)
+        [m^3].
+    stroke : array_like, shape (2B, ...)
+        :func:`chamber_strokes`.
+    """
+    volume = np.asarray(volume, dtype=float)
+    T = np.where(np.asarray(stroke) > 0.0, gas.hot_temperature, gas.cold_temperature)
+    return _expand(charge, volume.ndim - 1) * T / volume
+
+
+def isothermal_stroke_work(charge, temperature, volume_start, volume_end) -> np.ndarray:
+    """Work of the gas over an isothermal stroke, ``m R T ln(V_end / V_start)`` [J].
+
+    Positive in expansion: the gas does work on the blades.
+    """
+    return (
+        np.asarray(charge)
+        * np.asarray(temperature)
+        * np.log(np.asarray(volume_end) / np.asarray(volume_start))
+    )
+
+
+def gas_member_torques(machine: RotaryBlade, pressure) -> np.ndarray:
+    """Torques of the chamber pressures on the blade pairs, ``M_i = sum_j p_j dV_j/dq_i`` [N m].
+
+    ``M_1 = k (sum_even p_j - sum_odd p_j)`` and ``M_2 = -M_1``; positive in the
+    sense of increasing ``phi_i``.
+
+    Parameters
+    ----------
+    pressure : array_like, shape (2B, ...)
+        Absolute pressures [Pa] (a uniform pressure gives no torque).
+
+    Returns
+    -------
+    ndarray, shape (2, ...)
+    """
+    pressure = np.asarray(pressure, dtype=float)
+    return member_torques(pressure, volume_gradient(machine, pressure.ndim - 1))
+
+
+def linear_member_torques(blade_torque) -> np.ndarray:
+    """Member torques of the paper's linear model: ``(M_1, -M_1)`` [N m] (eq. 24).
+
+    ``blade_torque`` is ``M_1`` of eq. 29
+    (:func:`rotorkin.drives.rhomboid_cam.blade_torque`), shape ``(...)``.
+    """
+    m = np.asarray(blade_torque, dtype=float)
+    return np.stack([m, -m])
+
+
+def isothermal_cycle_work(gas: IsothermalGas, charge, volume_at_turns) -> np.ndarray:
+    """Work of each chamber over a chain of monotone strokes, isothermal model [J].
+
+    ``W_j = sum_strokes m_j R T ln(V_end / V_start)`` with ``T = T_h`` on the strokes
+    where the volume grows and ``T_c`` where it shrinks; the isochoric steps at the
+    turning points do no work. For one compression from ``V_max`` to ``V_min`` and
+    one expansion back this is ``m_j R (T_h - T_c) ln(V_max / V_min)``.
+
+    Parameters
+    ----------
+    charge : array_like, shape (2B,)
+        ``m_j R`` [J/K].
+    volume_at_turns : array_like, shape (2B, n)
+        Volumes at the turning points (and the ends) of the motion, in order [m^3].
+
+    Returns
+    -------
+    ndarray, shape (2B,)
+    """
+    v = np.asarray(volume_at_turns, dtype=float)
+    va, vb = v[:, :-1], v[:, 1:]
+    T = np.where(vb > va, gas.hot_temperature, gas.cold_temperature)
+    return np.sum(isothermal_stroke_work(np.asarray(charge)[:, None], T, va, vb), axis=1)
