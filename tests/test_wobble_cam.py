@@ -727,3 +727,31 @@ def test_roller_axis_and_tilt_ranges_follow_n():
     s = np.linspace(1.0, 2.0, 5)
     np.testing.assert_array_equal(wc.chamber_angles(s, 0.1), wc.chamber_angles(s, 0.1, 4))
     assert float(wc.max_plate_tilt(1.2)) == float(wc.max_plate_tilt(1.2, 4))
+
+
+def test_spin_correction_derivatives_match_finite_differences():
+    """Corrected spin law varphi = n theta + sum a_k cos k theta + b_k sin k theta: exact
+    derivatives against central differences (h = 1e-4: error ~ h^2 |f'''''| ~ 1e-7)."""
+    p = wc.WobbleCam(np.radians(45.0), spin_a=(0.0, 0.0, 0.0, 0.1), spin_b=(0.02, 0.0, 0.05))
+    t = np.random.default_rng(7).uniform(0.0, 2.0 * np.pi, 50)
+    h = 1e-4
+    f = [wc.spin_law(p, t + k * h)[0] for k in (-2, -1, 0, 1, 2)]
+    v, d1, d2, d3 = wc.spin_law(p, t)
+    manual = -2.0 * t + 0.1 * np.cos(4 * t) + 0.02 * np.sin(t) + 0.05 * np.sin(3 * t)
+    np.testing.assert_allclose(v, manual, rtol=0, atol=1e-14)
+    np.testing.assert_allclose(d1, (f[3] - f[1]) / (2 * h), rtol=0, atol=5e-8)
+    np.testing.assert_allclose(d2, (f[3] - 2 * f[2] + f[1]) / h**2, rtol=0, atol=1e-5)
+    g = [wc.spin_law(p, t + k * 2e-3)[0] for k in (-2, -1, 1, 2)]  # larger step: roundoff/h^3
+    d3_fd = (g[3] - 2 * g[2] + 2 * g[1] - g[0]) / (2 * 2e-3**3)
+    np.testing.assert_allclose(d3, d3_fd, rtol=0, atol=2e-4)
+    # the rotor angles under the corrected law are those of the linear-law formula at varphi
+    q = wc.rotor_angles(p, t)[0]
+    q_ref = wc.rotor_angles_from_spin(
+        t, (v, v * 0 + 1, v * 0, v * 0), p.plate_tilt, p.roller_axis_angle
+    )[0]
+    np.testing.assert_allclose(q, q_ref, rtol=0, atol=1e-12)
+
+
+def test_spin_correction_that_reverses_the_spin_is_refused():
+    with pytest.raises(ParameterError, match="spin_a"):
+        wc.WobbleCam(np.radians(45.0), spin_a=(0.0, 0.0, 0.0, 1.0))  # 4 * 1.0 > |n| = 2

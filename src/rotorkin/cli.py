@@ -7,6 +7,7 @@ traceback).
 
 from __future__ import annotations
 
+import importlib
 import os
 import sys
 from pathlib import Path
@@ -58,6 +59,9 @@ def run(
         typer.Option("--out", "-o", help="Output folder; default ./rotorkin-out/<name>."),
     ] = None,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing on success.")] = False,
+    report: Annotated[
+        bool, typer.Option("--report", help="Also write report.html (interactive, offline).")
+    ] = False,
 ):
     """Evaluate a drive over one period; write summary.json, motion.csv and figures."""
     from rotorkin.io.config import load_config
@@ -69,6 +73,10 @@ def run(
     outdir = out if out is not None else Path("rotorkin-out") / name
     meta = {"name": name, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
     written = write_outputs(result, outdir, raw, meta)
+    if report:
+        from rotorkin.report.html import write_report
+
+        written = [*written, write_report(result, cfg, raw, meta, outdir / "report.html")]
     if not quiet:
         _print_summary(result, name, outdir, written)
 
@@ -122,6 +130,12 @@ def _print_summary(result, name, outdir, written):
         highlight=False,
         soft_wrap=True,
     )
+
+
+# Commands that live in their own modules (cad export, synthesis, html report, sweeps):
+# each module has register(app), which adds its commands.
+for _module in ("cli_export", "cli_synthesize", "cli_report", "cli_sweep"):
+    importlib.import_module(f"rotorkin.{_module}").register(app)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -191,6 +191,10 @@ class WobbleCam:
     pistons_per_rotor : int, optional
         Pistons N on each rotor, even, >= 2 (paper: 4, default). It only sets the
         interference limits of eq. 20 (and the chamber bookkeeping).
+    spin_a, spin_b : tuple of float, optional
+        Periodic correction of the spin law (not in the paper; for synthesis):
+        ``varphi = n theta + sum_k a_k cos(k theta) + b_k sin(k theta)``,
+        ``k = 1, 2, ...`` [rad]. Empty (default): the paper's linear law.
     """
 
     plate_tilt: float
@@ -198,6 +202,8 @@ class WobbleCam:
     spin_ratio: float = -2.0
     sphere_radius: float = 0.05
     pistons_per_rotor: int = 4
+    spin_a: tuple = ()
+    spin_b: tuple = ()
 
     def __post_init__(self):
         n_p = self.pistons_per_rotor
@@ -230,13 +236,32 @@ class WobbleCam:
         r = float(self.sphere_radius)
         if not (np.isfinite(r) and r > 0.0):
             raise ParameterError("sphere_radius", fmt_mm(r), "sphere_radius > 0 mm")
+        for name in ("spin_a", "spin_b"):
+            coeffs = np.asarray(getattr(self, name), dtype=float).ravel()
+            if not np.all(np.isfinite(coeffs)):
+                raise ParameterError(name, str(list(coeffs)), "finite coefficients [rad]")
+            object.__setattr__(self, name, tuple(float(c) for c in coeffs))
+        if self.spin_a or self.spin_b:
+            rate = spin_law(self, np.linspace(0.0, 2.0 * np.pi, 4097))[1] * np.sign(self.spin_ratio)
+            if np.min(rate) <= 0.0:
+                raise ParameterError(
+                    "spin_a",
+                    f"{list(self.spin_a)} (spin_b = {list(self.spin_b)})",
+                    "a correction that keeps the spin monotone: sign(spin_ratio) dvarphi/dtheta "
+                    f"> 0 everywhere (lowest here {np.min(rate):.4g})",
+                )
 
 
 # --------------------------------------------------------------------------------------------
 # laws of the plate and the cam
 # --------------------------------------------------------------------------------------------
 def spin_law(params: WobbleCam, theta):
-    """Plate spin ``varphi(theta) = n theta`` and its derivatives (paper: n = -2).
+    """Plate spin ``varphi(theta)`` and its derivatives (paper: ``varphi = -2 theta``).
+
+    ``varphi = n theta + c(theta)``, with the periodic correction
+    ``c = sum_k a_k cos(k theta) + b_k sin(k theta)`` (``spin_a``, ``spin_b``,
+    k = 1, 2, ...; empty for the paper's law). The correction is 2 pi periodic,
+    so the motion still repeats every shaft turn.
 
     Parameters
     ----------
@@ -252,8 +277,19 @@ def spin_law(params: WobbleCam, theta):
     """
     theta = np.asarray(theta, dtype=float)
     n = float(params.spin_ratio)
-    zero = np.zeros_like(theta)
-    return n * theta, zero + n, zero, zero.copy()
+    out = [n * theta, np.zeros_like(theta) + n, np.zeros_like(theta), np.zeros_like(theta)]
+    for coeffs, phase in ((params.spin_a, 0.0), (params.spin_b, -0.5 * np.pi)):
+        # a cos(k t + phase): a sin term is a cos term shifted by -pi/2
+        for k, amp in enumerate(coeffs, start=1):
+            if amp == 0.0:
+                continue
+            arg = k * theta + phase
+            c, s = np.cos(arg), np.sin(arg)
+            out[0] = out[0] + amp * c
+            out[1] = out[1] - amp * k * s
+            out[2] = out[2] - amp * k * k * c
+            out[3] = out[3] + amp * k**3 * s
+    return tuple(out)
 
 
 def cam_angle(theta):

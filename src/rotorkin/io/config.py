@@ -1,7 +1,8 @@
 """Config files: TOML in, a validated nested dict of SI values out.
 
 A config has the sections ``[drive]`` (with ``type``), ``[machine]``,
-``[loads]`` and ``[run]``, plus an optional top-level ``title``. Dimensional
+``[loads]``, ``[cam]`` (cam geometry for checks and CAD; not for the guide
+bar), ``[export]`` and ``[run]``, plus an optional top-level ``title``. Dimensional
 values are strings with units (``"45 deg"``, ``"80 mm"``, ``"12 N*m"``),
 converted to SI once, here; dimensionless keys take bare numbers. Unknown keys,
 wrong types and missing units are refused with one line that names the key.
@@ -102,6 +103,32 @@ class EmptySection(_Section):
     pass
 
 
+class ExportSection(_Section):
+    tolerance: Length = Field(
+        "0.01 mm",
+        description="chordal tolerance of exported curves and meshes (DXF, STL, STEP)",
+    )
+
+
+class WobbleCamSection(_Section):
+    roller_radius: Length = Field("6 mm", description="radius of the rollers in the grooves")
+    shell_thickness: Length = Field(
+        "12 mm", description="radial thickness of the spherical cam shell, centred on r"
+    )
+    groove_depth: Length = Field(
+        "8 mm", description="radial depth of the grooves, from the shell's inner surface"
+    )
+
+
+class PlanarCamSection(_Section):
+    roller_radius: Length = Field("10 mm", description="radius of the rollers on the cam")
+    thickness: Length = Field("20 mm", description="axial thickness of the cam plate")
+
+
+class DiscCamSection(_Section):
+    thickness: Length = Field("20 mm", description="axial thickness of each eccentric disc")
+
+
 # --- wobble plate + spherical cam -----------------------------------------------------------
 class WobbleDrive(_Section):
     type: Literal["wobble_cam"]
@@ -112,6 +139,15 @@ class WobbleDrive(_Section):
     spin_ratio: float = Field(-2.0, description="plate spin law varphi = spin_ratio * theta")
     sphere_radius: Length = Field(
         "60 mm", description="radius r of the roller centres on the spherical cam"
+    )
+    spin_a: list[float] = Field(
+        default_factory=list,
+        description="cosine coefficients of harmonics 1, 2, ... of a periodic correction "
+        "added to the spin law [rad]",
+    )
+    spin_b: list[float] = Field(
+        default_factory=list,
+        description="sine coefficients of harmonics 1, 2, ... of the spin-law correction [rad]",
     )
 
 
@@ -157,6 +193,8 @@ class WobbleConfig(_Section):
     drive: WobbleDrive
     machine: WobbleMachine = Field(default_factory=WobbleMachine)
     loads: EngineLoads = Field(default_factory=EngineLoads)
+    cam: WobbleCamSection = Field(default_factory=WobbleCamSection)
+    export: ExportSection = Field(default_factory=ExportSection)
     run: RunSection = Field(default_factory=RunSection)
 
 
@@ -188,6 +226,8 @@ class EccentricConfig(_Section):
     drive: EccentricDrive
     machine: EccentricMachine = Field(default_factory=EccentricMachine)
     loads: EmptySection = Field(default_factory=EmptySection)
+    cam: DiscCamSection = Field(default_factory=DiscCamSection)
+    export: ExportSection = Field(default_factory=ExportSection)
     run: RunSection = Field(default_factory=RunSection)
 
 
@@ -229,6 +269,7 @@ class GuideBarConfig(_Section):
     drive: GuideBarDrive
     machine: VanePumpMachine = Field(default_factory=VanePumpMachine)
     loads: GuideBarLoads = Field(default_factory=GuideBarLoads)
+    export: ExportSection = Field(default_factory=ExportSection)
     run: RunSection = Field(default_factory=RunSection)
 
 
@@ -273,6 +314,8 @@ class RhomboidConfig(_Section):
     drive: RhomboidDrive
     machine: RotaryBladeMachine = Field(default_factory=RotaryBladeMachine)
     loads: RhomboidLoads = Field(default_factory=RhomboidLoads)
+    cam: PlanarCamSection = Field(default_factory=PlanarCamSection)
+    export: ExportSection = Field(default_factory=ExportSection)
     run: RunSection = Field(default_factory=RunSection)
 
 

@@ -407,7 +407,9 @@ def stroke_counter(drive: wc.WobbleCam, machine: TwinRotor, theta):
     """Stroke counter ``c_j = 2|n| theta/pi + 1 - b_j + 2 m_j`` of chamber ``j = 2 m_j + b_j``.
 
     ``floor(c_j) mod 4`` is the chamber's stroke (see the module docstring);
-    integers of ``c_j`` fall on the volume extremes of the chamber.
+    integers of ``c_j`` fall on the volume extremes of the chamber. The chambers
+    follow the plate spin ``varphi`` (the slider angle is a function of it), so
+    with a corrected spin law ``|n| theta`` reads ``sign(n) varphi(theta)``.
 
     Returns
     -------
@@ -416,7 +418,8 @@ def stroke_counter(drive: wc.WobbleCam, machine: TwinRotor, theta):
     theta = np.asarray(theta, dtype=float)
     j = np.arange(machine.chambers).reshape((-1,) + (1,) * theta.ndim)
     b, m = j % 2, j // 2
-    return 2.0 * abs(float(drive.spin_ratio)) * theta / np.pi + 1.0 - b + 2.0 * m
+    turned = np.sign(float(drive.spin_ratio)) * wc.spin_law(drive, theta)[0]
+    return 2.0 * turned / np.pi + 1.0 - b + 2.0 * m
 
 
 def strokes(drive: wc.WobbleCam, machine: TwinRotor, theta):

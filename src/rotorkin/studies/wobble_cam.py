@@ -88,10 +88,12 @@ def _summary(params, layout) -> dict:
     )
     # peaks of the rotor kinematic coefficients on a fine grid (closed-form values, sampled)
     fine = np.linspace(0.0, wc.period(params), _PEAK_SAMPLES)
-    _, _, d2, d3 = wc.rotor_angles(params, fine)
+    _, d1, d2, d3 = wc.rotor_angles(params, fine)
     c, n = np.cos(params.plate_tilt), params.spin_ratio
-    # dPhi/dtheta = 1 + n c / D with c^2 <= D <= 1: extremes 1 + n c and 1 + n / c
-    ratios = sorted((1.0 + n * c, 1.0 + n / c))
+    if params.spin_a or params.spin_b:  # a corrected spin law: sampled extremes
+        ratios = (float(np.min(d1)), float(np.max(d1)))
+    else:  # dPhi/dtheta = 1 + n c / D with c^2 <= D <= 1: extremes 1 + n c and 1 + n / c
+        ratios = sorted((1.0 + n * c, 1.0 + n / c))
     return {
         "slider_angle_max_deg": _deg(amax),
         "slider_angle_min_deg": _deg(amin),
@@ -371,6 +373,8 @@ def evaluate(cfg: dict) -> StudyResult:
             "spin_ratio": d["spin_ratio"],
             "sphere_radius": d["sphere_radius"],
             "pistons_per_rotor": machine.pistons_per_rotor,
+            "spin_a": tuple(d.get("spin_a", ())),
+            "spin_b": tuple(d.get("spin_b", ())),
         },
         aliases={"pistons_per_rotor": "machine.pistons_per_rotor"},
     )
