@@ -1,0 +1,123 @@
+"""Timing helpers shared by the benchmarks (small and stable: other benchmarks import them).
+
+* :func:`best_of` -- best wall time of a few calls;
+* :func:`interleaved` -- best times of several functions measured round-robin,
+  so that a change of load on a shared machine hits all of them alike and
+  their *ratios* stay meaningful;
+* :func:`peak_rss` -- peak resident memory of this process;
+* :func:`machine` -- cores, CPU, numpy/python versions and the load average;
+* :func:`write_json` -- write a result file atomically.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import platform
+import resource
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["best_of", "interleaved", "peak_rss", "load", "machine", "write_json"]
+
+
+def best_of(fn, repeat: int = 5) -> float:
+    """Smallest wall time of ``repeat`` calls of ``fn()`` [s] (the least disturbed one)."""
+    best = float("inf")
+    for _ in range(max(1, int(repeat))):
+        t0 = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def interleaved(fns: dict, repeat: int = 5, budget: float | None = None, stats=None) -> dict:
+    """Best wall time [s] of each function, measured in rounds (each function once per round).
+
+    Parameters
+    ----------
+    fns : dict of str -> callable
+        The functions to time (no arguments).
+    repeat : int
+        Rounds (at least 1).
+    budget : float, optional
+        Stop after the round in which the total time passes ``budget`` seconds
+        (at least one round is always run).
+    stats : dict, optional
+        Filled with ``rounds`` (rounds run) and ``seconds`` (their total time).
+
+    Returns
+    -------
+    dict of str -> float
+        Best time of each function [s].
+    """
+    best = dict.fromkeys(fns, float("inf"))
+    start = time.perf_counter()
+    names = list(fns)
+    for r in range(max(1, int(repeat))):
+        # rotate the order so that no function always runs right after the same one
+        for name in names[r % len(names) :] + names[: r % len(names)]:
+            t0 = time.perf_counter()
+            fns[name]()
+            best[name] = min(best[name], time.perf_counter() - t0)
+        if budget is not None and time.perf_counter() - start > budget:
+            break
+    if stats is not None:
+        stats.update(rounds=r + 1, seconds=time.perf_counter() - start)
+    return best
+
+
+def peak_rss() -> int:
+    """Peak resident set size of this process so far [bytes] (Linux: ru_maxrss in KiB)."""
+    kib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return int(kib) * (1 if sys.platform == "darwin" else 1024)
+
+
+def load() -> list:
+    """Load average over 1, 5 and 15 minutes (``os.getloadavg``), rounded."""
+    return [round(x, 2) for x in os.getloadavg()]
+
+
+def _cpu_model() -> str:
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def machine() -> dict:
+    """The machine a result was measured on: cores, CPU, memory, versions and load."""
+    try:
+        usable = len(os.sched_getaffinity(0))
+    except AttributeError:
+        usable = os.cpu_count()
+    try:
+        mem = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):
+        mem = None
+    return {
+        "cores": os.cpu_count(),
+        "usable_cores": usable,
+        "cpu": _cpu_model(),
+        "memory_bytes": mem,
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "platform": platform.platform(),
+        "load_average": load(),
+    }
+
+
+def write_json(path, data) -> Path:
+    """Write ``data`` as indented JSON to ``path`` atomically (temporary file + rename)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(json.dumps(data, indent=2) + "\n")
+    os.replace(tmp, path)
+    return path
