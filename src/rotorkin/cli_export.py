@@ -1,7 +1,131 @@
-"""The rotorkin export (CAD files) command(s): registered on the main app by :func:`register`."""
+"""The ``rotorkin export`` command (CAD files of a config's cams or impellers).
+
+Registered on the main app by :func:`register`. Writes DXF, STL, STEP or CSV
+through :func:`rotorkin.io.export.export`, then prints the files written and the
+profile checks in a short table.
+"""
 
 from __future__ import annotations
 
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from rotorkin.errors import RotorkinError
+
+
+def _size(n: int) -> str:
+    return f"{n / 1024:.1f} KiB" if n < 1024 * 1024 else f"{n / 1024 / 1024:.2f} MiB"
+
+
+def _fmt(value, digits=4) -> str:
+    if isinstance(value, float):
+        return f"{value:.{digits}g}"
+    return str(value)
+
+
+def _check_rows(cfg: dict) -> list[tuple[str, str]]:
+    """(metric, value) rows of the profile checks, units in the metric names."""
+    import numpy as np
+
+    from rotorkin.io.export import profile_checks
+
+    kind = cfg["drive"]["type"]
+    if kind == "wobble_cam":
+        from rotorkin.cams import spherical as sph
+
+        s = sph.summary(*sph.from_config(cfg))
+        keys = ("cam_roller_radius_mm", "cam_curvature_radius_min_mm", "cam_roller_radius_limit_mm",
+                "cam_pressure_angle_max_deg", "cam_crossing_angle_min_deg",
+                "cam_groove_separation_mm")  # fmt: skip
+        return [(k, _fmt(float(s[k]))) for k in keys if k in s]
+    rows = []
+    for label, c in profile_checks(cfg):
+        deg = np.degrees
+        rows += [
+            (f"{label}: roller radius mm", _fmt(c.roller_radius * 1e3)),
+            (
+                f"{label}: min convex radius of curvature (pitch) mm",
+                f"{_fmt(c.min_convex_radius * 1e3)} at {_fmt(deg(c.min_convex_radius_alpha))} deg",
+            ),
+            (f"{label}: min concave radius of curvature (pitch) mm",
+             _fmt(c.min_concave_radius * 1e3)),
+            (
+                f"{label}: max pressure angle deg",
+                f"{_fmt(deg(c.max_pressure_angle))} at {_fmt(deg(c.max_pressure_angle_alpha))} deg",
+            ),
+            (f"{label}: min roller-to-cam clearance mm", _fmt(c.min_clearance * 1e3)),
+            (f"{label}: actual profile nearest the axis mm", _fmt(c.profile_min_radius * 1e3)),
+            (f"{label}: undercut", "yes" if c.undercut else "no"),
+        ]  # fmt: skip
+    return rows
+
 
 def register(app) -> None:
-    """Add this module's commands to the typer ``app`` (none yet)."""
+    """Add ``export`` to the typer ``app``."""
+
+    @app.command("export")
+    def export_cmd(
+        config: Annotated[
+            Path | None, typer.Argument(help="TOML config; default: the wobble-cam-engine example.")
+        ] = None,
+        example: Annotated[
+            str | None, typer.Option("--example", "-e", help="Use a built-in example by name.")
+        ] = None,
+        set_: Annotated[
+            list[str] | None,
+            typer.Option("--set", "-s", help="Override a key: section.key=VALUE (repeatable)."),
+        ] = None,
+        fmt: Annotated[
+            str,
+            typer.Option(
+                "--format", "-f", help="dxf, stl, step (needs rotorkin[cad]), csv or all."
+            ),  # fmt: skip
+        ] = "dxf",
+        out: Annotated[
+            Path | None,
+            typer.Option("--out", "-o", help="Output folder; default ./rotorkin-out/<name>/cad."),
+        ] = None,
+        quiet: Annotated[
+            bool, typer.Option("--quiet", "-q", help="Print nothing on success.")
+        ] = False,
+    ):
+        """Write CAD files of the cam(s): DXF profiles, STL/STEP solids, CSV point lists (mm)."""
+        from rotorkin.io.config import load_config
+        from rotorkin.io.export import FORMATS, export
+
+        fmt_ = fmt.strip().lower()
+        if fmt_ not in (*FORMATS, "all"):
+            raise RotorkinError(
+                f"--format = {fmt!r} is not admissible: choose one of {', '.join(FORMATS)}, all"
+            )
+        cfg, _, name = load_config(config, example, set_ or [])
+        outdir = out if out is not None else Path("rotorkin-out") / name / "cad"
+        rows = _check_rows(cfg)
+        written = export(cfg, fmt_, outdir, name)
+        if not quiet:
+            _print(name, cfg["drive"]["type"], fmt_, outdir, written, rows)
+
+
+def _print(name, kind, fmt, outdir, written, rows) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    console = Console()
+    what = "file(s) in every format" if fmt == "all" else f"{fmt} file(s)"
+    console.print(f"{name} ({kind}): wrote {len(written)} {what} to {outdir}/",
+                  highlight=False, soft_wrap=True)  # fmt: skip
+    files = Table()
+    files.add_column("file")
+    files.add_column("size", justify="right")
+    for p in written:
+        files.add_row(p.name, _size(p.stat().st_size))
+    console.print(files)
+    if rows:
+        checks = Table(title="profile checks")
+        checks.add_column("check")
+        checks.add_column("value", justify="right")
+        for k, v in rows:
+            checks.add_row(k, v)
+        console.print(checks)

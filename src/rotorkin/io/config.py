@@ -111,7 +111,7 @@ class ExportSection(_Section):
 
 
 class WobbleCamSection(_Section):
-    roller_radius: Length = Field("6 mm", description="radius of the rollers in the grooves")
+    roller_radius: Length = Field("4 mm", description="radius of the rollers in the grooves")
     shell_thickness: Length = Field(
         "12 mm", description="radial thickness of the spherical cam shell, centred on r"
     )

@@ -11,6 +11,7 @@ Keys missing from a hand-built cfg take the dataclasses' defaults (= the config'
 
 from __future__ import annotations
 
+import sys
 from dataclasses import fields
 from pathlib import Path
 
@@ -394,11 +395,17 @@ def evaluate(cfg: dict) -> StudyResult:
     summary = {k: v.item() if isinstance(v, np.generic) else v for k, v in summary.items()}
 
     def plot(outdir: Path) -> list[Path]:
-        from rotorkin.report import figures_wobble_cam
+        from rotorkin.report import figures_spherical_cam, figures_wobble_cam
 
-        return figures_wobble_cam.plot_all(
+        paths = figures_wobble_cam.plot_all(
             params, layout, Path(outdir), machine=machine, cycle=cycle, speed=speed
         )
+        if "cam" in cfg:  # the cam's own figure, when its roller fits the grooves
+            try:
+                paths += figures_spherical_cam.plot_spherical_cam(cfg, Path(outdir))
+            except ParameterError as exc:
+                print(f"rotorkin: warning: spherical cam figure not drawn: {exc}", file=sys.stderr)
+        return paths
 
     return StudyResult(
         drive_type="wobble_cam",

@@ -1,0 +1,149 @@
+"""The ``rotorkin export`` command: every example in every format, checks printed, bad input."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from rotorkin.cli import main
+from rotorkin.drives import rhomboid_cam as rc
+
+PLANAR = ["rhomboid-engine", "eccentric-reactor", "guide-bar-pump"]
+EXPECTED = {  # files of each planar example (stems after "<name>_")
+    "rhomboid-engine": ["rhomboid_cam"],
+    "eccentric-reactor": ["disc_left", "disc_right"],
+    "guide-bar-pump": ["impeller_1", "impeller_2"],
+}
+
+
+def _run(capsys, *args):
+    code = main(["export", *args])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize("example", PLANAR)
+@pytest.mark.parametrize("fmt", ["dxf", "stl", "csv"])
+def test_every_planar_example_every_format(tmp_path, capsys, example, fmt):
+    out_dir = tmp_path / "cad"
+    code, out, err = _run(capsys, "-e", example, "--format", fmt, "--out", str(out_dir))
+    assert code == 0, err
+    names = sorted(p.name for p in out_dir.iterdir())
+    if fmt == "csv":
+        for stem in EXPECTED[example]:
+            assert any(n.startswith(f"{example}_{stem}_") and n.endswith(".csv") for n in names)
+    else:
+        assert names == sorted(f"{example}_{s}.{fmt}" for s in EXPECTED[example])
+    for n in names:
+        assert n in out  # every file is listed
+        assert (out_dir / n).stat().st_size > 0
+    assert [p.name for p in tmp_path.iterdir()] == ["cad"]  # no staging folder left
+
+
+@pytest.mark.cad
+@pytest.mark.parametrize("example", PLANAR)
+def test_every_planar_example_step(tmp_path, capsys, example):
+    pytest.importorskip("build123d", reason="STEP export needs the [cad] extra (build123d)")
+    code, out, err = _run(capsys, "-e", example, "-f", "step", "-o", str(tmp_path))
+    assert code == 0, err
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == sorted(f"{example}_{s}.step" for s in EXPECTED[example])
+    assert all(n in out for n in names)
+
+
+def test_default_out_folder(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    code, out, _ = _run(capsys, "-e", "eccentric-reactor", "-q")
+    assert code == 0 and out == ""
+    made = sorted(
+        p.name for p in (tmp_path / "rotorkin-out" / "eccentric-reactor" / "cad").iterdir()
+    )
+    assert made == ["eccentric-reactor_disc_left.dxf", "eccentric-reactor_disc_right.dxf"]
+
+
+def test_checks_printed(tmp_path, capsys):
+    code, out, _ = _run(capsys, "-e", "rhomboid-engine", "-f", "csv", "-o", str(tmp_path))
+    assert code == 0
+    # independent: tan mu = -tan(psi/2) psi'/2 on a dense grid (first-harmonic law, eq. 16)
+    a = np.linspace(0, np.pi, 200_001)
+    a1 = np.pi / 2 - np.radians(40)
+    psi, dpsi = np.pi / 2 + a1 * np.cos(2 * a), -2 * a1 * np.sin(2 * a)
+    mu = np.degrees(np.max(np.abs(np.arctan(np.tan(psi / 2) * dpsi / 2))))
+    assert f"{mu:.4g}" in out and "max pressure angle" in out
+    r_min = 1e3 / np.max(rc.profile_curvature(a, 0.12, np.radians(40)))
+    assert f"{r_min:.4g}" in out and "min convex radius" in out
+    code, out, _ = _run(capsys, "-e", "eccentric-reactor", "-f", "csv", "-o", str(tmp_path))
+    line = next(ln for ln in out.splitlines() if "max pressure angle" in ln)
+    assert "30 at 90 deg" in line  # arcsin(e/R) = arcsin(0.5)
+
+
+@pytest.mark.parametrize(
+    "args,needle",
+    [
+        (["-e", "rhomboid-engine", "-f", "iges"], "--format"),
+        (["-e", "rhomboid-engine", "-s", "cam.roller_radius=60 mm"], "cam.roller_radius"),
+        (["-e", "rhomboid-engine", "-s", "cam.thickness=-1 mm"], "cam.thickness"),
+        (["-e", "eccentric-reactor", "-s", "drive.eccentricity=90 mm"], "drive.eccentricity"),
+        (["-e", "no-such-example"], "no-such-example"),
+    ],
+)
+def test_bad_input_one_line_exit_2_nothing_written(tmp_path, capsys, args, needle):
+    code, out, err = _run(capsys, *args, "-o", str(tmp_path / "cad"))
+    assert code == 2
+    assert err.count("\n") == 1 and needle in err and "Traceback" not in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_undercut_message_names_the_angle(tmp_path, capsys):
+    code, _, err = _run(capsys, "-e", "rhomboid-engine", "-s", "cam.roller_radius=60 mm",
+                        "-o", str(tmp_path))  # fmt: skip
+    assert code == 2
+    # the smallest convex radius of curvature of the pitch curve, found independently
+    a = np.linspace(0, np.pi / 2, 400_001)
+    k = rc.profile_curvature(a, 0.12, np.radians(40))
+    assert f"at alpha = {np.degrees(a[np.argmax(k)]):.4g} deg" in err
+    assert f"roller_radius < {1e3 / k.max():.4g} mm" in err
+
+
+def test_subprocess(tmp_path):
+    res = subprocess.run(
+        [sys.executable, "-m", "rotorkin.cli", "export", "-e", "guide-bar-pump", "-f", "dxf",
+         "-o", str(tmp_path)],
+        capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert res.returncode == 0, res.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "guide-bar-pump_impeller_1.dxf",
+        "guide-bar-pump_impeller_2.dxf",
+    ]
+    bad = subprocess.run(
+        [sys.executable, "-m", "rotorkin.cli", "export", "-e", "guide-bar-pump", "-f", "obj",
+         "-o", str(tmp_path / "x")],
+        capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert bad.returncode == 2 and bad.stderr.count("\n") == 1
+    assert not (tmp_path / "x").exists()
+
+
+WOBBLE = ["-e", "wobble-cam-engine", "-s", "cam.roller_radius=4 mm"]
+
+
+@pytest.mark.parametrize("fmt", ["dxf", "csv"])
+def test_wobble_example(tmp_path, capsys, fmt):
+    pytest.importorskip("rotorkin.io.cad_wobble")
+    code, out, err = _run(capsys, *WOBBLE, "-f", fmt, "-o", str(tmp_path))
+    assert code == 0, err
+    names = [p.name for p in tmp_path.iterdir()]
+    assert names and all(n.endswith(f".{fmt}") and n in out for n in names)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("fmt", ["stl", "step"])
+def test_wobble_example_solids(tmp_path, capsys, fmt):
+    pytest.importorskip("rotorkin.io.cad_wobble")
+    if fmt == "step":
+        pytest.importorskip("build123d", reason="STEP export needs the [cad] extra (build123d)")
+    code, out, err = _run(capsys, *WOBBLE, "-f", fmt, "-o", str(tmp_path))
+    assert code == 0, err
+    assert [p.suffix for p in tmp_path.iterdir()] == [f".{fmt}"]
