@@ -1,7 +1,212 @@
-"""The rotorkin synthesize command(s): registered on the main app by :func:`register`."""
+"""The ``rotorkin synthesize`` command: registered on the main app by :func:`register`.
+
+``rotorkin synthesize [CONFIG] [--example NAME] [--set K=V ...] --objective NAME
+[--target VALUE] [--harmonics N] [--max-pressure-angle ANGLE] [--out DIR]``
+prints the baseline design beside the synthesized one and writes, into DIR
+(atomically: a staging folder next to it, moved in at the end):
+``synthesis.json`` (parameters, metrics, the table), ``synthesized.toml`` (a
+complete config ``rotorkin run`` accepts), CSV tables and PNG figures.
+"""
 
 from __future__ import annotations
 
+import json
+import math
+import os
+import shutil
+import tempfile
+from pathlib import Path
+from typing import Annotated
+
+import numpy as np
+import typer
+
+from rotorkin.errors import ConfigError, RotorkinError
+
+__all__ = ["register", "write_synthesis"]
+
+
+def _objective_help() -> str:
+    from rotorkin.synthesis import OBJECTIVES
+
+    return "; ".join(f"{kind}: {', '.join(names)}" for kind, (_, names) in OBJECTIVES.items())
+
 
 def register(app) -> None:
-    """Add this module's commands to the typer ``app`` (none yet)."""
+    """Add ``synthesize`` to the typer ``app``."""
+
+    @app.command()
+    def synthesize(
+        config: Annotated[
+            Path | None, typer.Argument(help="TOML config; default: the wobble-cam-engine example.")
+        ] = None,
+        example: Annotated[
+            str | None, typer.Option("--example", "-e", help="Start from a built-in example.")
+        ] = None,
+        set_: Annotated[
+            list[str] | None,
+            typer.Option("--set", "-s", help="Override a key: section.key=VALUE (repeatable)."),
+        ] = None,
+        objective: Annotated[
+            str | None,
+            typer.Option(
+                "--objective",
+                help="What to synthesize, by drive type: rhomboid_cam: min_accel, dwell_min, "
+                "dwell_max, min_pressure_angle; wobble_cam: sine_chamber, dwell_min_volume; "
+                "guide_bar: vane_angle; eccentric_cam: gap_change.",
+            ),
+        ] = None,
+        target: Annotated[
+            str | None,
+            typer.Option(
+                "--target",
+                help='Target value: vane angle ("60 deg"), tolerated gap change ("1 %", "0.01" '
+                'of L, or "5 mm"), dwell fraction ("0.25" or "25 %").',
+            ),
+        ] = None,
+        harmonics: Annotated[
+            int | None,
+            typer.Option(
+                "--harmonics",
+                help="Rhomboid cam: higher odd harmonics to optimise (default 2: 3rd and 5th). "
+                "Wobble cam: highest harmonic of the spin correction (default: as needed).",
+            ),
+        ] = None,
+        max_pressure_angle: Annotated[
+            str | None,
+            typer.Option(
+                "--max-pressure-angle",
+                help='Rhomboid cam: bound on the peak pressure angle (e.g. "55 deg"; default: '
+                "45 deg or the first-harmonic law's peak, whichever is larger).",
+            ),
+        ] = None,
+        out: Annotated[
+            Path | None,
+            typer.Option(
+                "--out", "-o", help="Output folder; default ./rotorkin-out/<name>-<objective>."
+            ),
+        ] = None,
+        quiet: Annotated[
+            bool, typer.Option("--quiet", "-q", help="Print nothing on success.")
+        ] = False,
+    ):
+        """Synthesize a design for an objective; compare it with the config's (the paper's)."""
+        from rotorkin import __version__
+        from rotorkin.io.config import load_config
+        from rotorkin.synthesis import OBJECTIVES, parse_quantity_arg, synthesized_raw_config
+        from rotorkin.synthesis import synthesize as run_synthesis
+
+        cfg, raw, name = load_config(config, example, set_ or [])
+        kind = cfg["drive"]["type"]
+        if objective is None:
+            raise RotorkinError(
+                f"--objective is missing: choose one of {', '.join(OBJECTIVES[kind][1])} "
+                f"for drive.type = {kind}"
+            )
+        limit = (
+            None
+            if max_pressure_angle is None
+            else parse_quantity_arg(max_pressure_angle, "angle", "--max-pressure-angle")
+        )
+        result = run_synthesis(cfg, raw, objective, target, harmonics, limit)
+        new_raw = synthesized_raw_config(raw, result.updates, objective)
+        outdir = out if out is not None else Path("rotorkin-out") / f"{name}-{objective}"
+        meta = {
+            "name": name,
+            "drive_type": kind,
+            "objective": objective,
+            "target": target,
+            "rotorkin_version": __version__,
+        }
+        written = write_synthesis(result, new_raw, outdir, meta)
+        if not quiet:
+            _print(result, outdir, written)
+
+
+def _jsonable(value):
+    if isinstance(value, dict):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return _jsonable(value.tolist())
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _write_csv(path: Path, columns: dict) -> None:
+    names = list(columns)
+    data = np.column_stack([np.asarray(columns[n], dtype=float) for n in names])
+    np.savetxt(path, data, delimiter=",", header=",".join(names), comments="", fmt="%.12g")
+
+
+def write_synthesis(result, new_raw: dict, outdir: Path, meta: dict) -> list[Path]:
+    """Write synthesis.json, synthesized.toml, the CSV tables and the figures into ``outdir``.
+
+    Everything goes into a staging folder next to ``outdir`` first and is moved
+    in (``os.replace``) only when all of it has been written.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    from rotorkin.io.output import to_toml
+
+    outdir = Path(outdir)
+    if outdir.exists() and not outdir.is_dir():
+        raise ConfigError(f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder")
+    parent = outdir.parent if outdir.parent != Path("") else Path(".")
+    try:
+        parent.mkdir(parents=True, exist_ok=True)
+        stage = Path(tempfile.mkdtemp(prefix=f".{outdir.name}.tmp-", dir=parent))
+    except OSError as exc:
+        raise ConfigError(f"--out = {str(outdir)!r} cannot be written: {exc.strerror}") from None
+    try:
+        doc = {
+            **meta,
+            "title": result.title,
+            "parameters": result.parameters,
+            "metrics": result.metrics,
+            "table": [{"metric": m, "baseline": b, "synthesized": s} for m, b, s in result.rows],
+            "notes": list(result.notes),
+            "updates": result.updates,
+        }
+        (stage / "synthesis.json").write_text(json.dumps(_jsonable(doc), indent=2) + "\n")
+        (stage / "synthesized.toml").write_text(to_toml(new_raw))
+        for fname, columns in result.tables.items():
+            _write_csv(stage / fname, columns)
+        result.plot(stage)
+        outdir.mkdir(parents=True, exist_ok=True)
+        written = []
+        for item in sorted(stage.iterdir()):
+            os.replace(item, outdir / item.name)
+            written.append(outdir / item.name)
+        return written
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def _print(result, outdir, written):
+    from rich.console import Console
+    from rich.markup import escape
+    from rich.table import Table
+
+    from rotorkin.synthesis import fmt
+
+    console = Console()
+    console.print(escape(result.title), highlight=False, soft_wrap=True)
+    table = Table()
+    table.add_column("metric")
+    table.add_column("baseline", justify="right")
+    table.add_column("synthesized", justify="right")
+    for metric, base, synth in result.rows:
+        table.add_row(escape(metric), escape(fmt(base)), escape(fmt(synth)))
+    console.print(table)
+    for line in result.notes:
+        console.print(escape(line), highlight=False, soft_wrap=True)
+    names = ", ".join(p.name for p in written)
+    console.print(f"wrote {outdir}/: {names}", highlight=False, soft_wrap=True)

@@ -1,0 +1,270 @@
+"""Synthesis: the drive parameters or cam laws that produce a wanted motion.
+
+One module per drive family, each a set of plain functions on arrays plus a
+``synthesize(cfg, raw, objective, target, harmonics)`` entry point that returns a
+:class:`SynthesisResult`:
+
+* :mod:`~rotorkin.synthesis.rhomboid` - harmonics ``a3, b3, a5, b5, ...`` of the
+  rhomboid cam's law ``psi(alpha)`` optimising an objective (``min_accel``,
+  ``dwell_min``, ``dwell_max``, ``min_pressure_angle``) under eq. 15 and the
+  profile checks;
+* :mod:`~rotorkin.synthesis.wobble` - a periodic spin-law correction giving a
+  target chamber-angle law (``sine_chamber``, ``dwell_min_volume``);
+* :mod:`~rotorkin.synthesis.guide_bar` - lambda for a target vane angle at any
+  phase (``vane_angle``);
+* :mod:`~rotorkin.synthesis.eccentric` - lambda or the follower for a tolerated
+  gap change (``gap_change``).
+
+The result carries the baseline (the config as given: the paper's design in
+the examples) beside the synthesized design, the raw config keys to change,
+and the functions writing its figures and CSV files; ``rotorkin synthesize``
+writes them (:mod:`rotorkin.cli_synthesize`).
+"""
+
+from __future__ import annotations
+
+import copy
+import importlib
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from rotorkin.errors import ParameterError
+
+__all__ = [
+    "OBJECTIVES",
+    "DWELL_TOLERANCE",
+    "SynthesisResult",
+    "synthesize",
+    "synthesized_raw_config",
+    "dwell_fraction",
+    "parse_fraction",
+    "parse_quantity_arg",
+    "fmt",
+]
+
+#: drive.type -> (module under rotorkin.synthesis, admissible objectives)
+OBJECTIVES = {
+    "rhomboid_cam": ("rhomboid", ("min_accel", "dwell_min", "dwell_max", "min_pressure_angle")),
+    "wobble_cam": ("wobble", ("sine_chamber", "dwell_min_volume")),
+    "guide_bar": ("guide_bar", ("vane_angle",)),
+    "eccentric_cam": ("eccentric", ("gap_change",)),
+}
+
+#: Dwell tolerance as a fraction of the swing of the chamber angle (psi or delta):
+#: a law "dwells" where it is within this fraction of the swing from its extreme
+#: (2 deg for the rhomboid example's 100 deg swing, 0.78 deg for the wobble cam's 38.9 deg).
+DWELL_TOLERANCE = 0.02
+
+
+@dataclass(frozen=True)
+class SynthesisResult:
+    """What a synthesis produced, beside the design it started from.
+
+    Attributes
+    ----------
+    drive_type : str
+        ``drive.type``.
+    objective : str
+        Objective or target name (``"min_accel"``, ``"vane_angle"``, ...).
+    title : str
+        One line for people.
+    rows : tuple of (str, object, object)
+        The printed table: metric (unit in the name), baseline value,
+        synthesized value (floats, bools or short strings).
+    parameters : dict
+        The synthesized parameters, flat, unit as key suffix (JSON).
+    metrics : dict
+        Flat metrics of both designs (``baseline_*``, ``synthesized_*``) and the
+        round-trip errors (JSON).
+    updates : dict
+        ``{section: {key: raw value}}`` to apply to the raw config (values as a
+        config file writes them: strings with units, bare numbers, lists).
+    notes : tuple of str
+        Lines printed under the table (alternatives, reasons).
+    plot : callable
+        ``plot(outdir) -> list[Path]``: the comparison figures (PNG).
+    tables : dict
+        File name -> ``{column: 1-d array}`` written as CSV (unit suffix in names).
+    """
+
+    drive_type: str
+    objective: str
+    title: str
+    rows: tuple
+    parameters: dict
+    metrics: dict
+    updates: dict
+    notes: tuple = ()
+    plot: Callable[[Path], list[Path]] = field(default=lambda outdir: [], repr=False)
+    tables: dict = field(default_factory=dict, repr=False)
+
+
+def _module(drive_type: str):
+    name, _ = OBJECTIVES[drive_type]
+    return importlib.import_module(f"rotorkin.synthesis.{name}")
+
+
+def synthesize(
+    cfg: dict,
+    raw: dict,
+    objective: str,
+    target: str | None = None,
+    harmonics: int | None = None,
+    max_pressure_angle: float | None = None,
+) -> SynthesisResult:
+    """Synthesize a design for ``cfg``'s drive type.
+
+    Parameters
+    ----------
+    cfg : dict
+        Validated SI config (:func:`rotorkin.io.config.load_config`): the baseline.
+    raw : dict
+        The same config as written; the synthesized config is a copy with
+        :attr:`SynthesisResult.updates` applied.
+    objective : str
+        One of ``OBJECTIVES[cfg["drive"]["type"]][1]``.
+    target : str, optional
+        Target value as people write it (``"60 deg"``, ``"1 %"``, ``"0.3"``,
+        ``"5 mm"``), where the objective takes one.
+    harmonics : int, optional
+        Rhomboid cam: number of higher odd harmonics (default 2: 3rd and 5th);
+        wobble cam: highest harmonic of the spin correction (default: as many
+        as the law needs).
+    max_pressure_angle : float, optional
+        Rhomboid cam only: bound on the peak pressure angle [rad] (default
+        ``max(45 deg, the first-harmonic law's peak)``).
+
+    Raises
+    ------
+    ParameterError
+        Named ``--objective``, ``--target``, ``--harmonics`` or ``--max-pressure-angle``
+        when not admissible.
+    """
+    kind = cfg["drive"]["type"]
+    _, names = OBJECTIVES[kind]
+    if objective not in names:
+        raise ParameterError(
+            "--objective",
+            repr(objective),
+            f"one of {', '.join(names)} for drive.type = {kind}",
+        )
+    if harmonics is not None and (isinstance(harmonics, bool) or int(harmonics) < 1):
+        raise ParameterError("--harmonics", repr(harmonics), "an integer >= 1")
+    if max_pressure_angle is not None:
+        if kind != "rhomboid_cam":
+            raise ParameterError(
+                "--max-pressure-angle", "given", f"only for drive.type = rhomboid_cam, not {kind}"
+            )
+        return _module(kind).synthesize(
+            cfg, raw, objective, target, harmonics, {"max_pressure_angle": max_pressure_angle}
+        )
+    return _module(kind).synthesize(cfg, raw, objective, target, harmonics)
+
+
+def synthesized_raw_config(raw: dict, updates: dict, objective: str = "") -> dict:
+    """A deep copy of ``raw`` with ``updates`` applied (a config ``rotorkin run`` accepts).
+
+    Parameters
+    ----------
+    raw : dict
+        The config as written.
+    updates : dict
+        ``{section: {key: raw value}}`` (:attr:`SynthesisResult.updates`); a value
+        None removes the key.
+    objective : str, optional
+        Appended to the title.
+    """
+    out = copy.deepcopy(raw)
+    for section, values in updates.items():
+        node = out.setdefault(section, {})
+        for key, value in values.items():
+            if value is None:
+                node.pop(key, None)
+            else:
+                node[key] = value
+    title = out.get("title")
+    if isinstance(title, str) and title:
+        out["title"] = f"{title} - synthesized ({objective})"
+    return out
+
+
+def dwell_fraction(values, extreme, tolerance, axis=-1):
+    """Fraction of one period during which a sampled law stays within ``tolerance`` of ``extreme``.
+
+    The samples are one period, evenly spaced, the end point *excluded*
+    (periodic). Each interval between neighbouring samples (the last one
+    wrapping around) counts with the share of it where ``|values - extreme| <
+    tolerance``, the crossing found by linear interpolation, so the measure is
+    continuous in the law (an optimiser can use it).
+
+    Parameters
+    ----------
+    values : array_like, shape (..., n)
+        The law over one period [any unit].
+    extreme : array_like
+        The extreme it dwells at (broadcast with ``values[..., 0]``).
+    tolerance : array_like
+        Half-width of the dwell band, > 0 (same unit).
+    axis : int, optional
+        Axis of the samples.
+
+    Returns
+    -------
+    ndarray
+        Fraction in [0, 1], shape of ``values`` without ``axis``.
+    """
+    v = np.moveaxis(np.asarray(values, dtype=float), axis, -1)
+    g = np.asarray(tolerance, dtype=float)[..., None] - np.abs(
+        v - np.asarray(extreme, dtype=float)[..., None]
+    )
+    g0, g1 = g, np.roll(g, -1, axis=-1)
+    both = (g0 > 0.0) & (g1 > 0.0)
+    one = (g0 > 0.0) != (g1 > 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        share = np.where(one, np.maximum(g0, g1) / np.abs(g0 - g1), 0.0)
+    return np.mean(np.where(both, 1.0, share), axis=-1)
+
+
+def parse_fraction(text, name: str = "--target") -> float:
+    """A fraction written ``"25 %"``, ``"25%"`` or ``"0.25"`` -> 0.25.
+
+    Raises
+    ------
+    ParameterError
+        When the text is not a finite number (with an optional ``%``).
+    """
+    s = str(text).strip()
+    scale = 1.0
+    if s.endswith("%"):
+        s, scale = s[:-1].strip(), 0.01
+    try:
+        value = float(s) * scale
+    except ValueError:
+        raise ParameterError(
+            name, repr(text), 'a number or a percentage, e.g. "0.25" or "25 %"'
+        ) from None
+    if not np.isfinite(value):
+        raise ParameterError(name, repr(text), "a finite number")
+    return value
+
+
+def parse_quantity_arg(text, kind: str, name: str = "--target") -> float:
+    """A value with a unit (``"60 deg"``, ``"5 mm"``) -> SI float; ParameterError if not."""
+    from rotorkin.io.units import parse_quantity
+
+    value, reason = parse_quantity(str(text), kind)
+    if reason:
+        raise ParameterError(name, repr(text), reason.split(": ", 1)[-1])
+    return value
+
+
+def fmt(value) -> str:
+    """A table cell: floats to 6 significant digits, the rest as text."""
+    if isinstance(value, (bool, np.bool_)):
+        return "yes" if value else "no"
+    if isinstance(value, (float, np.floating)):
+        return f"{float(value):.6g}"
+    return str(value)
