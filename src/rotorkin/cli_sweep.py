@@ -1,7 +1,357 @@
-"""The rotorkin sweep and tolerance commands: registered on the main app by register()."""
+"""The ``rotorkin sweep`` and ``rotorkin tolerance`` commands: registered on the app by register().
+
+Bad specifications (unknown key, empty range, missing unit, a swept value
+inadmissible on its own) stop before anything is written: one line, exit 2.
+Outputs are written atomically (a staging folder next to the target, or a
+temporary file renamed into place); a sweep's chunks are committed to
+``OUT/.chunks`` as they finish, so a killed sweep restarted with the same
+command computes only the missing ones.
+"""
 
 from __future__ import annotations
 
+import contextlib
+import importlib
+import json
+import math
+import os
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from rotorkin.errors import ConfigError
+
+__all__ = ["register"]
+
+#: Metrics drawn first in the tolerance histograms (then the study's headline keys).
+_TOL_FIRST = {
+    "wobble_cam": ("compression_ratio", "compression_ratio_a", "compression_ratio_b",
+                   "chamber_swing_deg", "slider_angle_max_deg", "slider_angle_min_deg"),
+}  # fmt: skip
+
+
+def _headline(kind: str) -> tuple:
+    from rotorkin.studies import DRIVE_TYPES
+
+    return importlib.import_module(f"rotorkin.studies.{DRIVE_TYPES[kind]}").HEADLINE
+
+
+def _note(message: str, quiet: bool) -> None:
+    if not quiet:
+        print(f"rotorkin: note: {message}", file=sys.stderr)
+
+
+@contextlib.contextmanager
+def _staging(out: Path):
+    """A staging folder next to ``out``; its files are moved into ``out`` at the end."""
+    if out.exists() and not out.is_dir():
+        raise ConfigError(f"--out = {str(out)!r} is not admissible: it is a file, not a folder")
+    parent = out.parent if out.parent != Path("") else Path(".")
+    try:
+        parent.mkdir(parents=True, exist_ok=True)
+        stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.tmp-", dir=parent))
+    except OSError as exc:
+        raise ConfigError(f"--out = {str(out)!r} cannot be written: {exc.strerror}") from None
+    try:
+        yield stage
+        out.mkdir(parents=True, exist_ok=True)
+        for item in sorted(stage.iterdir()):
+            os.replace(item, out / item.name)
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def _client(workers, scheduler):
+    if workers is not None and scheduler is not None:
+        raise ConfigError("give either --workers N or --scheduler ADDR, not both")
+    if workers is not None:
+        from rotorkin.sweep.dask import local_client
+
+        if workers < 1:
+            raise ConfigError(f"--workers = {workers} is not admissible: --workers >= 1")
+        return local_client(workers)
+    if scheduler is not None:
+        from rotorkin.sweep.dask import connect
+
+        return connect(scheduler)
+    return contextlib.nullcontext(None)
+
+
+def _jsonable(value):
+    if isinstance(value, dict):
+        return {k: _jsonable(v) for k, v in value.items()}
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _readme(ds, title: str, files: list[str]) -> str:
+    lines = [title, "", "variables (netCDF, read with xarray.open_dataset(path)):"]
+    width = max(len(str(k)) for k in ds.variables)
+    for name, var in ds.variables.items():
+        dims = ", ".join(var.dims)
+        lines.append(f"  {str(name).ljust(width)}  [{var.attrs.get('units', '')}]  ({dims})")
+    lines += ["", "reason codes: " + ds["reason"].attrs.get("flag_meanings", "")]
+    lines += ["", "files:"] + [f"  {f}" for f in files]
+    return "\n".join(lines) + "\n"
+
 
 def register(app) -> None:
-    """Add this module's commands to the typer ``app`` (none yet)."""
+    """Add ``sweep`` and ``tolerance`` to the typer ``app``."""
+
+    @app.command()
+    def sweep(
+        config: Annotated[Path | None, typer.Argument(
+            help="TOML config; default: the wobble-cam-engine example.")] = None,
+        example: Annotated[str | None, typer.Option(
+            "--example", "-e", help="Sweep a built-in example.")] = None,
+        set_: Annotated[list[str] | None, typer.Option(
+            "--set", "-s", help="Override a key of the base design: section.key=VALUE.")] = None,
+        vary: Annotated[list[str] | None, typer.Option(
+            "--vary", help="KEY=START:STOP:N or KEY=v1,v2,... with units (repeatable; one "
+            "dimension each, the last varies fastest).")] = None,
+        curves: Annotated[bool, typer.Option(
+            "--curves", help="Also keep the curves over run.points angles per design.")] = False,
+        metrics: Annotated[str | None, typer.Option(
+            "--metrics", help="'all' or a comma-separated list of summary keys; default: the "
+            "vectorized ones.")] = None,
+        angles: Annotated[int | None, typer.Option(
+            "--angles", help="Shaft angles per period of the sampled peaks (default 20001, as "
+            "rotorkin run).")] = None,
+        workers: Annotated[int | None, typer.Option(
+            "--workers", help="Run on a dask LocalCluster of N workers.")] = None,
+        scheduler: Annotated[str | None, typer.Option(
+            "--scheduler", help="Run on the dask cluster at tcp://HOST:PORT.")] = None,
+        chunk: Annotated[int | None, typer.Option(
+            "--chunk", help="Designs per chunk (default: from a 64 MiB budget).")] = None,
+        out: Annotated[Path | None, typer.Option(
+            "--out", "-o", help="Output folder; default ./rotorkin-out/<name>-sweep.")] = None,
+        paper_figures: Annotated[bool, typer.Option(
+            "--paper-figures", help="Also run the sweeps of the paper's figures and draw them."
+        )] = False,
+        quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing on success.")]
+        = False,
+    ):  # fmt: skip
+        """Sweep config keys over ranges or lists; write sweep.nc (netCDF) and figures."""
+        from rotorkin.io.config import apply_sets, load_config
+        from rotorkin.report import figures_sweep as fs
+        from rotorkin.sweep import build_spec, execute
+        from rotorkin.sweep.engine import coverage
+        from rotorkin.sweep.store import write_dataset
+
+        t0 = time.perf_counter()
+        cfg, raw, name = load_config(config, example, set_ or [])
+        if not vary and not paper_figures:
+            raise ConfigError("give at least one --vary KEY=START:STOP:N (or --paper-figures)")
+        outdir = out if out is not None else Path("rotorkin-out") / f"{name}-sweep"
+        if outdir.exists() and not outdir.is_dir():
+            raise ConfigError(f"--out = {str(outdir)!r} is not admissible: it is a file")
+        specs = []  # (recipe or None, spec), all validated before anything runs
+        if vary:
+            specs.append(
+                (
+                    None,
+                    build_spec(
+                        raw,
+                        vary,
+                        keep_curves=curves,
+                        chunk_size=chunk,
+                        metrics=metrics,
+                        samples=angles,
+                        name=name,
+                    ),
+                )
+            )
+        if paper_figures:
+            recipes = fs.paper_recipes(cfg)
+            if not recipes:
+                raise ConfigError(
+                    f"--paper-figures: the {cfg['drive']['type']} paper has no "
+                    "sweep figures (only the wobble-cam, eccentric-cam and "
+                    "guide-bar papers do)"
+                )
+            for r in recipes:
+                base = apply_sets(raw, list(r.sets))
+                specs.append(
+                    (
+                        r,
+                        build_spec(
+                            base,
+                            list(r.vary),
+                            keep_curves=r.curves,
+                            metrics=list(r.metrics) or None,
+                            samples=angles,
+                            name=f"{name} {r.key}",
+                        ),
+                    )
+                )
+        for _, spec in specs:
+            why = coverage(
+                spec.drive_type, spec.base_cfg, [v.key for v in spec.varies], spec.metrics
+            )[2]
+            if why:
+                _note(f"{why}: evaluated design by design by the scalar study (slow)", quiet)
+        written, main_ds = [], None
+        with _client(workers, scheduler) as client, _staging(outdir) as stage:
+            for recipe, spec in specs:
+                if recipe is None:
+                    main_ds = execute(
+                        spec,
+                        store=outdir,
+                        client=client,
+                        progress=not quiet,
+                        on_status=lambda m: _note(m, quiet),
+                    )
+                    written.append("sweep.nc")
+                    path = fs.fig_overview(
+                        main_ds, _headline(spec.drive_type), stage / "sweep_overview.png"
+                    )
+                    if path is not None:
+                        written.append(path.name)
+                    (stage / "README.txt").write_text(
+                        _readme(main_ds, f"rotorkin sweep of {name}: {spec.size} designs", written)
+                    )
+                    written.append("README.txt")
+                else:
+                    ds = execute(spec, client=client, progress=not quiet)
+                    write_dataset(ds, stage / f"paper_{recipe.key}.nc")
+                    written.append(f"paper_{recipe.key}.nc")
+                    written += [p.name for p in fs.plot_recipe(recipe, ds, stage)]
+        if not quiet:
+            _print_sweep(name, specs, main_ds, outdir, written, time.perf_counter() - t0)
+
+    @app.command()
+    def tolerance(
+        config: Annotated[Path | None, typer.Argument(
+            help="TOML config; default: the wobble-cam-engine example.")] = None,
+        example: Annotated[str | None, typer.Option(
+            "--example", "-e", help="Use a built-in example.")] = None,
+        set_: Annotated[list[str] | None, typer.Option(
+            "--set", "-s", help="Override a key of the nominal design: section.key=VALUE.")]
+        = None,
+        tol: Annotated[list[str] | None, typer.Option(
+            "--tol", help="KEY=WIDTH (uniform, +- WIDTH) or KEY=WIDTH:normal (sigma), with "
+            "units, e.g. drive.plate_tilt=0.1deg (repeatable).")] = None,
+        samples: Annotated[int, typer.Option("--samples", help="Monte-Carlo samples.")] = 10_000,
+        seed: Annotated[int, typer.Option("--seed", help="Seed of numpy's default_rng.")] = 0,
+        metrics: Annotated[str | None, typer.Option(
+            "--metrics", help="'all' or a comma-separated list; the first 9 are drawn.")] = None,
+        angles: Annotated[int | None, typer.Option(
+            "--angles", help="Shaft angles per period of the sampled peaks (default 20001).")]
+        = None,
+        out: Annotated[Path | None, typer.Option(
+            "--out", "-o", help="Output folder; default ./rotorkin-out/<name>-tolerance.")]
+        = None,
+        quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing on success.")]
+        = False,
+    ):  # fmt: skip
+        """Monte-Carlo tolerance analysis; write tolerance.json, tolerance.nc, histograms."""
+        import warnings
+
+        import numpy as np
+
+        from rotorkin.io.config import load_config
+        from rotorkin.report import figures_sweep as fs
+        from rotorkin.sweep.engine import SweepFallbackWarning
+        from rotorkin.sweep.store import write_dataset
+        from rotorkin.tolerance import run_tolerance, summarize
+
+        cfg, raw, name = load_config(config, example, set_ or [])
+        outdir = out if out is not None else Path("rotorkin-out") / f"{name}-tolerance"
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", SweepFallbackWarning)
+            ds = run_tolerance(raw, tol or [], samples=samples, seed=seed, metrics=metrics,
+                               angles=angles)  # fmt: skip
+        for w in caught:
+            _note(str(w.message), quiet)
+        stats = summarize(ds)
+        kind = cfg["drive"]["type"]
+        if metrics:
+            drawn = [m for m in stats][:9]
+        else:
+            order = [*_TOL_FIRST.get(kind, ()), *_headline(kind), *stats]
+            drawn = [
+                m
+                for m in dict.fromkeys(order)
+                if m in stats
+                and stats[m]["std"]
+                and stats[m]["std"] > 1e-12 * max(abs(stats[m]["mean"]), 1e-300)
+            ][:9]
+            drawn = drawn or list(stats)[:1]
+        doc = {
+            "name": name,
+            "drive_type": kind,
+            "samples": int(samples),
+            "seed": int(seed),
+            "angles_per_period": int(ds.attrs["angles_per_period"]),
+            "tolerances": ds.attrs["tolerances"],
+            "held_at_nominal": ds.attrs["held_at_nominal"],
+            "sampling": ds.attrs["sampling"],
+            "inadmissible_samples": int(np.count_nonzero(ds["reason"].values)),
+            "metrics": stats,
+        }
+        with _staging(outdir) as stage:
+            (stage / "tolerance.json").write_text(json.dumps(_jsonable(doc), indent=2) + "\n")
+            write_dataset(ds, stage / "tolerance.nc")
+            fs.fig_tolerance(ds, stats, drawn, stage / "tolerance_histograms.png")
+            (stage / "README.txt").write_text(
+                _readme(
+                    ds,
+                    f"rotorkin tolerance analysis of {name}: {samples} samples, seed {seed}",
+                    ["tolerance.json", "tolerance.nc", "tolerance_histograms.png"],
+                )
+            )
+        if not quiet:
+            _print_tolerance(name, ds, stats, drawn, outdir)
+
+
+def _print_sweep(name, specs, ds, outdir, written, seconds) -> None:
+    import numpy as np
+    from rich.console import Console
+    from rich.table import Table
+
+    console = Console()
+    for recipe, spec in specs:
+        what = "sweep" if recipe is None else f"paper {recipe.key}"
+        dims = " x ".join(f"{v.key}[{len(v)}]" for v in spec.varies)
+        console.print(f"{name}: {what}: {spec.size} designs ({dims})", highlight=False,
+                      soft_wrap=True)  # fmt: skip
+    if ds is not None:
+        ok = ds["reason"].values == 0
+        console.print(f"inadmissible designs: {int(np.count_nonzero(~ok))} (NaN, see 'reason')",
+                      highlight=False)  # fmt: skip
+        table = Table()
+        for col in ("metric", "min", "max"):
+            table.add_column(col, justify="left" if col == "metric" else "right")
+        for key in _headline(ds.attrs["drive_type"]):
+            if key in ds and np.any(np.isfinite(ds[key].values)):
+                v = ds[key].values
+                table.add_row(key, f"{np.nanmin(v):.6g}", f"{np.nanmax(v):.6g}")
+        console.print(table)
+    console.print(f"wrote {outdir}/: {', '.join(written)} in {seconds:.2f} s", highlight=False,
+                  soft_wrap=True)  # fmt: skip
+
+
+def _print_tolerance(name, ds, stats, drawn, outdir) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    console = Console()
+    console.print(f"{name}: {ds.attrs['samples']} samples, seed {ds.attrs['seed']}: "
+                  f"{ds.attrs['tolerances']}", highlight=False, soft_wrap=True)  # fmt: skip
+    table = Table()
+    cols = ("nominal", "mean", "std", "p5", "p95")
+    table.add_column("metric (all percentiles in tolerance.json)", no_wrap=True)
+    for col in cols:
+        table.add_column(col, justify="right", no_wrap=True)
+    for m in drawn:
+        s = stats[m]
+        table.add_row(m, *(("-" if s[k] is None else f"{s[k]:.5g}") for k in cols))
+    console.print(table)
+    console.print(f"wrote {outdir}/: tolerance.json, tolerance.nc, tolerance_histograms.png, "
+                  "README.txt", highlight=False, soft_wrap=True)  # fmt: skip

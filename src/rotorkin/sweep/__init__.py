@@ -1,0 +1,339 @@
+"""Design-space sweeps: config keys over ranges or lists -> an xarray Dataset of summary metrics.
+
+>>> from rotorkin.io.config import load_config
+>>> _, raw, _ = load_config(None, "wobble-cam-engine")
+>>> ds = run_sweep(raw, {"drive.plate_tilt": "20deg:55deg:36",
+...                      "drive.roller_axis_angle": "80deg,90deg,100deg"}, progress=False)
+>>> ds["chamber_swing_deg"].sel({"drive.roller_axis_angle": 90.0}).max().item() > 60
+True
+
+Every design of the grid (the outer product of the swept values) is evaluated
+by the drive's kernel (``kernels_<drive>.py``): broadcasting over a design axis
+and, for the sampled peaks, a design x shaft-angle array in blocks, with no
+Python loop over designs. Chunks of designs keep the memory bounded, can be
+committed to disk as they finish (``store=``; resumable after a kill) and can
+run on dask.distributed (``client=``). See ``docs/sweeps.md``.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from collections.abc import Mapping
+
+import numpy as np
+
+from rotorkin.errors import ConfigError
+from rotorkin.sweep._common import DEFAULT_SAMPLES, Designs, reason_keys
+from rotorkin.sweep.engine import (
+    SweepFallbackWarning,
+    SweepSpec,
+    check_spec_values,
+    chunk_bounds,
+    compute_chunk,
+    coverage,
+    evaluate_designs,
+    kernel_of,
+    to_dataset,
+    warn_fallback,
+)
+from rotorkin.sweep.spec import Vary, parse_vary
+
+__all__ = [
+    "run_sweep",
+    "build_spec",
+    "execute",
+    "parse_vary",
+    "resolve_metrics",
+    "evaluate_designs",
+    "Designs",
+    "Vary",
+    "SweepSpec",
+    "SweepFallbackWarning",
+    "DEFAULT_SAMPLES",
+    "reason_keys",
+    "reason_text",
+]
+
+#: Default memory budget of one chunk's results [bytes].
+MEMORY_BUDGET = 64 * 2**20
+#: Largest chunk (designs), so that progress and resumption stay fine-grained.
+MAX_CHUNK = 65_536
+
+
+def reason_text(ds, code: int) -> str:
+    """The meaning of a ``reason`` code of a sweep Dataset (``"ok"`` or a config key)."""
+    return ds["reason"].attrs["flag_meanings"].split()[int(code)]
+
+
+def resolve_metrics(cfg: dict, metrics=None) -> tuple[str, ...]:
+    """The summary keys a sweep computes.
+
+    ``None``: those the drive's kernel computes (the fast path); ``"all"``: every
+    numeric summary key of :func:`rotorkin.studies.evaluate` (the others
+    through the scalar study); or a list of names (or one comma-separated string).
+    """
+    kern = kernel_of(cfg["drive"]["type"])
+    if metrics is None:
+        return tuple(kern.metric_names(cfg))
+    known = _all_metrics(cfg)
+    if isinstance(metrics, str) and metrics == "all":
+        return known
+    names = [m.strip() for m in (metrics.split(",") if isinstance(metrics, str) else metrics)]
+    unknown = [m for m in names if m not in known]
+    if unknown or not names:
+        raise ConfigError(f"--metrics {','.join(names)!r} is not admissible: unknown metric "
+                          f"{unknown[0] if unknown else '(none)'}; known: all, "
+                          + ", ".join(known))  # fmt: skip
+    return tuple(dict.fromkeys(names))
+
+
+def _all_metrics(cfg: dict) -> tuple[str, ...]:
+    """Numeric summary keys of the study (from the kernel list and one scalar run)."""
+    from rotorkin.errors import ParameterError
+    from rotorkin.studies import evaluate
+
+    kern = kernel_of(cfg["drive"]["type"])
+    names = list(kern.metric_names(cfg))
+    try:
+        summary = evaluate(cfg).summary
+    except ParameterError:
+        return tuple(names)
+    for k, v in summary.items():
+        if isinstance(v, (bool, int, float, np.number)) and k not in names:
+            names.append(k)
+    return tuple(names)
+
+
+def _varies(base_raw: dict, vary) -> tuple[Vary, ...]:
+    if isinstance(vary, Mapping):
+        items = []
+        for key, spec in vary.items():
+            if not isinstance(spec, str):
+                spec = ",".join(str(s) for s in spec)
+            items.append(f"{key}={spec}")
+    else:
+        items = list(vary or [])
+    out = tuple(parse_vary(item, base_raw) for item in items)
+    keys = [v.key for v in out]
+    dup = next((k for k in keys if keys.count(k) > 1), None)
+    if dup:
+        raise ConfigError(f"--vary {dup} is not admissible: the key is given twice")
+    return out
+
+
+def _chunk_size(n_metrics: int, curves: int, points: int, size: int, budget: int) -> int:
+    per_design = 8 * (n_metrics + 2) * 3 + 8 * points * curves * 3
+    return int(max(1, min(MAX_CHUNK, budget // per_design, max(size, 1))))
+
+
+def build_spec(base_cfg_raw: dict, vary, *, keep_curves=False, chunk_size=None, metrics=None,
+               samples=None, memory_budget=MEMORY_BUDGET, name="sweep", extra=None,
+               check=True) -> SweepSpec:  # fmt: skip
+    """Validate a sweep and return its :class:`SweepSpec` (arguments of :func:`run_sweep`)."""
+    from rotorkin.io.config import validate_config
+
+    cfg = validate_config(base_cfg_raw)
+    varies = _varies(base_cfg_raw, vary)
+    names = resolve_metrics(cfg, metrics)
+    samples = DEFAULT_SAMPLES if samples is None else int(samples)
+    if samples < 3:
+        raise ConfigError(f"--samples = {samples} is not admissible: --samples >= 3")
+    points = int(cfg["run"]["points"])
+    size = int(np.prod([len(v) for v in varies], dtype=np.int64))
+    n_curves = len(kernel_of(cfg["drive"]["type"]).CURVES) if keep_curves else 0
+    if chunk_size is None:
+        chunk_size = _chunk_size(len(names), n_curves, points, size, memory_budget)
+    elif int(chunk_size) < 1:
+        raise ConfigError(f"--chunk = {chunk_size} is not admissible: --chunk >= 1")
+    spec = SweepSpec(name, base_cfg_raw, cfg, varies, names, samples, bool(keep_curves), points,
+                     int(chunk_size), dict(extra or {}))  # fmt: skip
+    if check:
+        check_spec_values(spec)
+    return spec
+
+
+def run_sweep(base_cfg_raw: dict, vary, *, keep_curves: bool = False, chunk_size=None,
+              store=None, client=None, progress: bool = True, metrics=None, samples=None,
+              threads=None, memory_budget: int = MEMORY_BUDGET, name: str = "sweep",
+              keep_chunks: bool = False, on_status=None):  # fmt: skip
+    """Evaluate a grid of designs; return an :class:`xarray.Dataset`.
+
+    Parameters
+    ----------
+    base_cfg_raw : dict
+        The base config as written (TOML mapping, units in strings), e.g. the
+        ``raw`` of :func:`rotorkin.io.config.load_config`.
+    vary : dict or list
+        Config key -> values: ``"START:STOP:N"``, ``"v1,v2,..."`` or a list of
+        values as in a config (``["30 deg", "45 deg"]``); or a list of
+        ``"KEY=SPEC"`` strings. One dimension per key, in order.
+    keep_curves : bool
+        Also keep the kernel's curves over ``run.points`` angles (dimension ``point``).
+    chunk_size : int, optional
+        Designs per chunk; default from ``memory_budget``.
+    store : path, optional
+        Sweep folder: chunks are committed to ``store/.chunks`` as they finish,
+        the result is written to ``store/sweep.nc``; a killed sweep restarted
+        with the same arguments computes only the missing chunks.
+    client : distributed.Client, optional
+        Run the chunks on this dask cluster instead of locally.
+    progress : bool
+        A rich progress bar on stderr when it is a terminal.
+    metrics : None, "all" or list of str
+        See :func:`resolve_metrics`.
+    samples : int, optional
+        Shaft angles per period for the sampled peaks (default 20001, as the
+        studies, so that a sweep equals the designs run one by one).
+    threads : int, optional
+        Kernel threads of the local run (default: all cores).
+    memory_budget : int
+        Bytes of results per chunk, for the default chunk size.
+    name : str
+        Run name (in the Dataset's attributes).
+    keep_chunks : bool
+        Keep ``store/.chunks`` after writing ``sweep.nc``.
+    on_status : callable, optional
+        ``on_status(message)`` for one-line notes (resumption).
+
+    Returns
+    -------
+    xarray.Dataset
+        One dimension per swept key (coordinates in deg, mm, ... with a
+        ``units`` attribute), every metric (summary key names) and ``reason``
+        (0 admissible, else the index of the violated key in its
+        ``flag_meanings``; metrics NaN); with curves, a ``point`` dimension.
+    """
+    spec = build_spec(base_cfg_raw, vary, keep_curves=keep_curves, chunk_size=chunk_size,
+                      metrics=metrics, samples=samples, memory_budget=memory_budget,
+                      name=name)  # fmt: skip
+    _, _, why = coverage(spec.drive_type, spec.base_cfg, [v.key for v in spec.varies],
+                         spec.metrics)  # fmt: skip
+    warn_fallback(why, spec.size)
+    return execute(spec, store=store, client=client, progress=progress, threads=threads,
+                   keep_chunks=keep_chunks, on_status=on_status)  # fmt: skip
+
+
+def execute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=None,
+            keep_chunks=False, on_status=None):  # fmt: skip
+    """Run a validated spec (locally or on ``client``), optionally through a chunk store."""
+    from pathlib import Path
+
+    from rotorkin.sweep.store import ChunkStore, write_dataset
+
+    chunks = ChunkStore(Path(store) / ".chunks", spec.manifest()) if store is not None else None
+    done = chunks.open() if chunks else set()
+    if chunks and done and on_status:
+        on_status(f"resuming: {len(done)} of {spec.n_chunks} chunks already committed, "
+                  f"computing {spec.n_chunks - len(done)}")  # fmt: skip
+    todo = [(i, *chunk_bounds(spec, i)) for i in range(spec.n_chunks) if i not in done]
+    flat = None if chunks else _empty(spec)
+
+    with _Progress(progress, spec.size, done_designs=spec.size - sum(b - a for _, a, b in todo)) \
+            as bar:  # fmt: skip
+
+        def take(index, res):
+            if chunks:
+                chunks.commit(index, res)
+            else:
+                _place(flat, res)
+            bar.advance(res["stop"] - res["start"])
+
+        if client is not None:
+            from rotorkin.sweep.dask import run_chunks
+
+            run_chunks(client, spec, todo, take)
+        else:
+            for index, start, stop in todo:
+                take(index, compute_chunk(spec, start, stop, threads))
+    if chunks:
+        flat = _assemble(spec, chunks)
+    ds = to_dataset(spec, flat)
+    if chunks:
+        write_dataset(ds, Path(store) / "sweep.nc")
+        if not keep_chunks:
+            chunks.remove()
+    return ds
+
+
+def _empty(spec: SweepSpec) -> dict:
+    flat = {
+        "metrics": {m: np.full(spec.size, np.nan) for m in spec.metrics},
+        "reason": np.zeros(spec.size, dtype=np.int16),
+        "count": np.zeros(spec.size, dtype=np.int8),
+    }
+    if spec.keep_curves:
+        kern = kernel_of(spec.drive_type)
+        flat["curves"] = {c: np.full((spec.size, spec.points), np.nan) for c in kern.CURVES}
+        flat["angle"] = None
+    return flat
+
+
+def _place(flat: dict, res: dict) -> None:
+    idx = res["design"]
+    for m, values in res["metrics"].items():
+        flat["metrics"][m][idx] = values
+    flat["reason"][idx] = res["reason"]
+    flat["count"][idx] += 1
+    if "curves" in res:
+        for c, values in res["curves"].items():
+            flat["curves"][c][idx] = values
+        angle = np.asarray(res["angle"])
+        if angle.ndim == 1:
+            flat["angle"] = angle
+        else:
+            if flat["angle"] is None or np.ndim(flat["angle"]) == 1:
+                flat["angle"] = np.full((len(flat["reason"]), angle.shape[-1]), np.nan)
+            flat["angle"][idx] = angle
+
+
+def _assemble(spec: SweepSpec, chunks) -> dict:
+    """Read every committed chunk into flat arrays; check each design appears exactly once."""
+    flat = _empty(spec)
+    missing = sorted(set(range(spec.n_chunks)) - chunks.committed())
+    if missing:
+        raise RuntimeError(f"sweep chunks missing after the run: {missing[:5]}")
+    for i in range(spec.n_chunks):
+        _place(flat, chunks.read(i))
+    if not np.all(flat["count"] == 1):
+        bad = np.flatnonzero(flat["count"] != 1)
+        raise RuntimeError(f"{bad.size} designs lost or duplicated in the sweep chunks")
+    return flat
+
+
+class _Progress:
+    """A rich progress bar over designs on stderr (only on a terminal and when wanted)."""
+
+    def __init__(self, wanted: bool, total: int, done_designs: int = 0):
+        self.bar = None
+        self.total, self.done = total, done_designs
+        self.wanted = bool(wanted) and sys.stderr.isatty()
+        self.t0 = time.perf_counter()
+
+    def __enter__(self):
+        if self.wanted:
+            from rich.console import Console
+            from rich.progress import (
+                BarColumn,
+                MofNCompleteColumn,
+                Progress,
+                TextColumn,
+                TimeElapsedColumn,  # fmt: skip
+                TimeRemainingColumn,
+            )
+
+            self.bar = Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
+                                TextColumn("designs"), TimeElapsedColumn(), TimeRemainingColumn(),
+                                console=Console(stderr=True), transient=True)  # fmt: skip
+            self.bar.start()
+            self.task = self.bar.add_task("sweep", total=self.total, completed=self.done)
+        return self
+
+    def advance(self, n: int) -> None:
+        if self.bar is not None:
+            self.bar.advance(self.task, n)
+
+    def __exit__(self, *exc):
+        if self.bar is not None:
+            self.bar.stop()
+        return False

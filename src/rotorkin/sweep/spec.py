@@ -1,0 +1,296 @@
+"""Sweep specifications: ``--vary KEY=START:STOP:N`` / ``KEY=v1,v2,...`` -> validated SI values.
+
+Every value is validated through the config schema (units, types, choices), so a
+sweep refuses exactly what ``rotorkin run --set KEY=VALUE`` refuses, with the
+same one-line messages. Dimensional keys need a unit on every value
+(``20deg:65deg:46``, ``30deg,45deg``); dimensionless keys take bare numbers,
+choice keys (``drive.driver``, ``drive.follower``, ...) their names.
+"""
+
+from __future__ import annotations
+
+import copy
+import tomllib
+import typing
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorkin.errors import ConfigError
+from rotorkin.io.config import DRIVE_MODELS, validate_config
+from rotorkin.io.units import parse_quantity
+
+__all__ = ["Vary", "Field", "DISPLAY_UNITS", "parse_vary", "parse_item", "field_of",
+           "display"]  # fmt: skip
+
+#: quantity kind -> (unit shown in coordinates and messages, factor from SI)
+DISPLAY_UNITS = {
+    "angle": ("deg", 180.0 / np.pi),
+    "length": ("mm", 1e3),
+    "torque": ("N*m", 1.0),
+    "speed": ("rpm", 30.0 / np.pi),
+    "pressure": ("bar", 1e-5),
+    "inertia": ("kg*m^2", 1.0),
+    "mass": ("kg", 1.0),
+    "volume": ("cm^3", 1e6),
+    "energy": ("J", 1.0),
+    "temperature": ("K", 1.0),
+    "modulus": ("GPa", 1e-9),
+}
+
+
+@dataclass(frozen=True)
+class Field:
+    """What a config key holds: ``kind`` is a quantity kind (``"angle"`` ...),
+    ``"float"``, ``"int"``, ``"choice"`` (with ``choices``) or ``"other"`` (not sweepable)."""
+
+    key: str
+    kind: str
+    choices: tuple = ()
+    constrained: bool = False
+
+    @property
+    def dimensional(self) -> bool:
+        return self.kind in DISPLAY_UNITS
+
+    @property
+    def unit(self) -> str:
+        """Unit of the coordinate in a sweep result ("" if dimensionless)."""
+        return DISPLAY_UNITS[self.kind][0] if self.dimensional else ""
+
+    @property
+    def factor(self) -> float:
+        """SI value x factor = value in :attr:`unit`."""
+        return DISPLAY_UNITS[self.kind][1] if self.dimensional else 1.0
+
+
+@dataclass(frozen=True)
+class Vary:
+    """One swept key: its values (SI floats, ints or choice names) as given on the command line."""
+
+    key: str
+    text: str
+    values: tuple
+    field: Field
+
+    def __len__(self) -> int:
+        return len(self.values)
+
+    def display_values(self) -> np.ndarray:
+        """Values in the unit people read (deg, mm, ...; 12 significant digits), or the names."""
+        if self.field.kind == "choice":
+            return np.array(self.values, dtype=object)
+        if self.field.kind == "int":
+            return np.asarray(self.values, dtype=np.int32)
+        # rounded to 12 significant digits: "105deg" reads back as 105.0, not 104.99999999999999
+        scaled = np.asarray(self.values, dtype=float) * self.field.factor
+        return np.array([float(f"{v:.12g}") for v in scaled])
+
+    def array(self) -> np.ndarray:
+        """Values as an array for the kernels (SI floats, ints, or object strings)."""
+        if self.field.kind == "choice":
+            return np.array(self.values, dtype=object)
+        if self.field.kind == "int":
+            return np.asarray(self.values, dtype=np.int64)
+        return np.asarray(self.values, dtype=float)
+
+
+def display(field: Field, value) -> str:
+    """A value of ``field`` as people read it: ``"65.53 deg"``, ``"0.5"``, ``"crank"``."""
+    if field.kind == "choice":
+        return str(value)
+    if field.dimensional:
+        return f"{float(value) * field.factor:.6g} {field.unit}"
+    return f"{value:.6g}" if isinstance(value, float) else str(value)
+
+
+def _kind_of(annotation) -> str | None:
+    """Quantity kind carried by a BeforeValidator anywhere in an annotation."""
+    for meta in getattr(annotation, "__metadata__", ()):
+        kind = getattr(getattr(meta, "func", None), "kind", None)
+        if kind:
+            return kind
+    for arg in typing.get_args(annotation):
+        kind = _kind_of(arg)
+        if kind:
+            return kind
+    return None
+
+
+def field_of(drive_type: str, key: str) -> Field | None:
+    """The :class:`Field` of ``key`` (``section.name``) for a drive type, None if unknown."""
+    section, _, name = key.partition(".")
+    model = DRIVE_MODELS[drive_type]
+    sfield = model.model_fields.get(section)
+    if sfield is None or not name or "." in name:
+        return None
+    sub = sfield.annotation
+    fields = getattr(sub, "model_fields", {})
+    field = next((f for n, f in fields.items() if name in (n, f.alias) and n != "type"), None)
+    if field is None:
+        return None
+    kind = _kind_of(field.annotation) or next(
+        (getattr(getattr(m, "func", None), "kind", None) for m in field.metadata
+         if getattr(getattr(m, "func", None), "kind", None)), None)  # fmt: skip
+    bounded = any(type(m).__name__ in ("Ge", "Gt", "Le", "Lt", "Interval")
+                  for m in field.metadata)  # fmt: skip
+    if kind:
+        return Field(key, kind, (), bounded)
+    ann = field.annotation
+    if typing.get_origin(ann) is typing.Literal:
+        return Field(key, "choice", tuple(typing.get_args(ann)))
+    if ann is int:
+        return Field(key, "int", (), bounded)
+    if ann is float:
+        return Field(key, "float", (), bounded)
+    return Field(key, "other")
+
+
+def _check_key(base_raw: dict, key: str, option: str) -> tuple[str, Field]:
+    drive_type = (base_raw.get("drive") or {}).get("type")
+    if drive_type not in DRIVE_MODELS:
+        validate_config(base_raw)  # raises the config's own message
+    field = field_of(drive_type, key)
+    if field is None:
+        section, _, name = key.partition(".")
+        if not name:
+            raise ConfigError(f"{option} {key!r} is not admissible: the key must be section.key, "
+                              "e.g. drive.plate_tilt")  # fmt: skip
+        probe = copy.deepcopy(base_raw)
+        probe.setdefault(section, {})
+        if isinstance(probe[section], dict):
+            probe[section][name] = 0
+        try:
+            validate_config(probe)
+        except ConfigError as exc:
+            raise ConfigError(f"{option}: {exc}") from None
+        raise ConfigError(f"{option}: unknown key {key}")
+    if field.kind == "other" or key == "drive.type":
+        raise ConfigError(
+            f"{option} {key} is not admissible: only single numbers, quantities and choices can "
+            "be swept (not lists or names)"
+        )
+    return drive_type, field
+
+
+def _raw_value(field: Field, text: str):
+    """A value as written in a TOML config: strings for quantities and choices, numbers else."""
+    text = text.strip()
+    if field.dimensional or field.kind == "choice":
+        return text
+    try:
+        return tomllib.loads(f"v = {text}")["v"]
+    except tomllib.TOMLDecodeError:
+        return text
+
+
+def _validated(base_raw: dict, field: Field, text: str, option: str):
+    """The SI value of ``text`` for ``field``, with the config schema's messages.
+
+    Quantities are parsed by :func:`rotorkin.io.units.parse_quantity` (the
+    schema's own parser), choices and numbers checked as the schema does; a key
+    with bounds in the schema (``run.points``) goes through the whole schema.
+    """
+    key = field.key
+    if field.constrained:
+        section, _, name = key.partition(".")
+        raw = copy.deepcopy(base_raw)
+        raw.setdefault(section, {})[name] = _raw_value(field, text)
+        try:
+            return validate_config(raw)[section][name]
+        except ConfigError as exc:
+            raise ConfigError(f"{option}: {exc}") from None
+    text = text.strip()
+    if field.dimensional:
+        number, reason = parse_quantity(text, field.kind)
+        if reason:
+            raise ConfigError(f"{option}: {key} = {text!r} {reason}")
+        return number
+    if field.kind == "choice":
+        if text not in field.choices:
+            raise ConfigError(f"{option}: {key} = {text!r} is not admissible: choose one of "
+                              + ", ".join(repr(c) for c in field.choices))  # fmt: skip
+        return text
+    value = _raw_value(field, text)
+    if field.kind == "int":
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise ConfigError(f"{option}: {key} = {text!r} is not admissible: needs an integer")
+        return value
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value):
+        raise ConfigError(f"{option}: {key} = {text!r} is not admissible: needs a finite number")
+    return float(value)
+
+
+def parse_item(item: str, option: str = "--vary") -> tuple[str, str]:
+    """Split ``"KEY=SPEC"``; one-line :class:`ConfigError` when there is no ``=``."""
+    if "=" not in item:
+        raise ConfigError(
+            f"{option} {item!r} is not admissible: write it as KEY=START:STOP:N or KEY=v1,v2,..."
+        )
+    key, _, spec = item.partition("=")
+    return key.strip(), spec.strip()
+
+
+def parse_vary(item: str, base_raw: dict) -> Vary:
+    """Parse one ``--vary`` item against a base config.
+
+    Parameters
+    ----------
+    item : str
+        ``KEY=START:STOP:N`` (N evenly spaced values, both ends included) or
+        ``KEY=v1,v2,...``; e.g. ``"drive.plate_tilt=20deg:65deg:46"``,
+        ``"drive.driver=crank,guide"``, ``"drive.lambda=0.3,0.5,0.7"``.
+    base_raw : dict
+        The base config as written (it fixes the drive type and so the keys).
+
+    Returns
+    -------
+    Vary
+
+    Raises
+    ------
+    ConfigError
+        One line naming the option, the key and what is admissible: unknown key,
+        empty range or list, missing unit, bad number or choice.
+    """
+    key, spec = parse_item(item)
+    option = f"--vary {key}={spec}"
+    _, field = _check_key(base_raw, key, "--vary")
+    if not spec:
+        raise ConfigError(f"{option} is not admissible: empty list of values")
+    if ":" in spec:
+        parts = spec.split(":")
+        if len(parts) != 3 or not all(p.strip() for p in parts):
+            raise ConfigError(f"{option} is not admissible: a range is START:STOP:N")
+        try:
+            count = int(parts[2])
+        except ValueError:
+            raise ConfigError(f"{option} is not admissible: N = {parts[2]!r} must be an integer "
+                              "count of values") from None  # fmt: skip
+        if count < 1:
+            raise ConfigError(f"{option} is not admissible: empty range (N = {count}; N >= 1)")
+        if field.kind == "choice":
+            raise ConfigError(f"{option} is not admissible: {key} takes one of "
+                              f"{', '.join(field.choices)}; list them: {key}=a,b")  # fmt: skip
+        start = _validated(base_raw, field, parts[0], option)
+        stop = _validated(base_raw, field, parts[1], option)
+        if count == 1 and start != stop:
+            raise ConfigError(f"{option} is not admissible: N = 1 needs START = STOP")
+        values = np.linspace(float(start), float(stop), count)
+        if field.kind == "int":
+            if not np.allclose(values, np.round(values), rtol=0.0, atol=1e-9):
+                raise ConfigError(f"{option} is not admissible: {key} is an integer and the "
+                                  f"range gives {values.tolist()}")  # fmt: skip
+            values = tuple(int(v) for v in np.round(values))
+        else:
+            values = tuple(float(v) for v in values)
+    else:
+        items = [s.strip() for s in spec.split(",")]
+        if not all(items):
+            raise ConfigError(f"{option} is not admissible: an empty value in the list")
+        values = tuple(_validated(base_raw, field, s, option) for s in items)
+        if field.kind not in ("choice", "int"):
+            values = tuple(float(v) for v in values)
+    if len(set(values)) != len(values):
+        raise ConfigError(f"{option} is not admissible: a value is repeated")
+    return Vary(key, spec, values, field)

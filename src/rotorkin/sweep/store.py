@@ -1,0 +1,164 @@
+"""Resumable sweeps: one netCDF file per finished chunk, committed atomically, and a manifest.
+
+Layout of a sweep folder ``DIR``::
+
+    DIR/sweep.nc                      the assembled result (written last, atomically)
+    DIR/.chunks/manifest.json         the sweep's spec and its hash
+    DIR/.chunks/chunk_000017.nc       chunk 17: its designs' metrics and reasons
+
+A chunk file is written under a temporary name and renamed (``os.replace``)
+when complete, so a chunk file that exists is complete: a sweep killed at any
+moment (even by SIGKILL) and started again with the same spec finds the chunks
+already committed, computes only the missing ones, and assembles the result,
+checking that every design appears exactly once. A different spec in the same
+folder (other keys, values, metrics, samples or chunk size) starts afresh.
+The chunk files go once ``sweep.nc`` is written.
+
+Files are netCDF-3 (64-bit offsets) written with :mod:`scipy.io` (no netCDF4 or
+zarr library is needed), read back by :mod:`xarray` or any netCDF reader.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import shutil
+from pathlib import Path
+
+import numpy as np
+
+from rotorkin.errors import ConfigError
+
+__all__ = ["ChunkStore", "spec_hash", "write_dataset"]
+
+_MANIFEST = "manifest.json"
+
+
+def spec_hash(manifest: dict) -> str:
+    """SHA-256 of the canonical JSON of a sweep's manifest."""
+    text = json.dumps(manifest, sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _tmp(path: Path) -> Path:
+    return path.with_name(f".{path.name}.tmp-{os.getpid()}")
+
+
+class ChunkStore:
+    """The committed chunks of one sweep in ``folder``.
+
+    Parameters
+    ----------
+    folder : Path
+        Working folder (created); ``DIR/.chunks`` for a sweep in ``DIR``.
+    manifest : dict
+        :meth:`rotorkin.sweep.engine.SweepSpec.manifest`.
+    """
+
+    def __init__(self, folder, manifest: dict):
+        self.folder = Path(folder)
+        self.manifest = manifest
+        self.key = spec_hash(manifest)
+
+    def open(self) -> set[int]:
+        """Prepare the folder; return the indices of the chunks already committed.
+
+        Leftover temporary files of a killed run are removed; chunks of a
+        different spec are removed too (with the old manifest).
+        """
+        try:
+            self.folder.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise ConfigError(f"--out = {str(self.folder.parent)!r} cannot be written: "
+                              f"{exc.strerror}") from None  # fmt: skip
+        for tmp in self.folder.glob(".*.tmp-*"):
+            tmp.unlink(missing_ok=True)
+        path = self.folder / _MANIFEST
+        old = None
+        if path.is_file():
+            try:
+                old = json.loads(path.read_text()).get("hash")
+            except (OSError, ValueError):
+                old = None
+        if old != self.key:
+            for f in self.folder.glob("chunk_*.nc"):
+                f.unlink()
+            tmp = _tmp(path)
+            tmp.write_text(json.dumps({"hash": self.key, "spec": self.manifest}, indent=1))
+            os.replace(tmp, path)
+        return self.committed()
+
+    def path(self, index: int) -> Path:
+        return self.folder / f"chunk_{index:06d}.nc"
+
+    def committed(self) -> set[int]:
+        """Indices of the chunk files present (each one complete, by construction)."""
+        out = set()
+        for f in self.folder.glob("chunk_*.nc"):
+            try:
+                out.add(int(f.stem.split("_")[1]))
+            except (IndexError, ValueError):
+                continue
+        return {i for i in out if i < self.manifest["chunks"]}
+
+    def commit(self, index: int, res: dict) -> Path:
+        """Write chunk ``index`` (a :func:`~rotorkin.sweep.engine.compute_chunk` result)."""
+        from scipy.io import netcdf_file
+
+        final = self.path(index)
+        tmp = _tmp(final)
+        n = int(res["stop"] - res["start"])
+        with netcdf_file(tmp, "w", version=2) as f:
+            f.start, f.stop, f.spec_hash = int(res["start"]), int(res["stop"]), self.key
+            f.createDimension("design", n)
+            v = f.createVariable("design", "i", ("design",))
+            v[:] = np.asarray(res["design"], dtype=np.int32)
+            v = f.createVariable("reason", "h", ("design",))
+            v[:] = np.asarray(res["reason"], dtype=np.int16)
+            for name, values in res["metrics"].items():
+                f.createVariable(f"m:{name}", "d", ("design",))[:] = values
+            if "curves" in res:
+                angle = np.asarray(res["angle"], dtype=float)
+                f.createDimension("point", angle.shape[-1])
+                dims = ("point",) if angle.ndim == 1 else ("design", "point")
+                f.createVariable("angle", "d", dims)[:] = angle
+                for name, values in res["curves"].items():
+                    f.createVariable(f"c:{name}", "d", ("design", "point"))[:] = values
+        os.replace(tmp, final)
+        return final
+
+    def read(self, index: int) -> dict:
+        """A committed chunk back as a result dict (copies; the file is closed)."""
+        from scipy.io import netcdf_file
+
+        with netcdf_file(self.path(index), "r", mmap=False) as f:
+            var = f.variables
+            res = {
+                "start": int(f.start),
+                "stop": int(f.stop),
+                "design": np.array(var["design"][:], dtype=np.int64),
+                "reason": np.array(var["reason"][:], dtype=np.int16),
+                "metrics": {k[2:]: np.array(v[:]) for k, v in var.items() if k.startswith("m:")},
+            }
+            if "angle" in var:
+                res["angle"] = np.array(var["angle"][:])
+                res["curves"] = {k[2:]: np.array(v[:]) for k, v in var.items()
+                                 if k.startswith("c:")}  # fmt: skip
+        return res
+
+    def remove(self) -> None:
+        """Delete the working folder (after the result is written)."""
+        shutil.rmtree(self.folder, ignore_errors=True)
+
+
+def write_dataset(ds, path) -> Path:
+    """Write an :class:`xarray.Dataset` as netCDF-3 (scipy engine), atomically."""
+    path = Path(path)
+    tmp = _tmp(path)
+    try:
+        ds.to_netcdf(tmp, engine="scipy", format="NETCDF3_64BIT")
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
+    return path

@@ -1,0 +1,253 @@
+"""Sweeps: every design equals the scalar study run on its own; reasons; CLI; paper figures."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from rotorkin.cli import main
+from rotorkin.errors import ConfigError, ParameterError, RotorkinError
+from rotorkin.io.config import load_config
+from rotorkin.studies import evaluate
+from rotorkin.sweep import SweepFallbackWarning, reason_text, run_sweep
+
+# Each case: example, base --set items, --vary items (lists, so that the test can rebuild every
+# design from the same strings), some combinations inadmissible on purpose.
+CASES = {
+    "wobble-cam-engine": (
+        [],
+        ["drive.plate_tilt=25deg,40deg,55deg", "drive.roller_axis_angle=70deg,90deg,110deg",
+         "machine.compression_ratio=4,12", "machine.section=rectangular,circular"],
+    ),
+    "eccentric-reactor": (
+        ["drive.roller_radius=3 mm"],
+        ["drive.eccentricity=10mm,40mm,70mm", "drive.follower=knife_edge,flat,roller",
+         "machine.fluid=gas,liquid"],
+    ),
+    "guide-bar-pump": (
+        [],
+        ["drive.lambda=0.2,0.5,0.8", "drive.driver=crank,guide", "drive.input_gear_ratio=1,2",
+         "machine.vane_angle=40deg,50deg"],
+    ),
+    "rhomboid-engine": (
+        [],
+        ["drive.psi_min=20deg,45deg,80deg", "machine.blade_thickness=5deg,30deg",
+         "machine.blades_per_pair=1,2"],
+    ),
+}  # fmt: skip
+
+
+def _designs(varies):
+    """Every combination of the --vary lists, as (index tuple, --set items), C order."""
+    keys = [v.split("=")[0] for v in varies]
+    values = [v.split("=")[1].split(",") for v in varies]
+    for idx in np.ndindex(*(len(v) for v in values)):
+        yield idx, [f"{k}={vals[i]}" for k, vals, i in zip(keys, values, idx, strict=True)]
+
+
+def _close(a, b, scale):
+    return a == b or (np.isnan(a) and np.isnan(b)) or abs(a - b) <= 1e-12 * max(abs(b), scale)
+
+
+@pytest.mark.parametrize("example", sorted(CASES))
+def test_sweep_equals_the_designs_run_one_by_one(example):
+    sets, varies = CASES[example]
+    _, raw, _ = load_config(None, example, sets)
+    ds = run_sweep(raw, varies, keep_curves=True, progress=False)
+    metrics = [k for k, v in ds.data_vars.items() if "point" not in v.dims and k != "reason"]
+    curves = [k for k, v in ds.data_vars.items() if "point" in v.dims]
+    assert len(metrics) >= 25 and len(curves) >= 8
+    seen_bad = seen_ok = 0
+    for idx, items in _designs(varies):
+        d = ds.isel(dict(zip([v.split("=")[0] for v in varies], idx, strict=True)))
+        cfg = load_config(None, example, sets + items)[0]
+        try:
+            res = evaluate(cfg)
+        except ParameterError as exc:  # inadmissible: NaN and the key the study names
+            seen_bad += 1
+            assert reason_text(ds, int(d["reason"])) == exc.name
+            assert all(np.isnan(float(d[m])) for m in metrics)
+            continue
+        seen_ok += 1
+        assert int(d["reason"]) == 0
+        for m in metrics:
+            scale = max(np.nanmax(np.abs(ds[m].values)), 1e-300)
+            assert _close(float(d[m]), float(res.summary[m]), scale), (m, items)
+        for c in curves:
+            expect = res.columns[c]
+            assert np.allclose(d[c].values, expect, rtol=1e-12, atol=1e-12 * np.abs(expect).max())
+    assert seen_ok >= 10
+    if example != "eccentric-reactor":
+        assert seen_bad >= 1  # combinations that the study refuses are marked, not fatal
+
+
+def test_slider_angle_extremes_against_eq15_by_brute_force():
+    # independent: the paper's eq. 15 (arccos form) maximised over the spin angle numerically
+    _, raw, _ = load_config(None, "wobble-cam-engine", ["machine.compression_ratio=1e6"])
+    ds = run_sweep(
+        raw,
+        {
+            "drive.plate_tilt": "10deg,30deg,50deg,57deg",
+            "drive.roller_axis_angle": "75deg,90deg,105deg",
+        },
+        progress=False,
+    )
+    v = np.linspace(0.0, np.pi, 200_001)
+    for tilt in (10.0, 30.0, 50.0, 57.0):
+        for alpha in (75.0, 90.0, 105.0):
+            p, a = np.radians(tilt), np.radians(alpha)
+            c2 = np.cos(p) ** 2
+            s1, s2 = np.sin(v - a / 2), np.sin(v + a / 2)
+            k1, k2 = np.cos(v - a / 2), np.cos(v + a / 2)
+            num = s1 * s2 + c2 * k1 * k2
+            den = np.sqrt((s1**2 + c2 * k1**2) * (s2**2 + c2 * k2**2))
+            ang = np.degrees(np.arccos(np.clip(num / den, -1, 1)))
+            d = ds.sel({"drive.plate_tilt": tilt, "drive.roller_axis_angle": alpha})
+            assert float(d["slider_angle_max_deg"]) == pytest.approx(ang.max(), abs=1e-6)
+            assert float(d["slider_angle_min_deg"]) == pytest.approx(ang.min(), abs=1e-6)
+
+
+def test_results_do_not_depend_on_chunks_or_threads():
+    _, raw, _ = load_config(None, "wobble-cam-engine")
+    vary = {"drive.plate_tilt": "30deg:50deg:7", "drive.roller_axis_angle": "80deg:100deg:5"}
+    a = run_sweep(raw, vary, progress=False, samples=2001)
+    b = run_sweep(raw, vary, progress=False, samples=2001, chunk_size=3, threads=1)
+    xr.testing.assert_identical(a.drop_attrs(), b.drop_attrs())
+
+
+def test_samples_set_the_sampled_peaks_only():
+    _, raw, _ = load_config(None, "wobble-cam-engine")
+    vary = {"drive.plate_tilt": "30deg,45deg"}
+    fine = run_sweep(raw, vary, progress=False)
+    coarse = run_sweep(raw, vary, progress=False, samples=360)
+    assert np.array_equal(fine["chamber_swing_deg"], coarse["chamber_swing_deg"])
+    # a coarse grid misses the peak by O(h^2): close, not equal
+    np.testing.assert_allclose(coarse["rotor_accel_peak_per_rad"],
+                               fine["rotor_accel_peak_per_rad"], rtol=2e-3)  # fmt: skip
+
+
+def test_a_key_outside_the_kernels_falls_back_to_the_scalar_study_with_one_warning():
+    _, raw, _ = load_config(None, "wobble-cam-engine")
+    with pytest.warns(SweepFallbackWarning, match="design by design"):
+        ds = run_sweep(
+            raw,
+            {"machine.inertia_rotor_1": "0.004 kg*m^2,0.02 kg*m^2"},
+            metrics=["chamber_swing_deg", "flywheel_inertia_kgm2"],
+            progress=False,
+        )
+    for i, j in enumerate(("0.004 kg*m^2", "0.02 kg*m^2")):
+        s = evaluate(load_config(None, "wobble-cam-engine", [f"machine.inertia_rotor_1={j}"])[0])
+        assert float(ds["flywheel_inertia_kgm2"][i]) == s.summary["flywheel_inertia_kgm2"]
+        assert float(ds["chamber_swing_deg"][i]) == s.summary["chamber_swing_deg"]
+
+
+@pytest.mark.parametrize(
+    ("vary", "words"),
+    [
+        (["drive.bogus=1,2"], "unknown key drive.bogus"),
+        (["drive.plate_tilt=20deg:60deg:0"], "empty range"),
+        (["drive.plate_tilt="], "empty list"),
+        (["drive.plate_tilt=20:60:5"], "has no unit"),
+        (["drive.plate_tilt=20deg:70deg:6"], "crosses an admissible limit"),
+        (["machine.compression_ratio=2,10"], "crosses an admissible limit"),
+        (["drive.spin_a=1,2"], "only single numbers"),
+        (["drive.plate_tilt=30deg", "drive.plate_tilt=40deg"], "given twice"),
+        (["machine.section=round"], "machine.section"),
+    ],
+)
+def test_bad_specs_raise_one_line(vary, words):
+    _, raw, _ = load_config(None, "wobble-cam-engine")
+    with pytest.raises((ConfigError, RotorkinError), match=words) as info:
+        run_sweep(raw, vary, progress=False)
+    assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--vary", "drive.bogus=1,2"], "unknown key drive.bogus"),
+        (["--vary", "drive.plate_tilt=20deg:60deg:0"], "empty range"),
+        (["--vary", "drive.plate_tilt=20:60:5"], "has no unit"),
+        (["--vary", "drive.plate_tilt=20deg:70deg:6"], "crosses an admissible limit"),
+        (["--vary", "drive.plate_tilt"], "KEY=START:STOP:N"),
+        ([], "give at least one --vary"),
+        (
+            ["--vary", "drive.plate_tilt=30deg", "--workers", "2", "--scheduler", "tcp://x:1"],
+            "not both",
+        ),
+        (["-e", "rhomboid-engine", "--paper-figures"], "no sweep figures"),
+    ],
+)
+def test_cli_bad_specs_exit_2_with_one_line_and_write_nothing(args, words, tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["sweep", *args, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert words in err and err.count("\n") == 1 and "Traceback" not in err
+    assert not out.exists() and not list(tmp_path.iterdir())
+
+
+def test_cli_writes_sweep_nc_readable_by_another_netcdf_reader(tmp_path, capsys):
+    from scipy.io import netcdf_file
+
+    out = tmp_path / "sw"
+    args = [
+        "sweep",
+        "-e",
+        "wobble-cam-engine",
+        "--vary",
+        "drive.plate_tilt=30deg:57deg:7",
+        "--vary",
+        "drive.roller_axis_angle=80deg,100deg",
+        "--angles",
+        "721",
+        "--out",
+        str(out),
+    ]
+    assert main(args) == 0
+    printed = capsys.readouterr().out
+    assert "sweep.nc" in printed and "14 designs" in printed
+    assert sorted(p.name for p in out.iterdir()) == ["README.txt", "sweep.nc",
+                                                     "sweep_overview.png"]  # fmt: skip
+    with netcdf_file(out / "sweep.nc", "r", mmap=False) as f:
+        swing = np.array(f.variables["chamber_swing_deg"][:])
+        tilt = np.array(f.variables["drive.plate_tilt"][:])
+        alpha = np.array(f.variables["drive.roller_axis_angle"][:])
+        reason = np.array(f.variables["reason"][:])
+    assert swing.shape == (7, 2) and np.allclose(tilt, np.linspace(30, 57, 7))
+    c = np.cos(np.radians(tilt))[:, None]
+    t = np.tan(np.radians(alpha) / 2)[None, :]
+    expect = np.degrees(2 * np.arctan(t / c) - 2 * np.arctan(c * t))  # eq. 17
+    ok = reason == 0
+    assert np.allclose(swing[ok], expect[ok], rtol=1e-12) and np.all(np.isnan(swing[~ok]))
+    assert ok.sum() >= 10 and (~ok).sum() >= 1  # 57 deg at 100 deg: eq. 21 needs eps > 16.9
+
+
+def test_paper_figures_of_the_guide_bar_match_eq5_eq6(tmp_path, capsys):
+    out = tmp_path / "pf"
+    assert main(["sweep", "-e", "guide-bar-pump", "--paper-figures", "--out", str(out), "-q"]) == 0
+    names = sorted(p.name for p in out.iterdir())
+    assert names == ["paper_fig10.png", "paper_fig10_11.nc", "paper_fig11.png", "paper_fig9.nc",
+                     "paper_fig9.png"]  # fmt: skip
+    for png in out.glob("*.png"):
+        assert png.stat().st_size > 20_000 and png.read_bytes()[:4] == b"\x89PNG"
+    ds = xr.open_dataset(out / "paper_fig9.nc", engine="scipy").load()
+    lam = ds["drive.lambda"].values
+    for u in (2.0, 3.0):
+        crank = ds["vane_angle_deg"].sel({"drive.gear_ratio": u, "drive.driver": "crank"})
+        guide = ds["vane_angle_deg"].sel({"drive.gear_ratio": u, "drive.driver": "guide"})
+        # eq. 5: arccos(lambda / sqrt(1 + lambda^2)) = u gamma_0 / 2; eq. 6: arccos(lambda) = ...
+        assert np.allclose(crank, np.degrees(2 * np.arccos(lam / np.sqrt(1 + lam**2)) / u))
+        assert np.allclose(guide, np.degrees(2 * np.arccos(lam) / u))
+
+
+def test_paper_figures_of_the_eccentric_cams_hold_the_published_delta(tmp_path):
+    out = tmp_path / "pf"
+    assert main(["sweep", "-e", "eccentric-reactor", "--paper-figures", "--out", str(out),
+                 "-q"]) == 0  # fmt: skip
+    ds = xr.open_dataset(out / "paper_fig6_7.nc", engine="scipy").load()
+    d = ds.sel({"drive.eccentricity": 40.0})  # lambda = 0.5 on R = 80 mm
+    i = int(np.argmin(np.abs(ds["beta_deg"].values - 90.0)))
+    assert float(d["delta"][i]) == pytest.approx(-0.5359, abs=1e-4)  # the paper's number
+    assert (out / "paper_fig6.png").stat().st_size > 20_000
+    assert (out / "paper_fig7.png").stat().st_size > 20_000
