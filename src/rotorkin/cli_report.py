@@ -1,7 +1,51 @@
-"""The rotorkin report (HTML) command(s): registered on the main app by :func:`register`."""
+"""The ``rotorkin report`` command: one interactive, offline HTML page of a run.
+
+Registered on the main app by :func:`register`. ``rotorkin run ... --report``
+writes the same page next to the other outputs.
+"""
 
 from __future__ import annotations
 
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
 
 def register(app) -> None:
-    """Add this module's commands to the typer ``app`` (none yet)."""
+    """Add ``report`` to the typer ``app``."""
+
+    @app.command()
+    def report(
+        config: Annotated[
+            Path | None, typer.Argument(help="TOML config; default: the wobble-cam-engine example.")
+        ] = None,
+        example: Annotated[
+            str | None, typer.Option("--example", "-e", help="Use a built-in example by name.")
+        ] = None,
+        set_: Annotated[
+            list[str] | None,
+            typer.Option("--set", "-s", help="Override a key: section.key=VALUE (repeatable)."),
+        ] = None,
+        out: Annotated[
+            Path | None,
+            typer.Option("--out", "-o", help="Output folder; default ./rotorkin-out/<name>."),
+        ] = None,
+    ):
+        """Write report.html: summary vs the paper, checks, animated mechanism, plots (offline)."""
+        from rotorkin import __version__
+        from rotorkin.errors import ConfigError
+        from rotorkin.io.config import load_config
+        from rotorkin.report.html import write_report
+        from rotorkin.studies import evaluate
+
+        cfg, raw, name = load_config(config, example, set_ or [])
+        outdir = out if out is not None else Path("rotorkin-out") / name
+        if outdir.exists() and not outdir.is_dir():
+            raise ConfigError(
+                f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder"
+            )
+        result = evaluate(cfg)
+        meta = {"name": name, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
+        path = write_report(result, cfg, raw, meta, outdir / "report.html")
+        typer.echo(str(path))
