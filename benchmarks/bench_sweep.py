@@ -1,0 +1,226 @@
+"""Benchmark: a million-design wobble-cam sweep, time, peak memory and time per design.
+
+    python benchmarks/bench_sweep.py                    # 1e4, 1e5, 1e6 designs (about 1 minute)
+    python benchmarks/bench_sweep.py --sizes 1e4,1e5    # quick look
+    python benchmarks/bench_sweep.py --help
+
+The sweep: plate tilt (30 ... 50 deg) x roller axis angle (80 ... 100 deg) x
+compression ratio (8 ... 16), ``--angles`` shaft angles per design (default
+360), through :func:`rotorkin.sweep.run_sweep`'s two steps, timed apart:
+``build_spec`` (validating the spec: units, each swept value's admissibility,
+one scalar study run of the base) and ``execute`` (the computation). Every
+design gets the kernel's 53 summary metrics: the closed forms of the paper
+(slider and chamber angle extremes eq. 17-23, the eq. 20 tilt limit, piston
+width eq. 21, compression ratios, volumes, displacement, cycle pressures and
+work) and, per design and shaft angle, the acceleration and jerk coefficients
+of both rotors (``Phi''``, ``Phi'''``: the design x angle array, in cache-sized
+blocks on all cores) reduced to their peaks. Results stay in memory (no store).
+
+Memory: each size runs once in a fresh process (its own peak RSS, measured with
+``resource.getrusage``; the results, 8 bytes per design and metric, included).
+Time: all sizes in one process, interleaved (each size once per round, the
+best of ``--repeat`` rounds kept), so that a change of load hits them alike.
+
+Baseline, in the same rounds: 20 designs of the same ranges run one by one
+through the scalar study (:func:`rotorkin.studies.evaluate`, ``run.points =
+--angles``), as a loop over designs would; ``speedup_vs_one_by_one`` is its time
+per design over the sweep's.
+
+Targets (issue 6): at most 60 s and 1.5 GiB for 1e6 designs x 360
+angles on a 2-core machine, and a compute time per design constant within
+15 % from 1e4 to 1e6 designs. The result file records the load average: on a
+shared machine the absolute times are upper bounds.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import load, machine, peak_rss, write_json  # noqa: E402
+
+#: designs -> points per axis (tilt, roller axis angle, compression ratio)
+GRIDS = {10_000: (25, 20, 20), 100_000: (50, 50, 40), 1_000_000: (100, 100, 100)}
+
+
+def _vary(designs: int) -> dict:
+    if designs in GRIDS:
+        a, b, c = GRIDS[designs]
+    else:
+        a = b = c = max(1, round(designs ** (1.0 / 3.0)))
+    return {
+        "drive.plate_tilt": f"30deg:50deg:{a}",
+        "drive.roller_axis_angle": f"80deg:100deg:{b}",
+        "machine.compression_ratio": f"8:16:{c}",
+    }
+
+
+def _setup(angles: int, threads):
+    from rotorkin.io.config import load_config
+    from rotorkin.sweep import run_sweep
+
+    _, raw, _ = load_config(None, "wobble-cam-engine")
+    run_sweep(raw, _vary(8), samples=angles, progress=False, threads=threads)  # warm-up
+    return raw
+
+
+def child(designs: int, angles: int, threads) -> dict:
+    """Memory of one size, alone in this (fresh) process: one run, peak RSS."""
+    from rotorkin.sweep import build_spec, execute
+
+    raw = _setup(angles, threads)
+    rss_start = peak_rss()
+    t0 = time.perf_counter()
+    spec = build_spec(raw, _vary(designs), samples=angles)
+    ds = execute(spec, progress=False, threads=threads)
+    seconds = time.perf_counter() - t0
+    return {
+        "designs": int(ds["reason"].size),
+        "grid": [len(v) for v in spec.varies],
+        "metrics": len(spec.metrics),
+        "inadmissible": int(np.count_nonzero(ds["reason"].values)),
+        "single_run_s": seconds,
+        "peak_rss_MiB": peak_rss() / 2**20,
+        "rss_after_warmup_MiB": rss_start / 2**20,
+        "checksum_accel_peaks": float(np.nansum(ds["rotor_accel_peak_per_rad"].values)),
+    }
+
+
+def _one_by_one(raw: dict, angles: int, count: int):
+    """The baseline: ``count`` designs of the grid, each through the scalar study.
+
+    That is what a user without the sweep writes: a loop over designs calling
+    :func:`rotorkin.studies.evaluate` on each config (``run.points = angles``), the
+    same metrics a sweep gives. Returns a function that runs the loop once.
+    """
+    import copy
+
+    from rotorkin.io.config import validate_config
+    from rotorkin.studies import evaluate
+
+    rng = np.random.default_rng(7)
+    cfgs = []
+    for tilt, alpha, eps in zip(rng.uniform(30, 50, count), rng.uniform(80, 100, count),
+                                rng.uniform(8, 16, count), strict=True):  # fmt: skip
+        d = copy.deepcopy(raw)
+        d["drive"].update(plate_tilt=f"{tilt} deg", roller_axis_angle=f"{alpha} deg")
+        d["machine"]["compression_ratio"] = float(eps)
+        d.setdefault("run", {})["points"] = angles
+        cfgs.append(validate_config(d))
+
+    def loop():
+        for cfg in cfgs:
+            evaluate(cfg)
+
+    return loop
+
+
+def timings(sizes, angles: int, threads, repeat: int, baseline: int = 20) -> dict:
+    """Best wall and CPU times of build_spec and execute per size, sizes interleaved.
+
+    Each round runs every size once (order rotated); the best of ``repeat`` rounds
+    is kept. The CPU time (``time.process_time``, all threads) is less sensitive
+    than the wall time to other processes on a shared machine.
+    """
+    from rotorkin.sweep import build_spec, execute
+
+    raw = _setup(angles, threads)
+    specs = {n: build_spec(raw, _vary(n), samples=angles) for n in sizes}
+    best = {n: {"spec_s": np.inf, "compute_s": np.inf, "compute_cpu_s": np.inf} for n in sizes}
+    loop = _one_by_one(raw, angles, baseline)
+    best["one_by_one_s"] = np.inf
+    for r in range(max(1, repeat)):
+        t0 = time.perf_counter()
+        loop()
+        best["one_by_one_s"] = min(best["one_by_one_s"], (time.perf_counter() - t0) / baseline)
+        for n in sizes[r % len(sizes) :] + sizes[: r % len(sizes)]:
+            t0 = time.perf_counter()
+            build_spec(raw, _vary(n), samples=angles)
+            t1, c1 = time.perf_counter(), time.process_time()
+            execute(specs[n], progress=False, threads=threads)
+            t2, c2 = time.perf_counter(), time.process_time()
+            b = best[n]
+            b["spec_s"] = min(b["spec_s"], t1 - t0)
+            b["compute_s"] = min(b["compute_s"], t2 - t1)
+            b["compute_cpu_s"] = min(b["compute_cpu_s"], c2 - c1)
+    return best
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--sizes", default="1e4,1e5,1e6", help="designs, comma-separated")
+    ap.add_argument("--angles", type=int, default=360, help="shaft angles per design")
+    ap.add_argument("--threads", type=int, default=None, help="kernel threads (default: cores)")
+    ap.add_argument("--repeat", type=int, default=3, help="interleaved timing rounds (best kept)")
+    ap.add_argument("--out", default=str(Path(__file__).parent / "results" / "sweep.json"))
+    ap.add_argument("--child", type=int, default=None, help=argparse.SUPPRESS)
+    args = ap.parse_args()
+    if args.child is not None:
+        print(json.dumps(child(args.child, args.angles, args.threads)))
+        return
+    sizes = [int(float(s)) for s in args.sizes.split(",")]
+    load_before = load()
+    rows = []
+    for size in sizes:  # memory: each size alone in a fresh process
+        cmd = [sys.executable, __file__, "--child", str(size), "--angles", str(args.angles)]
+        if args.threads:
+            cmd += ["--threads", str(args.threads)]
+        out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+        rows.append({**json.loads(out.strip().splitlines()[-1]), "angles": args.angles})
+    times = timings([r["designs"] for r in rows], args.angles, args.threads, args.repeat)
+    one_us = times["one_by_one_s"] * 1e6
+    for r in rows:
+        t = times[r["designs"]]
+        spec_s, compute_s = t["spec_s"], t["compute_s"]
+        r.update(
+            t,
+            total_s=spec_s + compute_s,
+            compute_us_per_design=compute_s / r["designs"] * 1e6,
+            cpu_us_per_design=t["compute_cpu_s"] / r["designs"] * 1e6,
+            compute_ns_per_design_angle=compute_s / (r["designs"] * r["angles"]) * 1e9,
+            one_by_one_us_per_design=one_us,
+            speedup_vs_one_by_one=one_us / (compute_s / r["designs"] * 1e6),
+        )
+        print(f"{r['designs']:>9} designs x {r['angles']} angles: spec {spec_s:.3f} s, compute "
+              f"{compute_s:.3f} s ({r['compute_us_per_design']:.2f} us/design, "
+              f"{r['compute_ns_per_design_angle']:.1f} ns/design/angle; CPU "
+              f"{r['cpu_us_per_design']:.2f} us/design), peak RSS "
+              f"{r['peak_rss_MiB']:.0f} MiB; {r['speedup_vs_one_by_one']:.0f}x the designs "
+              f"one by one ({one_us:.0f} us/design)", flush=True)  # fmt: skip
+    ref, ref_cpu = rows[-1]["compute_us_per_design"], rows[-1]["cpu_us_per_design"]
+    for r in rows:
+        r["per_design_vs_largest"] = r["compute_us_per_design"] / ref
+        r["cpu_per_design_vs_largest"] = r["cpu_us_per_design"] / ref_cpu
+    big = next((r for r in rows if r["designs"] == 1_000_000), None)
+    verdict = {
+        "per_design_within_15_percent": all(
+            abs(r["per_design_vs_largest"] - 1) <= 0.15 for r in rows
+        ),
+        "cpu_per_design_within_15_percent": all(
+            abs(r["cpu_per_design_vs_largest"] - 1) <= 0.15 for r in rows
+        ),
+    }
+    if big:
+        verdict.update(total_s_1e6=big["total_s"], under_60_s=big["total_s"] <= 60.0,
+                       peak_rss_MiB_1e6=big["peak_rss_MiB"],
+                       under_1_5_GiB=big["peak_rss_MiB"] <= 1536.0)  # fmt: skip
+    print("per design / largest size (wall, cpu):", ", ".join(f"{r['designs']}: "
+          f"{r['per_design_vs_largest']:.3f}, {r['cpu_per_design_vs_largest']:.3f}"
+          for r in rows))  # fmt: skip
+    print("verdict:", json.dumps(verdict), "load before/after:", load_before, load())
+    cmdline = "python benchmarks/bench_sweep.py " + " ".join(sys.argv[1:])
+    write_json(args.out, {"benchmark": "sweep", "command": cmdline.strip(), "machine": machine(),
+                          "load_before": load_before, "load_after": load(), "rows": rows,
+                          "verdict": verdict})  # fmt: skip
+    print(f"wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()
