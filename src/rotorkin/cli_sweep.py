@@ -14,10 +14,7 @@ import contextlib
 import importlib
 import json
 import math
-import os
-import shutil
 import sys
-import tempfile
 import time
 from pathlib import Path
 from typing import Annotated
@@ -25,6 +22,7 @@ from typing import Annotated
 import typer
 
 from rotorkin.errors import ConfigError
+from rotorkin.io.output import staged_output
 
 __all__ = ["register"]
 
@@ -44,26 +42,6 @@ def _headline(kind: str) -> tuple:
 def _note(message: str, quiet: bool) -> None:
     if not quiet:
         print(f"rotorkin: note: {message}", file=sys.stderr)
-
-
-@contextlib.contextmanager
-def _staging(out: Path):
-    """A staging folder next to ``out``; its files are moved into ``out`` at the end."""
-    if out.exists() and not out.is_dir():
-        raise ConfigError(f"--out = {str(out)!r} is not admissible: it is a file, not a folder")
-    parent = out.parent if out.parent != Path("") else Path(".")
-    try:
-        parent.mkdir(parents=True, exist_ok=True)
-        stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.tmp-", dir=parent))
-    except OSError as exc:
-        raise ConfigError(f"--out = {str(out)!r} cannot be written: {exc.strerror}") from None
-    try:
-        yield stage
-        out.mkdir(parents=True, exist_ok=True)
-        for item in sorted(stage.iterdir()):
-            os.replace(item, out / item.name)
-    finally:
-        shutil.rmtree(stage, ignore_errors=True)
 
 
 def _client(workers, scheduler):
@@ -197,7 +175,7 @@ def register(app) -> None:
             if why:
                 _note(f"{why}: evaluated design by design by the scalar study (slow)", quiet)
         written, main_ds = [], None
-        with _client(workers, scheduler) as client, _staging(outdir) as stage:
+        with _client(workers, scheduler) as client, staged_output(outdir) as (stage, _):
             for recipe, spec in specs:
                 if recipe is None:
                     main_ds = execute(
@@ -295,7 +273,7 @@ def register(app) -> None:
             "inadmissible_samples": int(np.count_nonzero(ds["reason"].values)),
             "metrics": stats,
         }
-        with _staging(outdir) as stage:
+        with staged_output(outdir) as (stage, _):
             (stage / "tolerance.json").write_text(json.dumps(_jsonable(doc), indent=2) + "\n")
             write_dataset(ds, stage / "tolerance.nc")
             fs.fig_tolerance(ds, stats, drawn, stage / "tolerance_histograms.png")

@@ -12,16 +12,13 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import shutil
-import tempfile
 from pathlib import Path
 from typing import Annotated
 
 import numpy as np
 import typer
 
-from rotorkin.errors import ConfigError, RotorkinError
+from rotorkin.errors import RotorkinError
 
 __all__ = ["register", "write_synthesis"]
 
@@ -154,18 +151,9 @@ def write_synthesis(result, new_raw: dict, outdir: Path, meta: dict) -> list[Pat
     list of Path
         The files written.
     """
-    from rotorkin.io.output import to_toml
+    from rotorkin.io.output import staged_output, to_toml
 
-    outdir = Path(outdir)
-    if outdir.exists() and not outdir.is_dir():
-        raise ConfigError(f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder")
-    parent = outdir.parent if outdir.parent != Path("") else Path(".")
-    try:
-        parent.mkdir(parents=True, exist_ok=True)
-        stage = Path(tempfile.mkdtemp(prefix=f".{outdir.name}.tmp-", dir=parent))
-    except OSError as exc:
-        raise ConfigError(f"--out = {str(outdir)!r} cannot be written: {exc.strerror}") from None
-    try:
+    with staged_output(outdir) as (stage, written):
         doc = {
             **meta,
             "title": result.title,
@@ -180,14 +168,7 @@ def write_synthesis(result, new_raw: dict, outdir: Path, meta: dict) -> list[Pat
         for fname, columns in result.tables.items():
             _write_csv(stage / fname, columns)
         result.plot(stage)
-        outdir.mkdir(parents=True, exist_ok=True)
-        written = []
-        for item in sorted(stage.iterdir()):
-            os.replace(item, outdir / item.name)
-            written.append(outdir / item.name)
-        return written
-    finally:
-        shutil.rmtree(stage, ignore_errors=True)
+    return written
 
 
 def _print(result, outdir, written):

@@ -15,15 +15,13 @@ File names: ``<name>_<part>.dxf|stl|step`` and ``<name>_<part>_<curve>.csv``
 
 from __future__ import annotations
 
-import os
-import shutil
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from rotorkin._angles import fmt_mm
 from rotorkin.errors import ConfigError, ParameterError
+from rotorkin.io.output import staged_output
 
 __all__ = ["FORMATS", "DEFAULT_TOLERANCE", "export", "planar_parts", "profile_checks"]
 
@@ -204,35 +202,12 @@ def export(cfg: dict, fmt: str, outdir, name: str) -> list[Path]:
 
         _bd()
     parts = planar_parts(cfg)[0] if kind in _PLANAR else None
-    outdir = Path(outdir)
-    if outdir.exists() and not outdir.is_dir():
-        raise ConfigError(f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder")
-    parent = outdir.parent
-    try:
-        parent.mkdir(parents=True, exist_ok=True)
-        stage = Path(tempfile.mkdtemp(prefix=f".{outdir.name}.tmp-", dir=parent))
-    except OSError as exc:
-        raise ConfigError(f"--out = {str(outdir)!r} cannot be written: {exc.strerror}") from None
-    try:
-        written = []
+    with staged_output(outdir) as (stage, written):
         for f in fmts:
             if parts is None:
                 from rotorkin.io.cad_wobble import export_wobble
 
-                written += [Path(p) for p in export_wobble(cfg, f, stage, name)]
+                export_wobble(cfg, f, stage, name)
             else:
-                written += _write_planar(parts, f, stage, name)
-        try:
-            outdir.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise ConfigError(
-                f"--out = {str(outdir)!r} cannot be written: {exc.strerror}"
-            ) from None
-        final = []
-        for p in written:
-            target = outdir / p.name
-            os.replace(p, target)
-            final.append(target)
-        return final
-    finally:
-        shutil.rmtree(stage, ignore_errors=True)
+                _write_planar(parts, f, stage, name)
+    return written

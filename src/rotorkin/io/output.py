@@ -7,6 +7,7 @@ output behind.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
@@ -18,7 +19,7 @@ import numpy as np
 
 from rotorkin.errors import ConfigError
 
-__all__ = ["write_outputs", "to_toml"]
+__all__ = ["write_outputs", "staged_output", "to_toml"]
 
 
 def write_outputs(result, outdir: Path, raw_config: dict, meta: dict) -> list[Path]:
@@ -39,6 +40,30 @@ def write_outputs(result, outdir: Path, raw_config: dict, meta: dict) -> list[Pa
     list of Path
         The files written, in ``outdir``.
     """
+    with staged_output(outdir) as (stage, written):
+        summary = {**meta, **result.summary}
+        (stage / "summary.json").write_text(json.dumps(_jsonable(summary), indent=2) + "\n")
+        _write_csv(stage / "motion.csv", result.columns)
+        (stage / "config.toml").write_text(to_toml(raw_config))
+        figures = result.plot(stage)
+        (stage / "README.txt").write_text(_readme(result, [Path(f).name for f in figures]))
+    return written
+
+
+@contextlib.contextmanager
+def staged_output(outdir):
+    """A staging folder beside ``outdir`` whose files move into ``outdir`` at the end.
+
+    Yields ``(stage, written)``: write every output file into ``stage``; when the
+    block ends without an error they are moved into ``outdir`` (created if missing)
+    with ``os.replace``, in name order, and ``written`` receives their final paths.
+    On an error nothing reaches ``outdir``. The staging folder is always removed.
+
+    Raises
+    ------
+    ConfigError
+        ``outdir`` is a file, or it or its parent cannot be created.
+    """
     outdir = Path(outdir)
     if outdir.exists() and not outdir.is_dir():
         raise ConfigError(f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder")
@@ -48,19 +73,18 @@ def write_outputs(result, outdir: Path, raw_config: dict, meta: dict) -> list[Pa
         stage = Path(tempfile.mkdtemp(prefix=f".{outdir.name}.tmp-", dir=parent))
     except OSError as exc:
         raise ConfigError(f"--out = {str(outdir)!r} cannot be written: {exc.strerror}") from None
+    written: list[Path] = []
     try:
-        summary = {**meta, **result.summary}
-        (stage / "summary.json").write_text(json.dumps(_jsonable(summary), indent=2) + "\n")
-        _write_csv(stage / "motion.csv", result.columns)
-        (stage / "config.toml").write_text(to_toml(raw_config))
-        figures = result.plot(stage)
-        (stage / "README.txt").write_text(_readme(result, [Path(f).name for f in figures]))
-        outdir.mkdir(parents=True, exist_ok=True)
-        written = []
+        yield stage, written
+        try:
+            outdir.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise ConfigError(
+                f"--out = {str(outdir)!r} cannot be written: {exc.strerror}"
+            ) from None
         for item in sorted(stage.iterdir()):
             os.replace(item, outdir / item.name)
             written.append(outdir / item.name)
-        return written
     finally:
         shutil.rmtree(stage, ignore_errors=True)
 
