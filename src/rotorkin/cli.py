@@ -16,6 +16,7 @@ from typing import Annotated
 import typer
 
 from rotorkin import __version__
+from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
 from rotorkin.errors import RotorkinError
 
 app = typer.Typer(
@@ -44,21 +45,14 @@ def _root(
 
 @app.command()
 def run(
-    config: Annotated[
-        Path | None, typer.Argument(help="TOML config; default: the wobble-cam-engine example.")
-    ] = None,
-    example: Annotated[
-        str | None, typer.Option("--example", "-e", help="Run a built-in example by name.")
-    ] = None,
-    set_: Annotated[
-        list[str] | None,
-        typer.Option("--set", "-s", help="Override a key: section.key=VALUE (repeatable)."),
-    ] = None,
+    config: ConfigArg = None,
+    example: ExampleOpt = None,
+    set_: SetOpt = None,
     out: Annotated[
         Path | None,
         typer.Option("--out", "-o", help="Output folder; default ./rotorkin-out/<name>."),
     ] = None,
-    quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing on success.")] = False,
+    quiet: QuietOpt = False,
     report: Annotated[
         bool, typer.Option("--report", help="Also write report.html (interactive, offline).")
     ] = False,

@@ -12,6 +12,7 @@ from typing import Annotated
 
 import typer
 
+from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
 from rotorkin.errors import RotorkinError
 
 
@@ -67,16 +68,9 @@ def register(app) -> None:
 
     @app.command("export")
     def export_cmd(
-        config: Annotated[
-            Path | None, typer.Argument(help="TOML config; default: the wobble-cam-engine example.")
-        ] = None,
-        example: Annotated[
-            str | None, typer.Option("--example", "-e", help="Use a built-in example by name.")
-        ] = None,
-        set_: Annotated[
-            list[str] | None,
-            typer.Option("--set", "-s", help="Override a key: section.key=VALUE (repeatable)."),
-        ] = None,
+        config: ConfigArg = None,
+        example: ExampleOpt = None,
+        set_: SetOpt = None,
         fmt: Annotated[
             str,
             typer.Option(
@@ -87,9 +81,7 @@ def register(app) -> None:
             Path | None,
             typer.Option("--out", "-o", help="Output folder; default ./rotorkin-out/<name>/cad."),
         ] = None,
-        quiet: Annotated[
-            bool, typer.Option("--quiet", "-q", help="Print nothing on success.")
-        ] = False,
+        quiet: QuietOpt = False,
     ):
         """Write CAD files of the cam(s): DXF profiles, STL/STEP solids, CSV point lists (mm)."""
         from rotorkin.io.config import load_config

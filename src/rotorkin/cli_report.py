@@ -11,22 +11,17 @@ from typing import Annotated
 
 import typer
 
+from rotorkin.cli_options import ConfigArg, ExampleOpt, SetOpt
+
 
 def register(app) -> None:
     """Add ``report`` to the typer ``app``."""
 
     @app.command()
     def report(
-        config: Annotated[
-            Path | None, typer.Argument(help="TOML config; default: the wobble-cam-engine example.")
-        ] = None,
-        example: Annotated[
-            str | None, typer.Option("--example", "-e", help="Use a built-in example by name.")
-        ] = None,
-        set_: Annotated[
-            list[str] | None,
-            typer.Option("--set", "-s", help="Override a key: section.key=VALUE (repeatable)."),
-        ] = None,
+        config: ConfigArg = None,
+        example: ExampleOpt = None,
+        set_: SetOpt = None,
         out: Annotated[
             Path | None,
             typer.Option("--out", "-o", help="Output folder; default ./rotorkin-out/<name>."),

@@ -21,6 +21,7 @@ from typing import Annotated
 
 import typer
 
+from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
 from rotorkin.errors import ConfigError
 from rotorkin.io.output import staged_output
 
@@ -84,12 +85,9 @@ def register(app) -> None:
 
     @app.command()
     def sweep(
-        config: Annotated[Path | None, typer.Argument(
-            help="TOML config; default: the wobble-cam-engine example.")] = None,
-        example: Annotated[str | None, typer.Option(
-            "--example", "-e", help="Sweep a built-in example.")] = None,
-        set_: Annotated[list[str] | None, typer.Option(
-            "--set", "-s", help="Override a key of the base design: section.key=VALUE.")] = None,
+        config: ConfigArg = None,
+        example: ExampleOpt = None,
+        set_: SetOpt = None,
         vary: Annotated[list[str] | None, typer.Option(
             "--vary", help="KEY=START:STOP:N or KEY=v1,v2,... with units (repeatable; one "
             "dimension each, the last varies fastest).")] = None,
@@ -112,7 +110,7 @@ def register(app) -> None:
         paper_figures: Annotated[bool, typer.Option(
             "--paper-figures", help="Also run the sweeps of the paper's figures and draw them."
         )] = False,
-        quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing on success.")]
+        quiet: QuietOpt
         = False,
     ):  # fmt: skip
         """Sweep config keys over ranges or lists; write sweep.nc (netCDF) and figures."""
@@ -205,12 +203,9 @@ def register(app) -> None:
 
     @app.command()
     def tolerance(
-        config: Annotated[Path | None, typer.Argument(
-            help="TOML config; default: the wobble-cam-engine example.")] = None,
-        example: Annotated[str | None, typer.Option(
-            "--example", "-e", help="Use a built-in example.")] = None,
-        set_: Annotated[list[str] | None, typer.Option(
-            "--set", "-s", help="Override a key of the nominal design: section.key=VALUE.")]
+        config: ConfigArg = None,
+        example: ExampleOpt = None,
+        set_: SetOpt
         = None,
         tol: Annotated[list[str] | None, typer.Option(
             "--tol", help="KEY=WIDTH (uniform, +- WIDTH) or KEY=WIDTH:normal (sigma), with "
@@ -225,7 +220,7 @@ def register(app) -> None:
         out: Annotated[Path | None, typer.Option(
             "--out", "-o", help="Output folder; default ./rotorkin-out/<name>-tolerance.")]
         = None,
-        quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing on success.")]
+        quiet: QuietOpt
         = False,
     ):  # fmt: skip
         """Monte-Carlo tolerance analysis; write tolerance.json, tolerance.nc, histograms."""

@@ -18,6 +18,7 @@ from typing import Annotated
 import numpy as np
 import typer
 
+from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
 from rotorkin.errors import RotorkinError
 
 __all__ = ["register", "write_synthesis"]
@@ -34,16 +35,9 @@ def register(app) -> None:
 
     @app.command()
     def synthesize(
-        config: Annotated[
-            Path | None, typer.Argument(help="TOML config; default: the wobble-cam-engine example.")
-        ] = None,
-        example: Annotated[
-            str | None, typer.Option("--example", "-e", help="Start from a built-in example.")
-        ] = None,
-        set_: Annotated[
-            list[str] | None,
-            typer.Option("--set", "-s", help="Override a key: section.key=VALUE (repeatable)."),
-        ] = None,
+        config: ConfigArg = None,
+        example: ExampleOpt = None,
+        set_: SetOpt = None,
         objective: Annotated[
             str | None,
             typer.Option(
@@ -83,9 +77,7 @@ def register(app) -> None:
                 "--out", "-o", help="Output folder; default ./rotorkin-out/<name>-<objective>."
             ),
         ] = None,
-        quiet: Annotated[
-            bool, typer.Option("--quiet", "-q", help="Print nothing on success.")
-        ] = False,
+        quiet: QuietOpt = False,
     ):
         """Synthesize a design for an objective; compare it with the config's (the paper's)."""
         from rotorkin import __version__
