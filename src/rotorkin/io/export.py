@@ -51,16 +51,9 @@ def _tolerance(cfg: dict, scale: float) -> float:
 
 def _rhomboid(cfg: dict, with_parts: bool = True):
     from rotorkin.cams import rhomboid
-    from rotorkin.drives import rhomboid_cam as rc
-    from rotorkin.studies._common import build_params
+    from rotorkin.studies.rhomboid_cam import drive_params
 
-    d = cfg["drive"]
-    params = build_params(
-        rc.RhomboidCam,
-        "drive",
-        {"link_length": d["link_length"], "psi_min": d["psi_min"],
-         "a": tuple(d.get("a", ())), "b": tuple(d.get("b", ()))},
-    )  # fmt: skip
+    params = drive_params(cfg)
     cam = cfg.get("cam") or {}
     r = float(cam.get("roller_radius", 0.01))
     thickness = _positive(cfg, "cam", "thickness", 0.02)
@@ -72,16 +65,9 @@ def _rhomboid(cfg: dict, with_parts: bool = True):
 
 def _eccentric(cfg: dict, with_parts: bool = True):
     from rotorkin.cams import eccentric
-    from rotorkin.drives import eccentric_cam as ec
-    from rotorkin.studies._common import build_params
+    from rotorkin.studies.eccentric_cam import drive_params
 
-    d = cfg["drive"]
-    params = build_params(
-        ec.EccentricCam,
-        "drive",
-        {"disc_radius": d["disc_radius"], "eccentricity": d["eccentricity"],
-         "follower": d.get("follower", "knife_edge"), "roller_radius": d.get("roller_radius", 0.0)},
-    )  # fmt: skip
+    params = drive_params(cfg)
     thickness = _positive(cfg, "cam", "thickness", 0.02)
     tol = _tolerance(cfg, float(params.disc_radius))
     check = eccentric.profile_check(params)
@@ -91,20 +77,12 @@ def _eccentric(cfg: dict, with_parts: bool = True):
 
 def _guide_bar(cfg: dict, with_parts: bool = True):
     from rotorkin.cams import impeller
-    from rotorkin.drives import guide_bar as gb
     from rotorkin.io.config import VanePumpMachine
     from rotorkin.machines import vane_pump as vp
     from rotorkin.studies._common import build_params
+    from rotorkin.studies.guide_bar import drive_params
 
-    d = cfg["drive"]
-    params = build_params(
-        gb.GuideBar,
-        "drive",
-        {"lam": d["lambda"], "gear_ratio": d["gear_ratio"],
-         "input_gear_ratio": d.get("input_gear_ratio", 1.0), "phase": d.get("phase", np.pi),
-         "driver": d.get("driver", "crank")},
-        aliases={"lam": "lambda"},
-    )  # fmt: skip
+    params = drive_params(cfg)
     m = {**VanePumpMachine().model_dump(), **(cfg.get("machine") or {})}
     keys = ("vanes_per_impeller", "vane_angle", "hub_radius", "casing_radius", "axial_width")
     pump = build_params(vp.VanePump, "machine", {"drive": params, **{k: m[k] for k in keys}})

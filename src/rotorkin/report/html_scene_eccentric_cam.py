@@ -46,17 +46,10 @@ _FLUID = "#c6dbef"
 
 
 def _models(cfg):
-    d, m = cfg["drive"], cfg["machine"]
-    params = build_params(
-        ec.EccentricCam,
-        "drive",
-        {
-            "disc_radius": d["disc_radius"],
-            "eccentricity": d["eccentricity"],
-            "follower": d.get("follower", "knife_edge"),
-            "roller_radius": d.get("roller_radius", 0.0),
-        },
-    )
+    from rotorkin.studies.eccentric_cam import drive_params
+
+    m = cfg["machine"]
+    params = drive_params(cfg)
     keys = (
         "device_length",
         "bore",

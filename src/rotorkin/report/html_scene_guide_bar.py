@@ -50,19 +50,10 @@ _DISCHARGE, _SUCTION, _REST = "#f4a6a6", "#a6c8e8", "#dddddd"
 
 
 def _models(cfg):
-    d, m = cfg["drive"], cfg["machine"]
-    params = build_params(
-        gb.GuideBar,
-        "drive",
-        {
-            "lam": d["lambda"],
-            "gear_ratio": d["gear_ratio"],
-            "input_gear_ratio": d.get("input_gear_ratio", 1.0),
-            "phase": d.get("phase", np.pi),
-            "driver": d.get("driver", "crank"),
-        },
-        aliases={"lam": "lambda"},
-    )
+    from rotorkin.studies.guide_bar import drive_params
+
+    m = cfg["machine"]
+    params = drive_params(cfg)
     keys = ("vanes_per_impeller", "vane_angle", "hub_radius", "casing_radius", "axial_width")
     pump = build_params(
         vp.VanePump, "machine", {"drive": params, **{k: m[k] for k in keys if k in m}}

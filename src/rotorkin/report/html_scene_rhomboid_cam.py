@@ -50,17 +50,10 @@ _GROW, _SHRINK, _RHOMBUS = "#fdae6b", "#9ecae1", "#6a3d9a"
 
 
 def _models(cfg):
-    d, m = cfg["drive"], cfg["machine"]
-    params = build_params(
-        rc.RhomboidCam,
-        "drive",
-        {
-            "link_length": d["link_length"],
-            "psi_min": d["psi_min"],
-            "a": tuple(d.get("a", ())),
-            "b": tuple(d.get("b", ())),
-        },
-    )
+    from rotorkin.studies.rhomboid_cam import drive_params
+
+    m = cfg["machine"]
+    params = drive_params(cfg)
     keys = ("blade_thickness", "inner_radius", "outer_radius", "axial_width", "blades_per_pair")
     machine = build_params(rb.RotaryBlade, "machine", {k: m[k] for k in keys if k in m})
     roller = float((cfg.get("cam") or {}).get("roller_radius", 0.0) or 0.0)

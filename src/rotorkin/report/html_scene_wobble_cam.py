@@ -23,8 +23,6 @@ drawn with 0.7 sphere radii: the paper gives neither, they are for the picture.
 
 from __future__ import annotations
 
-from dataclasses import fields
-
 import numpy as np
 
 from rotorkin.analysis import engine_cycle as ec
@@ -50,7 +48,6 @@ from rotorkin.report.html_scenes import (
     trace,
     xy_figure,
 )
-from rotorkin.studies._common import build_params
 
 __all__ = ["scene", "plots", "checks"]
 
@@ -59,29 +56,10 @@ _PLATE = 0.7  # plate radius, in sphere radii (drawing only)
 _STROKE_COLORS = ("#9ecae1", "#fdd0a2", "#fc9272", "#c7c7c7")  # intake, compr., power, exhaust
 
 
-def _section(cfg, name, cls):
-    section = cfg.get(name, {}) or {}
-    return {f.name: section[f.name] for f in fields(cls) if f.name in section}
-
-
 def _models(cfg):
-    d = cfg["drive"]
-    machine = build_params(tr.TwinRotor, "machine", _section(cfg, "machine", tr.TwinRotor))
-    params = build_params(
-        wc.WobbleCam,
-        "drive",
-        {
-            "plate_tilt": d["plate_tilt"],
-            "roller_axis_angle": d["roller_axis_angle"],
-            "spin_ratio": d["spin_ratio"],
-            "sphere_radius": d["sphere_radius"],
-            "pistons_per_rotor": machine.pistons_per_rotor,
-            "spin_a": tuple(d.get("spin_a", ())),
-            "spin_b": tuple(d.get("spin_b", ())),
-        },
-    )
-    cycle = build_params(ec.IdealCycle, "loads", _section(cfg, "loads", ec.IdealCycle))
-    return params, machine, cycle
+    from rotorkin.studies.wobble_cam import models
+
+    return models(cfg)
 
 
 def _groove_period(params) -> float:

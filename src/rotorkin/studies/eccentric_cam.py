@@ -29,7 +29,7 @@ from rotorkin.machines import opposed_piston as op
 from rotorkin.studies import StudyResult
 from rotorkin.studies._common import angle_grid, build_params, time_domain
 
-__all__ = ["evaluate", "HEADLINE"]
+__all__ = ["evaluate", "drive_params", "HEADLINE"]
 
 #: Summary keys printed by the command line, in order.
 HEADLINE = (
@@ -284,6 +284,22 @@ def _reactor_columns(reactor, inertia, speed, beta) -> tuple[dict, dict]:
     return cols, {**_REACTOR_DOCS, **tdocs}
 
 
+def drive_params(cfg: dict) -> ec.EccentricCam:
+    """The drive's parameters from a validated config (SI); errors name the config keys."""
+    d = cfg["drive"]
+    params = build_params(
+        ec.EccentricCam,
+        "drive",
+        {
+            "disc_radius": d["disc_radius"],
+            "eccentricity": d["eccentricity"],
+            "follower": d.get("follower", "knife_edge"),
+            "roller_radius": d.get("roller_radius", 0.0),
+        },
+    )
+    return params
+
+
 def evaluate(cfg: dict) -> StudyResult:
     """Run the eccentric-cam reactor study on a validated config (SI values).
 
@@ -303,17 +319,7 @@ def evaluate(cfg: dict) -> StudyResult:
         Summary keys: see :data:`HEADLINE`, ``docs/drives/eccentric_cam.md`` and
         ``docs/machines/opposed_piston.md``.
     """
-    d = cfg["drive"]
-    params = build_params(
-        ec.EccentricCam,
-        "drive",
-        {
-            "disc_radius": d["disc_radius"],
-            "eccentricity": d["eccentricity"],
-            "follower": d.get("follower", "knife_edge"),
-            "roller_radius": d.get("roller_radius", 0.0),
-        },
-    )
+    params = drive_params(cfg)
     machine, run = _defaults(cfg)
     reactor = build_params(
         op.OpposedPiston,

@@ -34,7 +34,7 @@ from rotorkin.machines import vane_pump as vp
 from rotorkin.studies import StudyResult
 from rotorkin.studies._common import angle_grid, build_params, time_domain
 
-__all__ = ["evaluate", "HEADLINE"]
+__all__ = ["evaluate", "drive_params", "HEADLINE"]
 
 #: Summary keys printed by the command line, in order.
 HEADLINE = (
@@ -338,6 +338,24 @@ def _pump_columns(pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
     return cols, {**_PUMP_DOCS, **tdocs}
 
 
+def drive_params(cfg: dict) -> gb.GuideBar:
+    """The drive's parameters from a validated config (SI); errors name the config keys."""
+    d = cfg["drive"]
+    params = build_params(
+        gb.GuideBar,
+        "drive",
+        {
+            "lam": d["lambda"],
+            "gear_ratio": d["gear_ratio"],
+            "input_gear_ratio": d.get("input_gear_ratio", 1.0),
+            "phase": d.get("phase", np.pi),
+            "driver": d.get("driver", "crank"),
+        },
+        aliases={"lam": "lambda"},
+    )
+    return params
+
+
 def evaluate(cfg: dict) -> StudyResult:
     """Run the guide-bar pump study on a validated config (SI values).
 
@@ -357,19 +375,7 @@ def evaluate(cfg: dict) -> StudyResult:
         Summary keys: see :data:`HEADLINE`, ``docs/drives/guide_bar.md`` and
         ``docs/machines/vane_pump.md``.
     """
-    d = cfg["drive"]
-    params = build_params(
-        gb.GuideBar,
-        "drive",
-        {
-            "lam": d["lambda"],
-            "gear_ratio": d["gear_ratio"],
-            "input_gear_ratio": d.get("input_gear_ratio", 1.0),
-            "phase": d.get("phase", np.pi),
-            "driver": d.get("driver", "crank"),
-        },
-        aliases={"lam": "lambda"},
-    )
+    params = drive_params(cfg)
     machine, loads, run = _defaults(cfg)
     m7 = float(loads["impeller_torque_1"])
     m8 = float(loads["impeller_torque_2"])

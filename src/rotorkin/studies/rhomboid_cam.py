@@ -33,7 +33,15 @@ from rotorkin.machines import rotary_blade as rb
 from rotorkin.studies import StudyResult
 from rotorkin.studies._common import angle_grid, build_params, time_domain
 
-__all__ = ["evaluate", "HEADLINE", "Loads", "State", "machine_state", "indicated_work_per_period"]
+__all__ = [
+    "evaluate",
+    "drive_params",
+    "HEADLINE",
+    "Loads",
+    "State",
+    "machine_state",
+    "indicated_work_per_period",
+]
 
 #: Summary keys printed by the command line, in order.
 HEADLINE = (
@@ -409,6 +417,22 @@ def _defaults(cfg: dict) -> dict:
     return out
 
 
+def drive_params(cfg: dict) -> rc.RhomboidCam:
+    """The drive's parameters from a validated config (SI); errors name the config keys."""
+    d = cfg["drive"]
+    params = build_params(
+        rc.RhomboidCam,
+        "drive",
+        {
+            "link_length": d["link_length"],
+            "psi_min": d["psi_min"],
+            "a": tuple(d.get("a", ())),
+            "b": tuple(d.get("b", ())),
+        },
+    )
+    return params
+
+
 def evaluate(cfg: dict) -> StudyResult:
     """Run the rotary-blade engine study on a validated config (SI values).
 
@@ -426,17 +450,7 @@ def evaluate(cfg: dict) -> StudyResult:
         ``docs/machines/rotary_blade.md``.
     """
     cfg = _defaults(cfg)
-    d = cfg["drive"]
-    params = build_params(
-        rc.RhomboidCam,
-        "drive",
-        {
-            "link_length": d["link_length"],
-            "psi_min": d["psi_min"],
-            "a": tuple(d.get("a", ())),
-            "b": tuple(d.get("b", ())),
-        },
-    )
+    params = drive_params(cfg)
     m1 = float(cfg["loads"]["torque_high"])
     m2 = float(cfg["loads"]["torque_low"])
     machine, loads, extremes = _machine_setup(cfg, params)

@@ -32,7 +32,7 @@ from rotorkin.machines import twin_rotor as tr
 from rotorkin.studies import StudyResult
 from rotorkin.studies._common import angle_grid, build_params, time_domain
 
-__all__ = ["evaluate", "HEADLINE"]
+__all__ = ["evaluate", "models", "HEADLINE"]
 
 #: Summary keys printed by the command line, in order.
 HEADLINE = (
@@ -345,6 +345,28 @@ def _engine_columns(params, machine, cycle, speed, theta):
     return cols, docs, tsummary
 
 
+def models(cfg: dict) -> tuple[wc.WobbleCam, tr.TwinRotor, ec.IdealCycle]:
+    """Drive, machine and cycle parameters from a validated config (SI); errors name the keys."""
+    d = cfg["drive"]
+    machine = build_params(tr.TwinRotor, "machine", _section(cfg, "machine", tr.TwinRotor))
+    params = build_params(
+        wc.WobbleCam,
+        "drive",
+        {
+            "plate_tilt": d["plate_tilt"],
+            "roller_axis_angle": d["roller_axis_angle"],
+            "spin_ratio": d["spin_ratio"],
+            "sphere_radius": d["sphere_radius"],
+            "pistons_per_rotor": machine.pistons_per_rotor,
+            "spin_a": tuple(d.get("spin_a", ())),
+            "spin_b": tuple(d.get("spin_b", ())),
+        },
+        aliases={"pistons_per_rotor": "machine.pistons_per_rotor"},
+    )
+    cycle = build_params(ec.IdealCycle, "loads", _section(cfg, "loads", ec.IdealCycle))
+    return params, machine, cycle
+
+
 def evaluate(cfg: dict) -> StudyResult:
     """Run the twin-rotor engine study on a validated config (SI values).
 
@@ -363,24 +385,8 @@ def evaluate(cfg: dict) -> StudyResult:
         Summary keys: see :data:`HEADLINE` and the docs pages
         ``docs/drives/wobble_cam.md`` and ``docs/machines/twin_rotor.md``.
     """
-    d = cfg["drive"]
-    machine = build_params(tr.TwinRotor, "machine", _section(cfg, "machine", tr.TwinRotor))
-    params = build_params(
-        wc.WobbleCam,
-        "drive",
-        {
-            "plate_tilt": d["plate_tilt"],
-            "roller_axis_angle": d["roller_axis_angle"],
-            "spin_ratio": d["spin_ratio"],
-            "sphere_radius": d["sphere_radius"],
-            "pistons_per_rotor": machine.pistons_per_rotor,
-            "spin_a": tuple(d.get("spin_a", ())),
-            "spin_b": tuple(d.get("spin_b", ())),
-        },
-        aliases={"pistons_per_rotor": "machine.pistons_per_rotor"},
-    )
+    params, machine, cycle = models(cfg)
     layout = _layout(params, machine)
-    cycle = build_params(ec.IdealCycle, "loads", _section(cfg, "loads", ec.IdealCycle))
     run = cfg.get("run", {})
     speed = run.get("speed", _DEFAULT_SPEED)
     summary = _summary(params, layout)
