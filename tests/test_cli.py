@@ -97,3 +97,25 @@ def test_examples_and_keys_commands(capsys):
     assert main(["keys", "rhomboid_cam"]) == 0
     assert "drive.psi_min" in capsys.readouterr().out
     assert main(["keys", "nope"]) == 2
+
+
+def test_a_rerun_into_the_same_folder_leaves_no_stale_files(tmp_path, capsys):
+    """The wobble-cam figures of a first run do not stay beside a second run's summary;
+    a file the user put there stays."""
+    out = tmp_path / "mix"
+    assert main(["run", "--out", str(out)]) == 0
+    first = {p.name for p in out.iterdir()}
+    (out / "my-notes.txt").write_text("keep me")
+    assert main(["run", "--example", "eccentric-reactor", "--out", str(out)]) == 0
+    capsys.readouterr()
+    second = {p.name for p in out.iterdir() if not p.name.startswith(".")}
+    wobble_only = {n for n in first if n.startswith("fig08_roller") or n.startswith("fig09_")}
+    assert wobble_only, "the first run should have written the wobble-cam figures"
+    assert not wobble_only & second
+    assert (out / "my-notes.txt").read_text() == "keep me"
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["name"] == "eccentric-reactor"
+    expected = {"summary.json", "motion.csv", "config.toml", "README.txt", "my-notes.txt"}
+    figures = {n for n in second if n.endswith(".png")}
+    assert second == expected | figures
+    assert figures == {n for n in (out / "README.txt").read_text().split() if n.endswith(".png")}

@@ -173,7 +173,7 @@ def register(app) -> None:
             if why:
                 _note(f"{why}: evaluated design by design by the scalar study (slow)", quiet)
         written, main_ds = [], None
-        with _client(workers, scheduler) as client, staged_output(outdir) as (stage, _):
+        with _client(workers, scheduler) as client, staged_output(outdir, "sweep") as (stage, _):
             for recipe, spec in specs:
                 if recipe is None:
                     main_ds = execute(
@@ -268,7 +268,7 @@ def register(app) -> None:
             "inadmissible_samples": int(np.count_nonzero(ds["reason"].values)),
             "metrics": stats,
         }
-        with staged_output(outdir) as (stage, _):
+        with staged_output(outdir, "tolerance") as (stage, _):
             (stage / "tolerance.json").write_text(json.dumps(_jsonable(doc), indent=2) + "\n")
             write_dataset(ds, stage / "tolerance.nc")
             fs.fig_tolerance(ds, stats, drawn, stage / "tolerance_histograms.png")

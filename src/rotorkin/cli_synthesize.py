@@ -145,7 +145,7 @@ def write_synthesis(result, new_raw: dict, outdir: Path, meta: dict) -> list[Pat
     """
     from rotorkin.io.output import staged_output, to_toml
 
-    with staged_output(outdir) as (stage, written):
+    with staged_output(outdir, "synthesize") as (stage, written):
         doc = {
             **meta,
             "title": result.title,

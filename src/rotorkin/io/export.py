@@ -180,7 +180,7 @@ def export(cfg: dict, fmt: str, outdir, name: str) -> list[Path]:
 
         _bd()
     parts = planar_parts(cfg)[0] if kind in _PLANAR else None
-    with staged_output(outdir) as (stage, written):
+    with staged_output(outdir, "export-" + "-".join(fmts)) as (stage, written):
         for f in fmts:
             if parts is None:
                 from rotorkin.io.cad_wobble import export_wobble

@@ -51,13 +51,19 @@ def write_outputs(result, outdir: Path, raw_config: dict, meta: dict) -> list[Pa
 
 
 @contextlib.contextmanager
-def staged_output(outdir):
+def staged_output(outdir, kind: str = "run"):
     """A staging folder beside ``outdir`` whose files move into ``outdir`` at the end.
 
     Yields ``(stage, written)``: write every output file into ``stage``; when the
     block ends without an error they are moved into ``outdir`` (created if missing)
     with ``os.replace``, in name order, and ``written`` receives their final paths.
     On an error nothing reaches ``outdir``. The staging folder is always removed.
+
+    Files that an earlier output of the same ``kind`` (``"run"``, ``"export"``, ...)
+    wrote into ``outdir`` and this one does not write again are removed, so that a
+    figure of the last run never sits beside the summary of this one. They are known
+    from a hidden manifest, ``outdir/.rotorkin-<kind>.files``; files rotorkin did not
+    write are never touched.
 
     Raises
     ------
@@ -82,11 +88,29 @@ def staged_output(outdir):
             raise ConfigError(
                 f"--out = {str(outdir)!r} cannot be written: {exc.strerror}"
             ) from None
+        manifest = outdir / f".rotorkin-{kind}.files"
+        earlier = _read_manifest(manifest)
         for item in sorted(stage.iterdir()):
             os.replace(item, outdir / item.name)
             written.append(outdir / item.name)
+        names = [p.name for p in written]
+        for name in sorted(set(earlier) - set(names)):
+            with contextlib.suppress(OSError):
+                (outdir / name).unlink()
+        tmp = stage / manifest.name
+        tmp.write_text("\n".join(names) + "\n")
+        os.replace(tmp, manifest)
     finally:
         shutil.rmtree(stage, ignore_errors=True)
+
+
+def _read_manifest(path: Path) -> list[str]:
+    """Names listed in a manifest; only plain names (no folders), so nothing outside is hit."""
+    try:
+        lines = path.read_text().splitlines()
+    except OSError:
+        return []
+    return [n for n in lines if n and n == Path(n).name and not n.startswith(".")]
 
 
 def _jsonable(summary: dict) -> dict:
