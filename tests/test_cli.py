@@ -55,6 +55,8 @@ def test_default_run_is_the_wobble_cam_engine(tmp_path, monkeypatch, capsys):
         (["run", "no-such-file.toml"], "does not exist"),
         (["run", "--example", "nope"], "--example"),
         (["run", "--frobnicate"], "No such option"),
+        (["run", "--set", "run.speed=-3000 rpm"], "run.speed = -3000 rpm"),
+        (["run", "-e", "guide-bar-pump", "--set", "machine.hub_radius=100 mm"], "hub_radius"),
     ],
 )
 def test_bad_input_exits_2_with_one_line_and_writes_nothing(args, words, tmp_path, capsys):

@@ -542,7 +542,7 @@ def test_study_columns():
 @pytest.mark.parametrize(
     ("machine", "loads", "key", "text"),
     [
-        ({"hub_radius": 0.08}, {}, "machine.casing_radius", "hub_radius = 80 mm"),
+        ({"hub_radius": 0.08}, {}, "machine.hub_radius", "casing_radius = 80 mm"),
         ({"hub_radius": 0.0}, {}, "machine.hub_radius", "> 0"),
         ({"axial_width": 0.0}, {}, "machine.axial_width", "> 0"),
         ({"vanes_per_impeller": 0}, {}, "machine.vanes_per_impeller", "integer >= 1"),

@@ -40,9 +40,11 @@ def shaft_speed(theta, speed, period: float):
     theta = np.asarray(theta, dtype=float)
     samples = np.atleast_1d(np.asarray(speed, dtype=float))
     if samples.ndim != 1 or samples.size == 0 or not np.all(np.isfinite(samples)):
-        raise ParameterError("run.speed", speed, "a finite speed or a list of finite speeds")
+        raise ParameterError(
+            "run.speed", _in_rpm(samples), "a finite speed or a list of finite speeds"
+        )
     if np.any(samples <= 0):
-        raise ParameterError("run.speed", speed, "speeds > 0 (the shaft turns one way)")
+        raise ParameterError("run.speed", _in_rpm(samples), "speeds > 0 (the shaft turns one way)")
     if samples.size == 1:
         omega = np.full(theta.shape, samples[0])
         return omega, np.zeros(theta.shape), np.zeros(theta.shape)
@@ -59,3 +61,9 @@ def shaft_speed(theta, speed, period: float):
     w1 = spline(phase, 1)
     w2 = spline(phase, 2)
     return omega, omega * w1, omega * (w1**2 + omega * w2)
+
+
+def _in_rpm(samples: np.ndarray) -> str:
+    """The speed as a person reads it in a message: rpm, not the rad/s used inside."""
+    values = [f"{v * 30.0 / np.pi:.6g}" for v in np.ravel(samples)]
+    return f"{values[0]} rpm" if len(values) == 1 else f"[{', '.join(values)}] rpm"

@@ -142,9 +142,9 @@ class VanePump:
             raise ParameterError("hub_radius", fmt_mm(rh), "hub_radius > 0 mm")
         if not (np.isfinite(rc) and rc > rh):
             raise ParameterError(
-                "casing_radius",
-                fmt_mm(rc),
-                f"casing_radius > hub_radius = {fmt_mm(rh)} (the vanes span the annulus between)",
+                "hub_radius",
+                fmt_mm(rh),
+                f"hub_radius < casing_radius = {fmt_mm(rc)} (the vanes span the annulus between)",
             )
         if not (np.isfinite(w) and w > 0.0):
             raise ParameterError("axial_width", fmt_mm(w), "axial_width > 0 mm")
