@@ -292,11 +292,12 @@ def _engine_columns(params, machine, cycle, speed, theta):
             ch.dvolume[j] * 1e6,
             f"dV/dtheta of a kind-{kind.upper()} chamber (exact).",
         )
-    add(
-        "chamber1_stroke",
-        state.stroke[0],
-        "Stroke of chamber 1: 0 intake, 1 compression, 2 power, 3 exhaust.",
-    )
+    for j in range(machine.chambers):
+        add(
+            f"chamber{j + 1}_stroke",
+            state.stroke[j],
+            f"Stroke of chamber {j + 1}: 0 intake, 1 compression, 2 power, 3 exhaust.",
+        )
     for j in range(machine.chambers):
         kind = "AB"[j % 2]
         add(
