@@ -46,6 +46,11 @@ def _designs(varies):
         yield idx, [f"{k}={vals[i]}" for k, vals, i in zip(keys, values, idx, strict=True)]
 
 
+def _visible(folder):
+    """Names of the files people read (not the hidden manifest of the staged output)."""
+    return sorted(p.name for p in folder.iterdir() if not p.name.startswith("."))
+
+
 def _close(a, b, scale):
     return a == b or (np.isnan(a) and np.isnan(b)) or abs(a - b) <= 1e-12 * max(abs(b), scale)
 
@@ -187,6 +192,88 @@ def test_cli_bad_specs_exit_2_with_one_line_and_write_nothing(args, words, tmp_p
     assert not out.exists() and not list(tmp_path.iterdir())
 
 
+def _cli_sweep(tmp_path, name, *varies):
+    out = tmp_path / name
+    args = ["sweep", "-e", "wobble-cam-engine", "--angles", "2001", "--out", str(out), "-q"]
+    for item in varies:
+        args += ["--vary", item]
+    assert main(args) == 0
+    return xr.open_dataset(out / "sweep.nc", engine="scipy").load()
+
+
+@pytest.mark.parametrize(
+    "varies",
+    [
+        ["drive.plate_tilt=20deg:65deg:46"],  # the issue's example
+        ["drive.plate_tilt=20deg:65deg:46", "machine.compression_ratio=14,20"],
+    ],
+)
+def test_cli_issue_example_marks_combinations_nan_with_a_reason(varies, tmp_path):
+    """Tilts at which the compression ratio needs a negative piston width are NaN, not fatal."""
+    ds = _cli_sweep(tmp_path, "sw", *varies)
+    tilt = ds["drive.plate_tilt"].values
+    assert np.allclose(tilt, np.arange(20.0, 66.0))
+    metrics = [k for k, v in ds.data_vars.items() if k != "reason"]
+    eps_values = ds["machine.compression_ratio"].values if len(varies) > 1 else [None]
+    n_bad = n_ok = 0
+    for i, t in enumerate(tilt):
+        for j, eps in enumerate(eps_values):
+            d = ds.isel(
+                {"drive.plate_tilt": i, **({} if eps is None else {"machine.compression_ratio": j})}
+            )
+            items = [f"drive.plate_tilt={t:g}deg"]
+            if eps is not None:
+                items.append(f"machine.compression_ratio={eps:g}")
+            cfg = load_config(None, "wobble-cam-engine", items)[0]
+            try:
+                res = evaluate(cfg)
+            except ParameterError as exc:
+                n_bad += 1
+                assert reason_text(ds, int(d["reason"])) == exc.name == "machine.compression_ratio"
+                assert all(np.isnan(float(d[m])) for m in metrics)
+                continue
+            n_ok += 1
+            assert int(d["reason"]) == 0
+            for m in ("chamber_swing_deg", "piston_width_deg", "slider_angle_max_deg",
+                      "compression_ratio_geometric", "peak_pressure_bar", "indicated_work_J",
+                      "max_plate_tilt_deg"):  # fmt: skip
+                assert float(d[m]) == pytest.approx(res.summary[m], rel=1e-12, abs=1e-12), m
+            # the sampled peaks on the sweep's 2001 angles vs the study's 20001: O(h^2)
+            assert float(d["rotor_accel_peak_per_rad"]) == pytest.approx(
+                res.summary["rotor_accel_peak_per_rad"], rel=2e-4
+            )
+    # eps = 10 is admissible up to 59 deg (eq. 21: 10.07 at 60 deg); eps = 14 and 20 further
+    if len(varies) == 1:
+        assert (n_ok, n_bad) == (40, 6)
+        assert np.all(ds["reason"].values[:40] == 0) and np.all(ds["reason"].values[40:] > 0)
+    else:
+        assert n_ok >= 80 and n_bad >= 1 and n_ok + n_bad == 92
+
+
+def test_a_value_past_its_own_limit_at_every_swept_partner_is_refused(tmp_path, capsys):
+    # 70 deg is past eq. 20 (65.53 deg at most, at 90 deg) for every roller axis angle swept
+    out = tmp_path / "no"
+    args = ["sweep", "-e", "wobble-cam-engine", "--vary", "drive.plate_tilt=50deg,62deg,70deg",
+            "--vary", "drive.roller_axis_angle=80deg,90deg", "--vary",
+            "machine.compression_ratio=30", "--out", str(out)]  # fmt: skip
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "at 70 deg crosses an admissible limit" in err
+    assert "drive.plate_tilt = 70 deg" in err and not out.exists()
+    # without 70 deg: 62 deg is past eq. 20 at 80 deg only (60.42 deg) -> NaN there, not fatal
+    ds = _cli_sweep(
+        tmp_path,
+        "ok",
+        "drive.plate_tilt=50deg,62deg",
+        "drive.roller_axis_angle=80deg,90deg",
+        "machine.compression_ratio=30",
+    )
+    reason = ds["reason"].values[:, :, 0]
+    assert reason_text(ds, reason[1, 0]) == "drive.plate_tilt"
+    assert reason[0, 0] == reason[0, 1] == reason[1, 1] == 0
+    assert np.isnan(float(ds["chamber_swing_deg"][1, 0, 0]))
+
+
 def test_cli_writes_sweep_nc_readable_by_another_netcdf_reader(tmp_path, capsys):
     from scipy.io import netcdf_file
 
@@ -207,8 +294,7 @@ def test_cli_writes_sweep_nc_readable_by_another_netcdf_reader(tmp_path, capsys)
     assert main(args) == 0
     printed = capsys.readouterr().out
     assert "sweep.nc" in printed and "14 designs" in printed
-    assert sorted(p.name for p in out.iterdir()) == ["README.txt", "sweep.nc",
-                                                     "sweep_overview.png"]  # fmt: skip
+    assert _visible(out) == ["README.txt", "sweep.nc", "sweep_overview.png"]
     with netcdf_file(out / "sweep.nc", "r", mmap=False) as f:
         swing = np.array(f.variables["chamber_swing_deg"][:])
         tilt = np.array(f.variables["drive.plate_tilt"][:])
@@ -226,7 +312,7 @@ def test_cli_writes_sweep_nc_readable_by_another_netcdf_reader(tmp_path, capsys)
 def test_paper_figures_of_the_guide_bar_match_eq5_eq6(tmp_path, capsys):
     out = tmp_path / "pf"
     assert main(["sweep", "-e", "guide-bar-pump", "--paper-figures", "--out", str(out), "-q"]) == 0
-    names = sorted(p.name for p in out.iterdir())
+    names = _visible(out)
     assert names == ["paper_fig10.png", "paper_fig10_11.nc", "paper_fig11.png", "paper_fig9.nc",
                      "paper_fig9.png"]  # fmt: skip
     for png in out.glob("*.png"):

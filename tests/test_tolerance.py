@@ -132,7 +132,7 @@ def test_cli_writes_json_netcdf_and_histograms(tmp_path, capsys):
     ]
     assert main(args) == 0
     assert "compression_ratio" in capsys.readouterr().out
-    assert sorted(p.name for p in out.iterdir()) == [
+    assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == [
         "README.txt",
         "tolerance.json",
         "tolerance.nc",

@@ -352,44 +352,147 @@ def to_dataset(spec: SweepSpec, flat: dict):
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
-def check_spec_values(spec: SweepSpec) -> None:
-    """Refuse a swept value that is inadmissible on its own (the other keys at their base).
+#: Designs per block of the admissibility scan of :func:`check_spec_values`.
+_CHECK_BLOCK = 1 << 18
+#: Combinations of the other swept keys tried per value when the scalar study checks it.
+_CHECK_SCALAR_TRIES = 64
 
-    A range "crossing an admissible limit" is refused here with one line; designs
-    inadmissible only in combination with other swept values become NaN with a
-    reason instead. Each swept value is checked by the kernel's admissibility
-    rules, then one design is run through the scalar study to check the base.
+
+def designs_at(spec: SweepSpec, index) -> Designs:
+    """The designs at the flat grid indices ``index`` (any order)."""
+    index = np.asarray(index, dtype=np.int64)
+    idx = np.unravel_index(index, spec.shape) if spec.varies else ()
+    table = {v.key: v.array()[i] for v, i in zip(spec.varies, idx, strict=True)}
+    return Designs(spec.base_cfg, table, index.size, spec.extra)
+
+
+def _slice_indices(shape: tuple, axis: int, j: int, start: int, stop: int) -> np.ndarray:
+    """Flat indices ``start:stop`` (C order) of the sub-grid where dimension ``axis`` is ``j``."""
+    sub = shape[:axis] + shape[axis + 1 :]
+    rest = np.unravel_index(np.arange(start, stop, dtype=np.int64), sub) if sub else ()
+    full_idx = (*rest[:axis], np.full(stop - start, j, dtype=np.int64), *rest[axis:])
+    return np.ravel_multi_index(full_idx, shape)
+
+
+def check_spec_values(spec: SweepSpec) -> None:
+    """Refuse a swept value that crosses its key's own admissible limit (one line).
+
+    A swept value is refused when every design of the grid that holds it is
+    inadmissible *because of that key* (the key the scalar study would name):
+    e.g. a plate tilt beyond the eq. 20 limit at every swept roller-axis angle,
+    or a compression ratio below the zero-width-piston ratio at every swept plate
+    tilt. A value inadmissible only in combination with other values (the other
+    swept keys or the base config), e.g. a plate tilt at which the base
+    compression ratio needs a negative piston width, is not refused: those
+    designs come out NaN with the violated key in ``reason``.
+
+    Kernel-evaluated sweeps are checked over the whole grid (vectorized, in
+    blocks, a spread sample first so that the usual grid needs one block); other
+    keys through the scalar study, at up to :data:`_CHECK_SCALAR_TRIES`
+    combinations of the other swept keys per value. Finally one admissible design
+    goes through the scalar study, to check the keys the kernels do not read.
+
+    Raises
+    ------
+    RotorkinError
+        One line naming the ``--vary`` item, the value and the study's message.
     """
+    from rotorkin.studies import evaluate
+
+    if not spec.varies:
+        return
+    kern = kernel_of(spec.drive_type)
+    code = {k: i for i, k in enumerate(reason_keys(spec.drive_type))}
+    keys = [v.key for v in spec.varies]
+    if kern.unsupported(spec.base_cfg) is None and set(keys) <= kern.KEYS:
+        admissible = _check_grid(spec, kern, code)
+    else:
+        admissible = _check_scalar(spec)
+    if admissible is not None:
+        try:
+            evaluate(designs_at(spec, [admissible]).config(0))
+        except ParameterError as exc:
+            raise RotorkinError(f"the base config is not admissible: {exc}") from None
+
+
+def _refuse(spec: SweepSpec, axis: int, j: int, flat: int):
+    """Raise the one-line error of value ``j`` of swept key ``axis`` (design ``flat``)."""
     from rotorkin.studies import evaluate
     from rotorkin.sweep.spec import display
 
-    drive_type = spec.drive_type
-    kern = kernel_of(drive_type)
-    code = {k: i for i, k in enumerate(reason_keys(drive_type))}
-    kernel_ok = kern.unsupported(spec.base_cfg) is None
-    for v in spec.varies:
-        p = Designs(spec.base_cfg, {v.key: v.array()}, len(v), spec.extra)
-        if kernel_ok and v.key in kern.KEYS:
-            bad = np.flatnonzero(kern.reasons(p, code))
-        else:
-            bad = []
-            for i in range(p.n):
-                try:
-                    evaluate(p.config(i))
-                except ParameterError:
-                    bad.append(i)
-                    break
-        if len(bad):
-            i = int(bad[0])
-            where = f"--vary {v.key}={v.text} at {display(v.field, v.values[i])}"
-            try:
-                evaluate(p.config(i))
-            except ParameterError as exc:
-                raise RotorkinError(f"{where} crosses an admissible limit: {exc}") from None
-            raise RotorkinError(f"{where} crosses an admissible limit of {v.key}")
-    # one design through the scalar study: the keys the kernels do not check (inertias ...)
-    first = {spec.varies[0].key: spec.varies[0].array()[:1]} if spec.varies else {}
+    v = spec.varies[axis]
+    where = f"--vary {v.key}={v.text} at {display(v.field, v.values[j])}"
     try:
-        evaluate(Designs(spec.base_cfg, first, 1).config(0))
+        evaluate(designs_at(spec, [flat]).config(0))
     except ParameterError as exc:
-        raise RotorkinError(f"the base config is not admissible: {exc}") from None
+        raise RotorkinError(f"{where} crosses an admissible limit: {exc}") from None
+    raise RotorkinError(f"{where} crosses an admissible limit of {v.key}")
+
+
+def _check_grid(spec: SweepSpec, kern, code: dict) -> int | None:
+    """Kernel admissibility over the grid; refuse own-limit values; an admissible design or None."""
+    shape, size = spec.shape, spec.size
+    own = [code.get(v.key, -1) for v in spec.varies]
+    # pending[k][j]: every design checked so far that holds value j of key k names key k
+    pending = [np.ones(n, dtype=bool) for n in shape]
+    admissible = None
+
+    def scan(index):
+        nonlocal admissible
+        r = kern.reasons(designs_at(spec, index), code)
+        ok = np.flatnonzero(r == 0)
+        if admissible is None and ok.size:
+            admissible = int(index[ok[0]])
+        idx = np.unravel_index(index, shape)
+        for k, i in enumerate(idx):
+            cleared = np.unique(i[r != own[k]])
+            pending[k][cleared] = False
+
+    # 1. a spread sample: every value of every key with a few pseudo-random partners
+    rng = np.random.default_rng(0)
+    sample = [np.arange(min(size, _CHECK_BLOCK), dtype=np.int64)]
+    for k, n in enumerate(shape):
+        reps = 4
+        multi = [rng.integers(0, m, size=n * reps) for m in shape]
+        multi[k] = np.repeat(np.arange(n), reps)
+        sample.append(np.ravel_multi_index(multi, shape))
+    scan(np.unique(np.concatenate(sample)))
+    # 2. the values still suspect: their whole slice of the grid, block by block
+    for k, n in enumerate(shape):
+        per = size // n
+        for j in np.flatnonzero(pending[k]):
+            for lo in range(0, per, _CHECK_BLOCK):
+                scan(_slice_indices(shape, k, int(j), lo, min(lo + _CHECK_BLOCK, per)))
+                if not pending[k][j]:
+                    break
+            else:
+                _refuse(spec, k, int(j), int(_slice_indices(shape, k, int(j), 0, 1)[0]))
+    return admissible
+
+
+def _check_scalar(spec: SweepSpec) -> None:
+    """The same rule through the scalar study (keys the kernel does not vary).
+
+    The designs tried went through the whole study, so there is no separate
+    base check afterwards (returns None).
+    """
+    from rotorkin.studies import evaluate
+
+    shape = spec.shape
+    for k, v in enumerate(spec.varies):
+        per = spec.size // len(v)
+        for j in range(len(v)):
+            tries = min(per, _CHECK_SCALAR_TRIES)
+            flats = _slice_indices(shape, k, j, 0, tries)
+            own_only = True
+            for flat in flats:
+                try:
+                    evaluate(designs_at(spec, [flat]).config(0))
+                except ParameterError as exc:
+                    if exc.name == v.key:
+                        continue
+                own_only = False
+                break
+            if own_only and tries == per:
+                _refuse(spec, k, j, int(flats[0]))
+    return None
