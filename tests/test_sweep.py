@@ -337,3 +337,56 @@ def test_paper_figures_of_the_eccentric_cams_hold_the_published_delta(tmp_path):
     assert float(d["delta"][i]) == pytest.approx(-0.5359, abs=1e-4)  # the paper's number
     assert (out / "paper_fig6.png").stat().st_size > 20_000
     assert (out / "paper_fig7.png").stat().st_size > 20_000
+
+
+def test_paper_figures_of_the_wobble_cam_hold_the_published_numbers(tmp_path):
+    out = tmp_path / "pf"
+    assert main(["sweep", "-e", "wobble-cam-engine", "--paper-figures", "--out", str(out),
+                 "-q"]) == 0  # fmt: skip
+    assert _visible(out) == ["paper_fig11.nc", "paper_fig11.png", "paper_fig12.nc",
+                             "paper_fig12.png", "paper_fig13.nc", "paper_fig13.png"]  # fmt: skip
+    for png in out.glob("*.png"):
+        assert png.stat().st_size > 20_000 and png.read_bytes()[:4] == b"\x89PNG"
+
+    # Fig. 13 (alpha = 90 deg): alpha'_max reaches 135 deg and alpha'_min 45 deg at the eq. 20
+    # limit, 65.53 deg; the sweep stops 0.05 deg short of it, so extrapolate its last points
+    ds = xr.open_dataset(out / "paper_fig13.nc", engine="scipy").load()
+    tilt = ds["drive.plate_tilt"].values
+    amax, amin = ds["slider_angle_max_deg"].values, ds["slider_angle_min_deg"].values
+    assert np.all(ds["reason"].values == 0) and tilt[0] == 0.5
+    assert tilt[-1] == pytest.approx(65.53 - 0.05, abs=5e-3)
+    fit_max = np.polynomial.Polynomial.fit(tilt[-4:], amax[-4:], 2)
+    fit_min = np.polynomial.Polynomial.fit(tilt[-4:], amin[-4:], 2)
+    assert fit_max(65.53) == pytest.approx(135.0, abs=0.02)
+    assert fit_min(65.53) == pytest.approx(45.0, abs=0.02)
+    assert 134.5 < amax[-1] < 135.0 and 45.0 < amin[-1] < 45.5
+    # with growing phi, alpha'_max rises and alpha'_min falls, faster and faster
+    assert np.all(np.diff(amax) > 0) and np.all(np.diff(amin) < 0)
+    assert np.all(np.diff(amax, 2) > 0) and np.all(np.diff(amin, 2) < 0)
+
+    # Fig. 12 (phi = 45 deg): Table 1's 109.47 / 70.53 deg at alpha = 90 deg, where the swing
+    # (38.94 deg) is largest; alpha'_max and alpha'_min both rise with alpha
+    ds = xr.open_dataset(out / "paper_fig12.nc", engine="scipy").load()
+    alpha = ds["drive.roller_axis_angle"].values
+    mid = int(np.argmax(ds["chamber_swing_deg"].values))
+    assert alpha[mid] == pytest.approx(90.0, abs=1e-9)
+    d = ds.isel({"drive.roller_axis_angle": mid})
+    assert float(d["slider_angle_max_deg"]) == pytest.approx(109.47, abs=5e-3)
+    assert float(d["slider_angle_min_deg"]) == pytest.approx(70.53, abs=5e-3)
+    assert float(d["chamber_swing_deg"]) == pytest.approx(38.94, abs=5e-3)
+    assert np.all(np.diff(ds["slider_angle_max_deg"].values) > 0)
+    assert np.all(np.diff(ds["slider_angle_min_deg"].values) > 0)
+
+    # Fig. 11: at alpha = 90 deg the neighbouring chambers A and B follow the same law (same
+    # extremes); at alpha != 90 deg they differ
+    ds = xr.open_dataset(out / "paper_fig11.nc", engine="scipy").load()
+    assert ds.sizes["point"] == 721 and np.allclose(ds["theta_deg"].values[[0, -1]], [0, 360])
+    for i, a in enumerate(ds["drive.roller_axis_angle"].values):
+        d = ds.isel({"drive.roller_axis_angle": i})
+        ca, cb = d["chamber_a_angle_deg"].values, d["chamber_b_angle_deg"].values
+        gap = abs(ca.min() - cb.min())
+        assert gap < 1e-9 if a == 90.0 else gap > 1.0, (a, gap)
+        # the curve's extremes on 721 angles are the closed form's to the sampling error
+        s = d["slider_angle_deg"].values
+        assert s.max() == pytest.approx(float(d["slider_angle_max_deg"]), abs=1e-3)
+        assert s.min() == pytest.approx(float(d["slider_angle_min_deg"]), abs=1e-3)
