@@ -17,7 +17,8 @@ from rotorkin.studies import evaluate
 
 
 def _files(path):
-    return sorted(p.name for p in path.iterdir())
+    """The output files (not the hidden manifest of what the last run wrote)."""
+    return sorted(p.name for p in path.iterdir() if not p.name.startswith("."))
 
 
 def test_guide_bar_outputs_and_run_round_trip(tmp_path, capsys):
@@ -149,6 +150,19 @@ def test_wobble_files(tmp_path):
             ["--max-pressure-angle", "rhomboid_cam"],
         ),
         (
+            ["-e", "wobble-cam-engine", "--objective", "sine_chamber"]
+            + ["--max-pressure-angle", "95 deg"],
+            ["--max-pressure-angle = 95 deg", "0 deg < angle < 90 deg"],
+        ),
+        (
+            ["-e", "rhomboid-engine", "--objective", "min_accel", "--max-pressure-angle", "0 deg"],
+            ["--max-pressure-angle = 0 deg", "0 deg < angle < 90 deg"],
+        ),
+        (
+            ["-e", "wobble-cam-engine", "--objective", "dwell_min_volume", "--target", "15 %"],
+            ["--target = 0.15", "< target <= 0.12", "pressure angle exceeds 45 deg"],
+        ),
+        (
             ["-e", "rhomboid-engine", "--objective", "min_accel", "--max-pressure-angle", "40"],
             ["--max-pressure-angle", "unit"],
         ),
@@ -191,3 +205,40 @@ def test_subprocess_eccentric(tmp_path):
     assert "options for |Delta| = 5 mm" in proc.stdout
     doc = json.loads((out / "synthesis.json").read_text())
     assert doc["metrics"]["round_trip_relative_error"] <= 1e-9
+
+
+@pytest.mark.parametrize(
+    "example, objective, key",
+    [("guide-bar-pump", "vane_angle", "vane_angle_deg"), ("eccentric-reactor", "gap_change", "")],
+)
+def test_bare_examples_have_a_default_target(tmp_path, example, objective, key):
+    out = tmp_path / "o"
+    assert main(["synthesize", "-e", example, "--objective", objective, "-o", str(out), "-q"]) == 0
+    doc = json.loads((out / "synthesis.json").read_text())
+    assert doc["target"] is None
+    new = load_config(out / "synthesized.toml", None, [])[0]
+    summary = evaluate(new).summary
+    if key:
+        assert abs(summary[key] - doc["metrics"]["target_vane_angle_deg"]) < 1e-7
+        assert abs(summary[key] - doc["metrics"]["baseline_vane_angle_deg"]) > 1.0
+    else:
+        want = doc["metrics"]["target_gap_change_mm"]
+        assert abs(abs(summary["gap_change_min_mm"]) - want) <= 1e-9 * want
+        assert want < abs(doc["metrics"]["baseline_gap_change_min_mm"])
+
+
+def test_target_help_names_each_objective():
+    from typer.testing import CliRunner
+
+    from rotorkin.cli import app
+
+    res = CliRunner().invoke(app, ["synthesize", "--help"], env={"COLUMNS": "400"})
+    assert res.exit_code == 0
+    text = " ".join(res.output.split())
+    for words in (
+        "dwell_min_volume (wobble_cam): the dwell fraction",
+        "vane_angle (guide_bar): the vane angle",
+        "gap_change (eccentric_cam): the tolerated peak gap change",
+        "No target for sine_chamber",
+    ):
+        assert words in text

@@ -104,7 +104,6 @@ def test_roller_baseline_keeps_roller():
         ("9 %", ["--target", "|Delta| < 80 mm"]),
         ("-1 %", ["--target", ">= 0"]),
         ("lots", ["--target", "'lots'"]),
-        (None, ["--target", "missing"]),
     ],
 )
 def test_errors(target, words):
@@ -115,3 +114,25 @@ def test_errors(target, words):
     assert "\n" not in msg
     for w in words:
         assert w in msg
+
+
+def test_default_target_half_the_design_gap():
+    """No --target: half the example's own peak gap change, met by the forward analysis."""
+    cfg, raw, _ = load_config(None, "eccentric-reactor", [])
+    res = synthesize(cfg, raw, "gap_change")
+    own = _peak(0.08, 0.04)  # 21.44 mm, knife edge R = 80 mm, e = 40 mm
+    want = 0.5 * own
+    assert res.metrics["target_gap_change_mm"] * 1e-3 == pytest.approx(want, rel=1e-12)
+    assert res.metrics["target_given"] is False
+    new = validate_config(synthesized_raw_config(raw, res.updates, "gap_change"))
+    summary = evaluate(new).summary
+    assert abs(abs(summary["gap_change_min_mm"]) * 1e-3 - want) <= 1e-9 * want
+    assert abs(summary["gap_change_min_mm"]) < abs(evaluate(cfg).summary["gap_change_min_mm"])
+    assert new["drive"]["eccentricity"] == pytest.approx(0.04, rel=1e-14)
+
+
+def test_default_target_of_a_flat_follower_is_zero():
+    cfg, raw, _ = load_config(None, "eccentric-reactor", ["drive.follower=flat"])
+    res = synthesize(cfg, raw, "gap_change")
+    assert res.metrics["target_gap_change_mm"] == 0.0
+    assert res.updates["drive"]["follower"] == "flat"

@@ -125,7 +125,6 @@ def load_config_from_raw(raw):
     "target, words",
     [
         ("30 deg", ["--target", "45 deg < gamma_0 < 90 deg", "drive.gear_ratio"]),
-        (None, ["--target", "missing"]),
         ("sixty", ["--target", "'sixty'"]),
         ("60 mm", ["--target", "angle"]),
     ],
@@ -138,3 +137,31 @@ def test_synthesize_errors(target, words):
     assert "\n" not in msg
     for w in words:
         assert w in msg
+
+
+def test_default_target_from_the_bare_example():
+    """No --target: 60 deg, not the example's 63.43 deg, reached to 1e-9 rad by the forward run."""
+    cfg, raw, _ = load_config(None, "guide-bar-pump", [])
+    res = synthesize(cfg, raw, "vane_angle")
+    assert res.metrics["target_vane_angle_deg"] == pytest.approx(60.0, abs=1e-12)
+    assert res.metrics["target_given"] is False
+    assert abs(res.metrics["baseline_vane_angle_deg"] - 60.0) > 3.0  # a different design
+    new = load_config_from_raw(synthesized_raw_config(raw, res.updates, "vane_angle"))
+    summary = evaluate(new).summary
+    assert abs(np.radians(summary["vane_angle_deg"]) - np.pi / 3.0) < 1e-9
+    lam = new["drive"]["lambda"]
+    assert lam == pytest.approx(1.0 / np.sqrt(3.0), rel=1e-12)  # eq. 5: cot 60 deg
+    assert abs(_vane_angle_independent(lam, 2.0, np.pi, "crank") - np.pi / 3.0) < 1e-9
+    assert any("--target not given" in n for n in res.notes)
+
+
+def test_default_vane_angle_falls_back_inside_the_range():
+    # u = 3, crank-driven: reachable 30 deg < gamma_0 < 60 deg, 60 deg is not inside
+    lo, hi = (float(v) for v in sg.vane_angle_range(3.0, np.pi, "crank"))
+    gamma = sg.default_vane_angle(0.5, 3.0, np.pi, "crank")
+    assert lo < gamma < hi
+    assert gamma == pytest.approx(0.5 * (lo + hi), abs=1e-12)
+    # the middle being the design's own vane angle: the larger side of the range instead
+    lam_mid = float(sg.lambda_for_vane_angle(0.5 * (lo + hi), 3.0, np.pi, "crank"))
+    g2 = sg.default_vane_angle(lam_mid, 3.0, np.pi, "crank")
+    assert lo < g2 < hi and abs(g2 - 0.5 * (lo + hi)) > np.radians(5.0)

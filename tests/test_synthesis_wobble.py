@@ -160,7 +160,8 @@ def test_synthesize_sine_runs_forward_through_the_study():
     [
         ("sine_chamber", "0.3", ["--target", "no target for sine_chamber"]),
         ("dwell_min_volume", "0.05", ["--target", "the sine law dwells"]),
-        ("dwell_min_volume", "80 %", ["--target", "< target <"]),
+        ("dwell_min_volume", "80 %", ["--target", "< target <="]),
+        ("dwell_min_volume", "15 %", ["--target = 0.15", "longer dwells"]),
         ("dwell_min_volume", "long", ["--target", "'long'"]),
     ],
 )
@@ -172,3 +173,112 @@ def test_errors(objective, target, words):
     assert "\n" not in msg
     for w in words:
         assert w in msg
+
+
+# --------------------------------------------------------------------------------------------
+# groove constraints: the grooves of the synthesized law can be made with the configured roller
+# --------------------------------------------------------------------------------------------
+def _export_check(raw, res, objective):
+    """The synthesized config through ``rotorkin export``'s own setup (roller check included)."""
+    from rotorkin.cams import spherical as cs
+    from rotorkin.io import cad_wobble
+
+    new = validate_config(synthesized_raw_config(raw, res.updates, objective))
+    drive, cam, _ = cad_wobble.setup(new)  # raises ParameterError("cam.roller_radius") if not
+    return cs.check_roller_radius(drive, cam), cam
+
+
+@pytest.mark.parametrize(
+    "objective, options",
+    [
+        ("sine_chamber", {}),
+        ("dwell_min_volume", {}),
+        ("dwell_min_volume", {"max_pressure_angle": np.radians(60.0)}),
+    ],
+)
+def test_synthesized_grooves_pass_the_export_roller_check(objective, options):
+    cfg, raw, _ = load_config(None, "wobble-cam-engine", ["run.points=181"])
+    res = synthesize(cfg, raw, objective, **options)
+    limit, cam = _export_check(raw, res, objective)
+    assert limit >= sw.UNDERCUT_FACTOR * cam.roller_radius
+    m = res.metrics
+    assert m["synthesized_groove_roller_radius_limit_mm"] == pytest.approx(limit * 1e3, rel=1e-9)
+    assert (
+        m["synthesized_groove_pressure_angle_best_roller_max_deg"] <= m["pressure_angle_limit_deg"]
+    )
+    assert m["constraints_met"] and m["target_met"] and m["better"]
+    verdict = {r[0]: r[2] for r in res.rows}
+    assert verdict["constraints met (roller, pressure angle)"] is True
+    assert verdict["target met, better, constraints met"] is True
+
+
+def test_default_dwell_is_the_longest_admissible():
+    cfg, raw, _ = load_config(None, "wobble-cam-engine", ["run.points=181"])
+    res = synthesize(cfg, raw, "dwell_min_volume")
+    m = res.metrics
+    hi = m["admissible_dwell_fraction_max"]
+    # the paper's law dwells 9.37 %; the roller and the 45 deg bound stop short of the old 15 %
+    assert m["baseline_dwell_fraction_min_volume_a"] < hi < 0.15
+    assert m["target_dwell_fraction"] == pytest.approx(hi, abs=1e-12)
+    assert m["synthesized_dwell_fraction_min_volume_a"] == pytest.approx(hi, abs=1e-4)
+    # the bound binds: the pressure angle sits at 45 deg (bisection to 1e-6 in r)
+    assert m["synthesized_groove_pressure_angle_best_roller_max_deg"] == pytest.approx(
+        45.0, abs=0.01
+    )
+    assert any(n.startswith("costs of this law") and "flywheel" in n for n in res.notes)
+    # just beyond the admissible range: refused, naming --target and the range
+    with pytest.raises(ParameterError) as err:
+        synthesize(cfg, raw, "dwell_min_volume", f"{hi + 1e-3:.6f}")
+    assert "--target" in str(err.value) and f"<= {hi:.4g}"[:-1] in str(err.value)
+
+
+def test_roller_limit_is_a_real_constraint():
+    """With the pressure angle bound lifted, the roller ends the range: the next law undercuts."""
+    from rotorkin.cams import spherical as cs
+
+    cfg, _, _ = load_config(None, "wobble-cam-engine", [])
+    base = sw._drive(cfg)
+    cam = cs.from_config(cfg)[1]
+    fz = sw.feasible_dwell(base, cam, np.radians(89.0))
+    assert fz.slow_max == 1.0 and "undercuts" in fz.why
+    at = sw.spin_law_for_target(base, fz.slow_min)
+    assert cs.check_roller_radius(at, cam) >= sw.UNDERCUT_FACTOR * cam.roller_radius
+    beyond = sw.spin_law_for_target(base, fz.slow_min - 0.02)
+    limit = sw.groove_limits(beyond, cam)[0]
+    assert limit < sw.UNDERCUT_FACTOR * cam.roller_radius
+    # a little further on, the export itself refuses the grooves
+    with pytest.raises(ParameterError, match="cam.roller_radius"):
+        cs.check_roller_radius(sw.spin_law_for_target(base, fz.slow_min - 0.05), cam)
+    # a tighter pressure-angle bound shortens the admissible dwell
+    tight = sw.feasible_dwell(base, cam, np.radians(35.0))
+    assert tight.dwell_max < fz.dwell_max
+
+
+@pytest.mark.parametrize(
+    "sets, objective, options, words",
+    [
+        (["cam.roller_radius=4.5 mm"], "sine_chamber", {}, ["cam.roller_radius = 4.5 mm", "< 4.0"]),
+        (["cam.roller_radius=7 mm"], "dwell_min_volume", {}, ["cam.roller_radius = 7 mm"]),
+        ([], "dwell_min_volume", {"max_pressure_angle": np.radians(20.0)}, ["--max-pressure"]),
+        ([], "sine_chamber", {"max_pressure_angle": np.radians(95.0)}, ["0 deg < angle < 90"]),
+        ([], "sine_chamber", {"max_pressure_angle": np.radians(90.0)}, ["0 deg < angle < 90"]),
+        ([], "sine_chamber", {"max_pressure_angle": -0.1}, ["0 deg < angle < 90"]),
+    ],
+)
+def test_constraint_errors(sets, objective, options, words):
+    cfg, raw, _ = load_config(None, "wobble-cam-engine", sets)
+    with pytest.raises(ParameterError) as err:
+        synthesize(cfg, raw, objective, **options)
+    msg = str(err.value)
+    assert "\n" not in msg
+    for w in words:
+        assert w in msg
+
+
+def test_larger_roller_moves_the_range_away_from_the_sine_law():
+    """4.5 mm: the sine law's grooves undercut, dwell laws nearer the paper's do not."""
+    cfg, raw, _ = load_config(None, "wobble-cam-engine", ["cam.roller_radius=4.5 mm"])
+    res = synthesize(cfg, raw, "dwell_min_volume")
+    assert res.metrics["admissible_dwell_fraction_min"] > sw._target_dwell(sw._drive(cfg), 1.0)
+    limit, cam = _export_check(raw, res, "dwell_min_volume")
+    assert limit >= sw.UNDERCUT_FACTOR * cam.roller_radius

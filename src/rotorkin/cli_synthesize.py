@@ -51,8 +51,15 @@ def register(app) -> None:
             str | None,
             typer.Option(
                 "--target",
-                help='Target value: vane angle ("60 deg"), tolerated gap change ("1 %", "0.01" '
-                'of L, or "5 mm"), dwell fraction ("0.25" or "25 %").',
+                help="What the objective aims at, by objective: dwell_min_volume (wobble_cam): "
+                'the dwell fraction at minimum volume ("0.12" or "12 %"; default: the longest '
+                "dwell whose grooves the roller can follow, the range is checked); vane_angle "
+                '(guide_bar): the vane angle gamma_0 ("60 deg"; default 60 deg, or the middle of '
+                "the reachable range if 60 deg is not reachable); gap_change (eccentric_cam): the "
+                'tolerated peak gap change ("1 %" or "0.01" of L, or "5 mm"; default: half the '
+                "config's own). No target for sine_chamber (a fixed law) nor for the "
+                "rhomboid_cam objectives min_accel, dwell_min, dwell_max, min_pressure_angle "
+                "(optimised).",
             ),
         ] = None,
         harmonics: Annotated[
@@ -67,8 +74,9 @@ def register(app) -> None:
             str | None,
             typer.Option(
                 "--max-pressure-angle",
-                help='Rhomboid cam: bound on the peak pressure angle (e.g. "55 deg"; default: '
-                "45 deg or the first-harmonic law's peak, whichever is larger).",
+                help="Rhomboid and wobble cams: bound on the peak pressure angle, 0 < angle < "
+                '90 deg (e.g. "55 deg"; default: 45 deg or the baseline law\'s peak, whichever '
+                "is larger; wobble cam: that of the best-placed roller).",
             ),
         ] = None,
         out: Annotated[

@@ -9,7 +9,8 @@ One module per drive family, each a set of plain functions on arrays plus a
   ``dwell_min``, ``dwell_max``, ``min_pressure_angle``) under eq. 15 and the
   profile checks;
 * :mod:`~rotorkin.synthesis.wobble` - a periodic spin-law correction giving a
-  target chamber-angle law (``sine_chamber``, ``dwell_min_volume``);
+  target chamber-angle law (``sine_chamber``, ``dwell_min_volume``) whose grooves
+  the configured roller can follow;
 * :mod:`~rotorkin.synthesis.guide_bar` - lambda for a target vane angle at any
   phase (``vane_angle``);
 * :mod:`~rotorkin.synthesis.eccentric` - lambda or the follower for a tolerated
@@ -134,8 +135,9 @@ def synthesize(
         wobble cam: highest harmonic of the spin correction (default: as many
         as the law needs).
     max_pressure_angle : float, optional
-        Rhomboid cam only: bound on the peak pressure angle [rad] (default
-        ``max(45 deg, the first-harmonic law's peak)``).
+        Rhomboid and wobble cams: bound on the peak pressure angle [rad],
+        ``0 < value < pi/2`` (default ``max(45 deg, the baseline law's peak)``; the
+        wobble cam: of its best-placed roller).
 
     Raises
     ------
@@ -154,9 +156,16 @@ def synthesize(
     if harmonics is not None and (isinstance(harmonics, bool) or int(harmonics) < 1):
         raise ParameterError("--harmonics", repr(harmonics), "an integer >= 1")
     if max_pressure_angle is not None:
-        if kind != "rhomboid_cam":
+        if kind not in ("rhomboid_cam", "wobble_cam"):
             raise ParameterError(
-                "--max-pressure-angle", "given", f"only for drive.type = rhomboid_cam, not {kind}"
+                "--max-pressure-angle",
+                "given",
+                f"only for drive.type = rhomboid_cam or wobble_cam, not {kind}",
+            )
+        value = float(max_pressure_angle)
+        if not (np.isfinite(value) and 0.0 < value < 0.5 * np.pi):
+            raise ParameterError(
+                "--max-pressure-angle", f"{np.degrees(value):.6g} deg", "0 deg < angle < 90 deg"
             )
         return _module(kind).synthesize(
             cfg, raw, objective, target, harmonics, {"max_pressure_angle": max_pressure_angle}

@@ -32,6 +32,8 @@ __all__ = [
     "eccentricity_for_gap_change",
     "contact_radius_for_gap_change",
     "design_options",
+    "DEFAULT_GAP_SHARE",
+    "default_gap_change",
     "synthesize",
 ]
 
@@ -132,16 +134,28 @@ def design_options(params: ec.EccentricCam, gap: float) -> list[dict]:
     return out
 
 
+#: Without ``--target``: this fraction of the design's own peak gap change is tolerated.
+DEFAULT_GAP_SHARE = 0.5
+
+
+def default_gap_change(params: ec.EccentricCam) -> float:
+    """The tolerated peak gap change when none is given: half the design's own [m].
+
+    The example (R = 80 mm, e = 40 mm, knife edge): 10.72 mm (1.072 % of L = 1 m), half
+    its 21.44 mm; always reachable by keeping the eccentricity (it is below ``2 e``).
+    A flat follower's own gap change is zero, and so is the default (the flat follower).
+    """
+    if params.follower == "flat":
+        return 0.0
+    rc = float(params.disc_radius) + (
+        float(params.roller_radius) if params.follower == "roller" else 0.0
+    )
+    return DEFAULT_GAP_SHARE * float(gap_change_peak(rc, params.eccentricity))
+
+
 def _parse_gap(target, length):
     from rotorkin.synthesis import parse_fraction, parse_quantity_arg
 
-    if target is None:
-        raise ParameterError(
-            "--target",
-            "missing",
-            'the tolerated gap change |Delta|/L, e.g. "1 %" or "0.01", or |Delta| with a unit, '
-            'e.g. "5 mm"',
-        )
     try:
         ratio = parse_fraction(target)
         gap = ratio * length
@@ -157,7 +171,10 @@ def _format_length(x: float) -> str:
 
 
 def synthesize(cfg, raw, objective, target, harmonics):
-    """Design for ``--target`` peak gap change (objective ``gap_change``); see the module doc."""
+    """Design for ``--target`` peak gap change (objective ``gap_change``); see the module doc.
+
+    Without a target, half the design's own peak gap change (:func:`default_gap_change`).
+    """
     from rotorkin.io.config import validate_config
     from rotorkin.studies import evaluate
     from rotorkin.synthesis import SynthesisResult, synthesized_raw_config
@@ -167,7 +184,7 @@ def synthesize(cfg, raw, objective, target, harmonics):
     d = cfg["drive"]
     base = ec.EccentricCam(d["disc_radius"], d["eccentricity"], d["follower"], d["roller_radius"])
     length = float(cfg["machine"]["device_length"])
-    gap = _parse_gap(target, length)
+    gap = default_gap_change(base) if target is None else _parse_gap(target, length)
     options = design_options(base, gap)
     chosen = options[0]
     if not chosen["feasible"]:
@@ -210,6 +227,7 @@ def synthesize(cfg, raw, objective, target, harmonics):
     ]
     metrics = {
         "target_gap_change_mm": gap * 1e3,
+        "target_given": target is not None,
         "target_gap_change_to_length": gap / length,
         "round_trip_relative_error": rel_err,
     }
@@ -221,7 +239,15 @@ def synthesize(cfg, raw, objective, target, harmonics):
             v = opt[k]
             key = f"option_{opt['option']}_{k}" + ("_mm" if k.endswith(("radius", "ity")) else "")
             metrics[key] = v * 1e3 if key.endswith("_mm") else v
-    notes = [f"options for |Delta| = {gap * 1e3:.6g} mm (|Delta|/L = {100 * gap / length:.6g} %):"]
+    notes = []
+    if target is None:
+        notes.append(
+            f"--target not given: |Delta| = {gap * 1e3:.6g} mm, half the design's own peak gap "
+            f"change {abs(float(res0.summary['gap_change_min_mm'])):.6g} mm"
+        )
+    notes.append(
+        f"options for |Delta| = {gap * 1e3:.6g} mm (|Delta|/L = {100 * gap / length:.6g} %):"
+    )
     text = {
         "stroke": "keep eccentricity (stroke), set disc_radius",
         "disc": "keep disc_radius, set eccentricity (stroke changes)",

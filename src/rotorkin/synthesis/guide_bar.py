@@ -25,6 +25,8 @@ __all__ = [
     "vane_angle_range",
     "lambda_for_vane_angle",
     "gear_ratio_for_vane_angle",
+    "DEFAULT_VANE_ANGLE",
+    "default_vane_angle",
     "synthesize",
 ]
 
@@ -117,11 +119,34 @@ def gear_ratio_for_vane_angle(gamma0, lam, phase, driver: str):
 # --------------------------------------------------------------------------------------------
 # the command's entry point
 # --------------------------------------------------------------------------------------------
+#: Vane angle aimed at when ``--target`` is not given [rad]: 60 deg, the guide-driven
+#: example's vane angle (lambda = 0.5, u = 2), reached crank-driven with lambda = cot 60 deg.
+DEFAULT_VANE_ANGLE = np.pi / 3.0
+
+
+def default_vane_angle(lam, u, phase, driver: str) -> float:
+    """The target vane angle when none is given [rad].
+
+    :data:`DEFAULT_VANE_ANGLE` (60 deg) where it is reachable (:func:`vane_angle_range`)
+    and differs from the design's own vane angle by more than 0.5 deg; otherwise the
+    middle of the reachable range, or (where that is the design's own) the middle of the
+    part of the range beyond the design's vane angle that is the larger.
+    """
+    lo, hi = (float(v) for v in vane_angle_range(u, phase, driver))
+    own = float(gb.vane_angle(lam, u, phase, driver))
+    tol = np.radians(0.5)
+    for gamma in (DEFAULT_VANE_ANGLE, 0.5 * (lo + hi)):
+        if lo < gamma < hi and abs(gamma - own) > tol:
+            return float(gamma)
+    return float(0.5 * (lo + own) if own - lo > hi - own else 0.5 * (own + hi))
+
+
 def synthesize(cfg, raw, objective, target, harmonics):
     """lambda for ``--target`` vane angle (objective ``vane_angle``), keeping u, Sigma, driver.
 
     See :func:`rotorkin.synthesis.synthesize`. ``target`` is an angle with its
-    unit (``"60 deg"``); the round trip evaluates the synthesized config.
+    unit (``"60 deg"``); None: :func:`default_vane_angle` (60 deg where reachable).
+    The round trip evaluates the synthesized config.
     """
     from rotorkin.io.config import validate_config
     from rotorkin.studies import evaluate
@@ -129,11 +154,6 @@ def synthesize(cfg, raw, objective, target, harmonics):
 
     if harmonics is not None:
         raise ParameterError("--harmonics", str(harmonics), "not used by the guide_bar drive")
-    if target is None:
-        raise ParameterError(
-            "--target", "missing", 'a vane angle gamma_0 with its unit, e.g. --target "60 deg"'
-        )
-    gamma = parse_quantity_arg(target, "angle")
     d = cfg["drive"]
     lam0, u, phase, driver = (
         float(d["lambda"]),
@@ -142,6 +162,9 @@ def synthesize(cfg, raw, objective, target, harmonics):
         d["driver"],
     )
     lo, hi = (float(v) for v in vane_angle_range(u, phase, driver))
+    gamma = default_vane_angle(lam0, u, phase, driver) if target is None else None
+    if gamma is None:
+        gamma = parse_quantity_arg(target, "angle")
     u_alt = float(gear_ratio_for_vane_angle(gamma, lam0, phase, driver)) if gamma > 0 else np.nan
     if not lo < gamma < hi:
         alt = (
@@ -181,6 +204,7 @@ def synthesize(cfg, raw, objective, target, harmonics):
     rows += [(label, res0.summary[k], res1.summary[k]) for k, label in keys]
     metrics = {
         "target_vane_angle_deg": float(np.degrees(gamma)),
+        "target_given": target is not None,
         "reachable_vane_angle_min_deg": float(np.degrees(lo)),
         "reachable_vane_angle_max_deg": float(np.degrees(hi)),
         "baseline_lambda": lam0,
@@ -196,6 +220,11 @@ def synthesize(cfg, raw, objective, target, harmonics):
         f"alternative: keep lambda = {lam0:g} and set drive.gear_ratio = {u_alt:.6g} "
         "(gamma_0 is inversely proportional to u)",
     )
+    if target is None:
+        notes = (
+            f"--target not given: gamma_0 = {fmt_deg(gamma)} (60 deg where reachable and not "
+            "the design's own; else the middle of the reachable range)",
+        ) + notes
 
     def plot(outdir):
         from rotorkin.report import figures_synthesis

@@ -270,29 +270,212 @@ def _law_dwell(params):
     return dwell_fractions(wc.slider_angle(v, params.plate_tilt, params.roller_axis_angle), params)
 
 
-def slow_for_dwell(params: wc.WobbleCam, fraction: float) -> float:
+def slow_for_dwell(params: wc.WobbleCam, fraction: float, admissible=None) -> float:
     """Rate ratio r of the dwell law whose dwell fraction at minimum volume is ``fraction``.
 
-    Brent's method on ``r`` in ``[SLOW_MIN, 1]`` (the fraction falls as r grows).
+    Brent's method on ``r`` (the fraction falls as r grows).
+
+    Parameters
+    ----------
+    params : WobbleCam
+        Base drive.
+    fraction : float
+        Wanted dwell fraction.
+    admissible : Feasible, optional
+        The rate ratios the grooves admit (:func:`feasible_dwell`); default: the whole
+        family ``SLOW_MIN <= r <= 1`` (no groove constraint).
 
     Raises
     ------
     ParameterError
-        Named ``--target`` with the reachable range.
+        Named ``--target`` with the admissible range (and why it ends there).
     """
     from scipy.optimize import brentq
 
-    lo, hi = _target_dwell(params, 1.0), _target_dwell(params, SLOW_MIN)
-    if not lo < fraction < hi:
+    if admissible is None:
+        s_lo, s_hi, why = SLOW_MIN, 1.0, ""
+    else:
+        s_lo, s_hi, why = admissible.slow_min, admissible.slow_max, admissible.why
+    lo, hi = _target_dwell(params, s_hi), _target_dwell(params, s_lo)
+    lo_ok = fraction > lo if s_hi == 1.0 else fraction >= lo
+    if not (lo_ok and fraction <= hi):
         paper = float(_law_dwell(dataclasses.replace(params, spin_a=(), spin_b=()))[0])
+        sign = "<" if s_hi == 1.0 else "<="
         raise ParameterError(
             "--target",
             f"{fraction:.4g}",
-            f"a dwell fraction {lo:.4g} < target < {hi:.4g} (the sine law dwells {lo:.4g}, the "
-            f"paper's law {paper:.4g}; a chamber cycle counts as dwelling within "
-            "2 % of the swing of its minimum)",
+            f"a dwell fraction {_round4(lo, up=sign == '<=')} {sign} target <= "
+            f"{_round4(hi, up=False)} ({why}the sine law dwells "
+            f"{_target_dwell(params, 1.0):.4g}, the paper's law {paper:.4g}; a chamber cycle "
+            "counts as dwelling within 2 % of the swing of its minimum)",
         )
-    return float(brentq(lambda r: _target_dwell(params, r) - fraction, SLOW_MIN, 1.0, xtol=1e-12))
+    if fraction >= hi:
+        return float(s_lo)
+    if fraction <= lo:
+        return float(s_hi)
+    return float(brentq(lambda r: _target_dwell(params, r) - fraction, s_lo, s_hi, xtol=1e-12))
+
+
+def _round4(x: float, up: bool) -> str:
+    """``x`` to 4 significant digits, rounded inwards (a printed bound stays admissible)."""
+    if x <= 0.0:
+        return f"{x:.4g}"
+    e = int(np.floor(np.log10(x))) - 3
+    q = x / 10.0**e
+    return f"{(np.ceil(q) if up else np.floor(q)) * 10.0**e:.4g}"
+
+
+# --------------------------------------------------------------------------------------------
+# groove constraints: the configured roller must follow the grooves of the law
+# --------------------------------------------------------------------------------------------
+#: Safety factor on the roller radius: the grooves' roller radius limit must be at least
+#: 1.01 x ``cam.roller_radius`` (as the rhomboid cam's undercut constraint).
+UNDERCUT_FACTOR = 1.01
+#: Default bound on the peak pressure angle of the best-placed roller [rad]; raised to the
+#: baseline law's peak where that is higher (the paper's law: 30.4 deg).
+PRESSURE_ANGLE_LIMIT = np.radians(45.0)
+#: Shaft-angle samples of the pressure angle (as :func:`rotorkin.cams.spherical.summary`).
+_PA_SAMPLES = 2881
+#: Rate ratios scanned for the admissible dwell range, then refined by bisection.
+_SCAN = 20
+#: Bisection stops when the bracket of r is this narrow.
+_SLOW_XTOL = 1e-6
+
+
+def groove_limits(params: wc.WobbleCam, cam) -> tuple[float, float]:
+    """Roller radius limit and peak pressure angle of the grooves of a spin law.
+
+    The limit is that of :func:`rotorkin.cams.spherical.check_roller_radius` (what
+    ``rotorkin export`` enforces): ``R_i / sqrt(1 + (r kappa_max)^2)`` at the sharpest
+    bend of any groove; the pressure angle is
+    ``cam_pressure_angle_best_roller_max_deg`` of :func:`rotorkin.cams.spherical.summary`
+    (over the turn, the largest of the smallest pressure angle of the 4 rollers: all 4
+    hold the one plate, so the best-placed one guides it; a single roller reaches 90 deg
+    with every law, the paper's included).
+
+    Returns
+    -------
+    (limit, pressure_angle) : tuple of float
+        [m], [rad].
+    """
+    from rotorkin.cams import spherical as cs
+
+    kmax = cs.sharpest_bend(params)[0]
+    limit = cam.inner_radius / np.sqrt(1.0 + (params.sphere_radius * kmax) ** 2)
+    mu = cs.pressure_angle(params, np.linspace(0.0, 2.0 * np.pi, _PA_SAMPLES))
+    return float(limit), float(np.max(np.min(mu, axis=0)))
+
+
+def _meets(limits, roller_radius, pa_limit) -> tuple[bool, bool]:
+    """(roller follows the grooves with the safety factor, pressure angle within the bound)."""
+    return (
+        limits[0] >= UNDERCUT_FACTOR * roller_radius,
+        limits[1] <= pa_limit,
+    )
+
+
+@dataclasses.dataclass(frozen=True)
+class Feasible:
+    """The dwell laws whose grooves the configured roller follows.
+
+    Attributes
+    ----------
+    slow_min, slow_max : float
+        Admissible rate ratios ``slow_min <= r <= slow_max`` (``slow_min``: the longest dwell).
+    dwell_min, dwell_max : float
+        The dwell fractions at ``slow_max`` and ``slow_min``.
+    why : str
+        What ends the range at the long-dwell side, ``"longer dwells: ...; "`` (for
+        messages; empty when the family's longest dwell is admissible).
+    """
+
+    slow_min: float
+    slow_max: float
+    dwell_min: float
+    dwell_max: float
+    why: str
+
+
+def feasible_dwell(params: wc.WobbleCam, cam, pa_limit: float, harmonics=None) -> Feasible:
+    """The admissible range of the dwell law's rate ratio r under the groove constraints.
+
+    Constraints: groove roller radius limit ``>= 1.01 cam.roller_radius`` and the
+    best-placed roller's peak pressure angle ``<= pa_limit`` (:func:`groove_limits`).
+    ``r`` is scanned on 20 values in ``[SLOW_MIN, 1]``; the run of admissible values
+    holding the smallest admissible r (the longest dwell) is kept and both its ends are
+    refined by bisection to 1e-6 (each end on the admissible side).
+
+    Raises
+    ------
+    ParameterError
+        ``cam.roller_radius`` when no law of the family has grooves the roller follows;
+        ``--max-pressure-angle`` when the pressure angle bound leaves none.
+    """
+    rho = float(cam.roller_radius)
+
+    def limits(r):
+        return groove_limits(spin_law_for_target(params, r, harmonics), cam)
+
+    def check(r):
+        return _meets(limits(r), rho, pa_limit)
+
+    grid = np.linspace(SLOW_MIN, 1.0, _SCAN)
+    scanned = [limits(r) for r in grid]
+    checks = [_meets(v, rho, pa_limit) for v in scanned]
+    ok = [a and b for a, b in checks]
+    if not any(ok):
+        if not any(a for a, _ in checks):
+            best = max(v[0] for v in scanned)
+            raise ParameterError(
+                "cam.roller_radius",
+                f"{rho * 1e3:.4g} mm",
+                f"roller_radius < {best / UNDERCUT_FACTOR * 1e3:.4g} mm: with a larger roller no "
+                "dwell law of this family has grooves the roller can follow (their roller "
+                "radius limit, with a 1 % margin)",
+            )
+        least = min(v[1] for v, (a, _) in zip(scanned, checks, strict=True) if a)
+        raise ParameterError(
+            "--max-pressure-angle",
+            f"{np.degrees(pa_limit):.4g} deg",
+            f">= {np.degrees(least):.4g} deg: every dwell law the roller can follow has a larger "
+            "peak pressure angle of its best-placed roller",
+        )
+    j = ok.index(True)
+    k = j
+    while k + 1 < len(grid) and ok[k + 1]:
+        k += 1
+
+    def bisect(good, bad):
+        while abs(bad - good) > _SLOW_XTOL:
+            mid = 0.5 * (good + bad)
+            if all(check(mid)):
+                good = mid
+            else:
+                bad = mid
+        return good
+
+    s_min = float(grid[j]) if j == 0 else bisect(float(grid[j]), float(grid[j - 1]))
+    s_max = float(grid[k]) if k == len(grid) - 1 else bisect(float(grid[k]), float(grid[k + 1]))
+    why = ""
+    if j > 0:
+        roller_ok, pa_ok = check(float(grid[j - 1]))
+        parts = []
+        if not roller_ok:
+            parts.append(
+                f"the roller (cam.roller_radius = {rho * 1e3:.4g} mm) undercuts the grooves"
+            )
+        if not pa_ok:
+            parts.append(
+                f"the best-placed roller's pressure angle exceeds {np.degrees(pa_limit):.4g} deg"
+            )
+        why = "longer dwells: " + " and ".join(parts) + "; " if parts else ""
+    return Feasible(
+        slow_min=s_min,
+        slow_max=s_max,
+        dwell_min=_target_dwell(params, s_max),
+        dwell_max=_target_dwell(params, s_min),
+        why=why,
+    )
 
 
 def forward_error(params: wc.WobbleCam, slow, theta):
@@ -311,10 +494,6 @@ def forward_error(params: wc.WobbleCam, slow, theta):
 # --------------------------------------------------------------------------------------------
 # the command's entry point
 # --------------------------------------------------------------------------------------------
-#: Dwell fraction aimed at when ``--target`` is not given (dwell_min_volume).
-DEFAULT_DWELL = 0.15
-
-
 def groove_closing_angle(params: wc.WobbleCam) -> float:
     """Shaft angle after which a groove centre-line closes in the cam frame [rad] (pi at n = -2).
 
@@ -369,14 +548,68 @@ def _run_error(res, params, slow):
     return float(np.max(np.abs(res.columns["chamber_a_angle_deg"] - (np.degrees(target) - offset))))
 
 
-def synthesize(cfg, raw, objective, target, harmonics):
+#: Summary keys whose rise is a cost of the synthesized law (named in a note), with labels.
+_COSTS = (
+    ("rotor_accel_peak_per_rad", "rotor accel peak", "1/rad"),
+    ("rotor_jerk_peak_per_rad2", "rotor jerk peak", "1/rad2"),
+    ("flywheel_inertia_kgm2", "flywheel inertia", "kg m2"),
+    ("torque_ripple", "torque ripple", ""),
+)
+
+
+def _pa_limit(options, base_pa) -> float:
+    """The pressure-angle bound [rad]: ``--max-pressure-angle`` or max(45 deg, the baseline's)."""
+    limit = (options or {}).get("max_pressure_angle")
+    if limit is None:
+        return max(float(PRESSURE_ANGLE_LIMIT), float(base_pa))
+    return float(limit)
+
+
+def _check_final(synth, cam, pa_limit, harmonics):
+    """Refuse a synthesized law whose grooves the roller cannot follow (it would be written).
+
+    Uses :func:`rotorkin.cams.spherical.check_roller_radius` itself (``rotorkin export``'s
+    check) besides :func:`groove_limits`.
+    """
+    from rotorkin.cams import spherical as cs
+
+    limits = groove_limits(synth, cam)
+    roller_ok, pa_ok = _meets(limits, cam.roller_radius, pa_limit)
+    try:
+        cs.check_roller_radius(synth, cam)
+    except ParameterError:
+        roller_ok = False
+    if roller_ok and pa_ok:
+        return limits
+    name, value = ("--harmonics", str(harmonics)) if harmonics is not None else ("--target", "")
+    what = (
+        f"the groove roller radius limit {limits[0] * 1e3:.4g} mm < {UNDERCUT_FACTOR} x "
+        f"cam.roller_radius = {cam.roller_radius * 1e3:.4g} mm"
+        if not roller_ok
+        else f"the pressure angle {np.degrees(limits[1]):.4g} deg > {np.degrees(pa_limit):.4g} deg"
+    )
+    raise ParameterError(
+        name,
+        value or "default",
+        f"a law whose grooves the roller can follow; this one fails: {what}"
+        + (" (raise --harmonics or leave it out)" if harmonics is not None else ""),
+    )
+
+
+def synthesize(cfg, raw, objective, target, harmonics, options=None):
     """Spin correction for ``sine_chamber`` or ``dwell_min_volume`` (``--target`` dwell fraction).
 
-    See :func:`rotorkin.synthesis.synthesize`. The synthesized config is
-    evaluated (``rotorkin run``'s study) and its chamber angle compared with
-    the target at every sample; the drive's own functions are compared on
-    20001 angles.
+    See :func:`rotorkin.synthesis.synthesize`; ``options`` may hold
+    ``max_pressure_angle`` [rad]. The grooves of the synthesized law are constrained:
+    their roller radius limit at least 1.01 ``cam.roller_radius`` (what ``rotorkin export``
+    checks) and the best-placed roller's peak pressure angle at most
+    ``max(45 deg, the baseline's)`` or ``--max-pressure-angle``; a dwell target beyond
+    the longest admissible dwell is refused, and without ``--target`` the longest admissible
+    dwell is synthesized. The synthesized config is evaluated (``rotorkin run``'s study)
+    and its chamber angle compared with the target at every sample; the drive's own
+    functions are compared on 20001 angles.
     """
+    from rotorkin.cams import spherical as cs
     from rotorkin.io.config import validate_config
     from rotorkin.studies import evaluate
     from rotorkin.synthesis import (
@@ -388,6 +621,10 @@ def synthesize(cfg, raw, objective, target, harmonics):
 
     res0 = evaluate(cfg)  # validates the baseline, with config key names in its errors
     base = _drive(cfg)
+    cam = cs.from_config(cfg)[1]
+    limits0 = groove_limits(base, cam)
+    pa_limit = _pa_limit(options, limits0[1])
+    feasible = None
     if objective == "sine_chamber":
         if target is not None:
             raise ParameterError(
@@ -397,16 +634,39 @@ def synthesize(cfg, raw, objective, target, harmonics):
                 "extremes of the paper's law)",
             )
         slow, wanted = 1.0, None
+        limits = groove_limits(spin_law_for_target(base, 1.0, harmonics), cam)
+        roller_ok, pa_ok = _meets(limits, cam.roller_radius, pa_limit)
+        if not roller_ok:
+            raise ParameterError(
+                "cam.roller_radius",
+                f"{cam.roller_radius * 1e3:.4g} mm",
+                f"roller_radius < {limits[0] / UNDERCUT_FACTOR * 1e3:.4g} mm for sine_chamber: "
+                f"the sine law's grooves (roller radius limit {limits[0] * 1e3:.4g} mm, with a "
+                "1 % margin) are too sharp for a larger roller",
+            )
+        if not pa_ok:
+            raise ParameterError(
+                "--max-pressure-angle",
+                f"{np.degrees(pa_limit):.4g} deg",
+                f">= {np.degrees(limits[1]):.4g} deg for sine_chamber (the peak pressure angle "
+                "of the sine law's best-placed roller)",
+            )
     else:
-        wanted = DEFAULT_DWELL if target is None else parse_fraction(target)
-        slow = slow_for_dwell(base, wanted)
+        feasible = feasible_dwell(base, cam, pa_limit, harmonics)
+        if target is None:
+            wanted, slow = feasible.dwell_max, feasible.slow_min
+        else:
+            wanted = parse_fraction(target)
+            slow = slow_for_dwell(base, wanted, feasible)
     synth = spin_law_for_target(base, slow, harmonics)
+    limits1 = _check_final(synth, cam, pa_limit, harmonics)
     updates = {"drive": {"spin_a": list(synth.spin_a), "spin_b": list(synth.spin_b)}}
     res1 = evaluate(validate_config(synthesized_raw_config(raw, updates, objective)))
     fine = np.linspace(0.0, 2.0 * np.pi, 20_001)
     err_drive = forward_error(synth, slow, fine)
     err_run = _run_error(res1, synth, slow)
     err_base = forward_error(base, slow, fine)
+    round_trip = max(float(np.degrees(err_drive)), err_run)
     d0, d1 = _law_dwell(base), _law_dwell(synth)
     rate0, rate1 = (wc.spin_law(p, fine)[1] for p in (base, synth))
     kmax = max(len(synth.spin_a), len(synth.spin_b))
@@ -414,6 +674,26 @@ def synthesize(cfg, raw, objective, target, harmonics):
         set(np.flatnonzero(np.asarray(synth.spin_a, dtype=float)).tolist())
         | set(np.flatnonzero(np.asarray(synth.spin_b, dtype=float)).tolist())
     )
+    # verdict: the target law reproduced (and the dwell reached), better than the baseline
+    # on the objective, the groove constraints met
+    if objective == "sine_chamber":
+        target_met = round_trip <= 1e-6
+        better = err_drive < err_base
+        objective_row = (
+            "objective: deviation from a pure sine [deg]",
+            float(np.degrees(err_base)),
+            float(np.degrees(err_drive)),
+        )
+    else:
+        target_met = round_trip <= 1e-6 and abs(float(d1[0]) - wanted) <= 1e-4
+        better = float(d1[0]) > float(d0[0])
+        objective_row = (
+            "objective: dwell at min volume [% of cycle]",
+            100 * float(d0[0]),
+            100 * float(d1[0]),
+        )
+    roller_ok0, pa_ok0 = _meets(limits0, cam.roller_radius, pa_limit)
+    constraints_met = all(_meets(limits1, cam.roller_radius, pa_limit))
     law = f"{base.spin_ratio:g} theta" + (" + correction" if base.spin_a or base.spin_b else "")
     keys = (
         ("chamber_angle_min_deg", "chamber angle min [deg]"),
@@ -427,6 +707,7 @@ def synthesize(cfg, raw, objective, target, harmonics):
         ("flywheel_inertia_kgm2", "flywheel inertia [kg m2]"),
     )
     rows = [
+        objective_row,
         ("spin law varphi", law, f"{base.spin_ratio:g} theta + {nonzero} harmonics"),
         ("highest harmonic", 0, kmax),
         ("deviation from target law [deg]", np.degrees(err_base), np.degrees(err_drive)),
@@ -435,10 +716,44 @@ def synthesize(cfg, raw, objective, target, harmonics):
         ("plate spin rate min", float(np.min(rate0)), float(np.min(rate1))),
         ("plate spin rate max", float(np.max(rate0)), float(np.max(rate1))),
     ]
+    if feasible is not None:
+        rows.append(
+            (
+                "admissible dwell [% of cycle]",
+                "",
+                f"{100 * feasible.dwell_min:.4g} - {100 * feasible.dwell_max:.4g}",
+            )
+        )
     rows += [(label, res0.summary[k], res1.summary[k]) for k, label in keys]
     grooves0, grooves1 = _groove_checks(cfg, base), _groove_checks(cfg, synth)
     rows += [(label, grooves0[k], grooves1[k]) for k, label in _GROOVE_ROWS]
-    rows.append(("round trip |delta error| [deg]", "", max(np.degrees(err_drive), err_run)))
+    rows += [
+        (
+            "groove pressure angle, best roller, peak [deg]",
+            float(np.degrees(limits0[1])),
+            float(np.degrees(limits1[1])),
+        ),
+        (
+            "check: roller limit >= 1.01 x cam.roller_radius",
+            bool(roller_ok0),
+            bool(limits1[0] >= UNDERCUT_FACTOR * cam.roller_radius),
+        ),
+        ("check: pressure angle bound [deg]", "", float(np.degrees(pa_limit))),
+        ("check: pressure angle within bound", bool(pa_ok0), bool(limits1[1] <= pa_limit)),
+        ("round trip |delta error| [deg]", "", round_trip),
+        ("target met", "", bool(target_met)),
+        ("better on the objective", "", bool(better)),
+        (
+            "constraints met (roller, pressure angle)",
+            bool(roller_ok0 and pa_ok0),
+            bool(constraints_met),
+        ),
+        (
+            "target met, better, constraints met",
+            "",
+            bool(target_met and better and constraints_met),
+        ),
+    ]
     metrics = {
         "target_law": objective,
         "dwell_tolerance_of_swing": DWELL_TOLERANCE,
@@ -457,6 +772,18 @@ def synthesize(cfg, raw, objective, target, harmonics):
         "synthesized_spin_rate_max": float(np.max(rate1)),
         "correction_nonzero_harmonics": nonzero,
         "correction_highest_harmonic": kmax,
+        "admissible_dwell_fraction_min": None if feasible is None else feasible.dwell_min,
+        "admissible_dwell_fraction_max": None if feasible is None else feasible.dwell_max,
+        "pressure_angle_limit_deg": float(np.degrees(pa_limit)),
+        "undercut_factor": UNDERCUT_FACTOR,
+        "baseline_groove_roller_radius_limit_mm": limits0[0] * 1e3,
+        "synthesized_groove_roller_radius_limit_mm": limits1[0] * 1e3,
+        "baseline_groove_pressure_angle_best_roller_max_deg": float(np.degrees(limits0[1])),
+        "synthesized_groove_pressure_angle_best_roller_max_deg": float(np.degrees(limits1[1])),
+        "target_met": bool(target_met),
+        "better": bool(better),
+        "baseline_constraints_met": bool(roller_ok0 and pa_ok0),
+        "constraints_met": bool(constraints_met),
     }
     for k, _ in keys:
         metrics[f"baseline_{k}"] = res0.summary[k]
@@ -465,6 +792,25 @@ def synthesize(cfg, raw, objective, target, harmonics):
         metrics[f"baseline_{k}"] = grooves0[k]
         metrics[f"synthesized_{k}"] = grooves1[k]
     notes = []
+    costs = [
+        f"{label} {res0.summary[k]:.3g} -> {res1.summary[k]:.3g}{' ' + unit if unit else ''} "
+        f"(x {res1.summary[k] / res0.summary[k]:.3g})"
+        for k, label, unit in _COSTS
+        if res0.summary[k] > 0.0 and res1.summary[k] > 1.1 * res0.summary[k]
+    ]
+    c0, c1 = grooves0["cam_self_crossings"], grooves1["cam_self_crossings"]
+    if isinstance(c0, int) and isinstance(c1, int) and c1 > c0:
+        costs.append(f"groove self-crossings {c0} -> {c1}")
+    if costs:
+        notes.append("costs of this law against the baseline: " + "; ".join(costs))
+    if feasible is not None:
+        notes.append(
+            f"admissible dwell fractions {feasible.dwell_min:.4g} - {feasible.dwell_max:.4g}: "
+            f"groove roller radius limit >= {UNDERCUT_FACTOR} x cam.roller_radius = "
+            f"{UNDERCUT_FACTOR * cam.roller_radius * 1e3:.4g} mm and the best-placed roller's "
+            f"pressure angle <= {np.degrees(pa_limit):.4g} deg"
+            + (" (--target not given: the longest admissible dwell)" if target is None else "")
+        )
     if res1.summary["rotor_speed_ratio_max"] > 0.0 > res1.summary["rotor_speed_ratio_min"]:
         notes.append(
             "the rotors reverse during each cycle with this law (rotor speed ratio changes "
@@ -476,11 +822,13 @@ def synthesize(cfg, raw, objective, target, harmonics):
             "slider angle: delta_A + delta_B is constant (eq. 18), so every chamber dwells at "
             "its minimum volume (and also at its maximum)"
         )
-    if max(np.degrees(err_drive), err_run) > 1e-6:
+    if round_trip > 1e-6:
         notes.append(
             f"the correction with harmonics <= {kmax} reproduces the target to "
-            f"{max(np.degrees(err_drive), err_run):.3g} deg only: raise --harmonics"
+            f"{round_trip:.3g} deg only: raise --harmonics"
         )
+    if not better:
+        notes.append("the synthesized law is not better than the baseline on the objective")
     offset = 2.0 * float(wc.piston_offset(base.pistons_per_rotor)) + np.radians(
         res0.summary["piston_width_deg"]
     )
