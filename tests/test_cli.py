@@ -121,3 +121,22 @@ def test_a_rerun_into_the_same_folder_leaves_no_stale_files(tmp_path, capsys):
     figures = {n for n in second if n.endswith(".png")}
     assert second == expected | figures
     assert figures == {n for n in (out / "README.txt").read_text().split() if n.endswith(".png")}
+
+
+@pytest.mark.parametrize("name", EXAMPLES)
+def test_printed_summary_says_what_each_metric_is(name, tmp_path, capsys):
+    """Every headline metric is in summary.json and printed with a line saying what it is
+    (e.g. which torque model, which sign), so two work or torque keys cannot be confused."""
+    from rotorkin.io.config import example_path, read_toml, validate_config
+    from rotorkin.studies import evaluate
+
+    assert main(["run", "--example", name, "--out", str(tmp_path / "o")]) == 0
+    printed = capsys.readouterr().out
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    result = evaluate(validate_config(read_toml(example_path(name))))
+    assert isinstance(result.headline, dict)
+    assert "meaning" in printed
+    for key, meaning in result.headline.items():
+        assert key in summary
+        assert len(meaning) > 10
+        assert key in printed

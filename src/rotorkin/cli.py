@@ -111,11 +111,15 @@ def _print_summary(result, name, outdir, written):
     console = Console()
     console.print(f"{name}: {result.title}", highlight=False, soft_wrap=True)
     table = Table()
-    table.add_column("metric")
+    table.add_column("metric", no_wrap=True)
     table.add_column("value", justify="right")
+    meanings = result.headline if isinstance(result.headline, dict) else {}
+    if meanings:
+        table.add_column("meaning")
     for key in result.headline:
         value = result.summary[key]
-        table.add_row(key, f"{value:.6g}" if isinstance(value, float) else str(value))
+        shown = f"{value:.6g}" if isinstance(value, float) else str(value)
+        table.add_row(key, shown, *([meanings[key]] if meanings else []))
     console.print(table)
     figures = [p.name for p in written if p.suffix == ".png"]
     console.print(

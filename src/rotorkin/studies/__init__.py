@@ -45,8 +45,9 @@ class StudyResult:
         dimensionless column has no unit suffix. Written as ``motion.csv``.
     column_docs : dict of str -> str
         One sentence per column of ``columns`` (what it is, sign convention).
-    headline : tuple of str
-        Summary keys shown in the printed table, in order.
+    headline : dict of str -> str
+        Summary keys shown in the printed table, in order, each with a short line
+        saying what it is (which model, which sign); a tuple of keys is accepted.
     plot : callable
         ``plot(outdir: Path) -> list[Path]`` writes the PNG figures.
     """
@@ -56,7 +57,7 @@ class StudyResult:
     summary: dict
     columns: dict
     column_docs: dict
-    headline: tuple
+    headline: dict | tuple
     plot: Callable[[Path], list[Path]] = field(repr=False)
 
     def __post_init__(self):

@@ -31,24 +31,24 @@ from rotorkin.studies._common import angle_grid, build_params, time_domain
 
 __all__ = ["evaluate", "drive_params", "HEADLINE"]
 
-#: Summary keys printed by the command line, in order.
-HEADLINE = (
-    "follower",
-    "lambda",
-    "gap_change_min_mm",
-    "gap_change_min_ratio",
-    "gap_change_to_length_percent",
-    "piston_stroke_mm",
-    "pressure_angle_max_deg",
-    "fluid",
-    "chamber_volume_max_cm3",
-    "pressure_min_bar",
-    "pressure_ripple_bar",
-    "cavitation",
-    "piston_left_accel_peak_m_per_s2",
-    "shaft_torque_peak_Nm",
-    "flywheel_inertia_kgm2",
-)
+#: Summary keys printed by the command line, in order, with what each means (one line).
+HEADLINE = {
+    "follower": "piston follower: knife_edge, flat or roller",
+    "lambda": "eccentricity over disc radius, e/R",
+    "gap_change_min_mm": "most negative change Delta of the piston gap (Fig. 8)",
+    "gap_change_min_ratio": "Delta / e there (Fig. 7)",
+    "gap_change_to_length_percent": "|Delta| / device length there",
+    "piston_stroke_mm": "travel of one piston over a turn",
+    "pressure_angle_max_deg": "largest pressure angle between disc and piston",
+    "fluid": "working fluid model: gas (polytropic) or liquid (bulk modulus)",
+    "chamber_volume_max_cm3": "largest volume enclosed between the pistons",
+    "pressure_min_bar": "lowest pressure of the enclosed fluid",
+    "pressure_ripple_bar": "max - min of the enclosed fluid's pressure",
+    "cavitation": "true if the liquid's pressure would fall to zero (it would boil)",
+    "piston_left_accel_peak_m_per_s2": "peak acceleration of the left piston",
+    "shaft_torque_peak_Nm": "peak torque of the fluid on the shaft, without inertia",
+    "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+}
 
 #: Samples per shaft turn used for the peaks of the piston derivatives (independent of run.points).
 _PEAK_SAMPLES = 20_001

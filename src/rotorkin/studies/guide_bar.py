@@ -36,23 +36,23 @@ from rotorkin.studies._common import angle_grid, build_params, time_domain
 
 __all__ = ["evaluate", "drive_params", "HEADLINE"]
 
-#: Summary keys printed by the command line, in order.
-HEADLINE = (
-    "driver",
-    "vane_angle_deg",
-    "relative_angle_swing_deg",
-    "impeller_speed_ratio_min",
-    "impeller_speed_ratio_max",
-    "input_torque_min_Nm",
-    "input_torque_max_Nm",
-    "input_torque_mean_Nm",
-    "displacement_cm3_per_rev",
-    "flow_mean_l_per_min",
-    "flow_ripple",
-    "mean_torque_Nm",
-    "torque_ripple",
-    "flywheel_inertia_kgm2",
-)
+#: Summary keys printed by the command line, in order, with what each means (one line).
+HEADLINE = {
+    "driver": "which member of gear 1 drives: crank or guide bar",
+    "vane_angle_deg": "vane angle gamma_0 of an impeller (section 3)",
+    "relative_angle_swing_deg": "swing of the angle between the two impellers",
+    "impeller_speed_ratio_min": "slowest impeller speed over the driving member's",
+    "impeller_speed_ratio_max": "fastest impeller speed over the driving member's",
+    "input_torque_min_Nm": "paper eq. 7, constant M7, M8: least torque gear 1 needs",
+    "input_torque_max_Nm": "paper eq. 7, constant M7, M8: most torque gear 1 needs",
+    "input_torque_mean_Nm": "paper eq. 7, constant M7, M8: mean torque gear 1 needs",
+    "displacement_cm3_per_rev": "volume delivered per input-shaft turn",
+    "flow_mean_l_per_min": "mean delivered flow at the run speed",
+    "flow_ripple": "(max - min) / mean of the delivered flow",
+    "mean_torque_Nm": "ideal ports: mean torque on the shaft (- : the motor drives)",
+    "torque_ripple": "ideal ports: (max - min) / |mean| of the shaft torque",
+    "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+}
 
 #: Samples per period used for extremes and peaks (independent of run.points).
 _PEAK_SAMPLES = 20_001

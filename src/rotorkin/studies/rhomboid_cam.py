@@ -43,24 +43,24 @@ __all__ = [
     "indicated_work_per_period",
 ]
 
-#: Summary keys printed by the command line, in order.
-HEADLINE = (
-    "psi_min_deg",
-    "psi_max_deg",
-    "profile_radius_min_mm",
-    "profile_radius_max_mm",
-    "indicator_work_J",
-    "mean_shaft_torque_Nm",
-    "blade_accel_coeff_max",
-    "psi_monotone",
-    "pressure_model",
-    "compression_ratio_geometric",
-    "displacement_cm3_per_rev",
-    "indicated_work_J",
-    "mean_torque_Nm",
-    "torque_ripple",
-    "flywheel_inertia_kgm2",
-)
+#: Summary keys printed by the command line, in order, with what each means (one line).
+HEADLINE = {
+    "psi_min_deg": "smallest angle psi between the blade axes",
+    "psi_max_deg": "largest angle psi between the blade axes, pi - psi_min",
+    "profile_radius_min_mm": "smallest radius of the cam pitch curve",
+    "profile_radius_max_mm": "largest radius of the cam pitch curve",
+    "indicator_work_J": "paper's linear torque model (eq. 31): work per period (half turn)",
+    "mean_shaft_torque_Nm": "paper's linear torque model: mean output-shaft torque",
+    "blade_accel_coeff_max": "max |d2 phi_1 / d alpha2| of a blade pair",
+    "psi_monotone": "true if psi rises and falls once per period",
+    "pressure_model": "chamber model of the machine keys below: linear or isothermal",
+    "compression_ratio_geometric": "V_max / V_min of a chamber",
+    "displacement_cm3_per_rev": "swept volume of all chambers per output turn",
+    "indicated_work_J": "pressure model above: work per output-shaft turn",
+    "mean_torque_Nm": "pressure model above: mean output-shaft torque",
+    "torque_ripple": "pressure model above: (max - min) / mean shaft torque",
+    "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+}
 
 #: Samples per period used for the peaks of the kinematic coefficients (independent of run.points).
 _PEAK_SAMPLES = 20_001

@@ -34,26 +34,26 @@ from rotorkin.studies._common import angle_grid, build_params, time_domain
 
 __all__ = ["evaluate", "models", "HEADLINE"]
 
-#: Summary keys printed by the command line, in order.
-HEADLINE = (
-    "slider_angle_max_deg",
-    "slider_angle_min_deg",
-    "chamber_angle_max_deg",
-    "chamber_angle_min_deg",
-    "chamber_swing_deg",
-    "piston_width_deg",
-    "volume_cycles_per_rev",
-    "power_strokes_per_rev",
-    "max_plate_tilt_deg",
-    "displacement_cm3_per_rev",
-    "compression_ratio_geometric",
-    "peak_pressure_bar",
-    "indicated_work_J",
-    "mean_torque_Nm",
-    "torque_ripple",
-    "indicated_power_kW",
-    "flywheel_inertia_kgm2",
-)
+#: Summary keys printed by the command line, in order, with what each means (one line).
+HEADLINE = {
+    "slider_angle_max_deg": "largest angle between the slider groups, alpha'_max (eq. 15)",
+    "slider_angle_min_deg": "smallest angle between the slider groups, alpha'_min",
+    "chamber_angle_max_deg": "chamber angle delta at bottom dead centre (eq. 22)",
+    "chamber_angle_min_deg": "chamber angle delta at top dead centre (eq. 22)",
+    "chamber_swing_deg": "swing of the chamber angle over a turn (Fig. 10)",
+    "piston_width_deg": "angular width beta of a piston for the compression ratio (eq. 21)",
+    "volume_cycles_per_rev": "volume cycles of one chamber per shaft turn",
+    "power_strokes_per_rev": "power strokes of the engine per shaft turn",
+    "max_plate_tilt_deg": "largest admissible plate tilt, eq. 20 (Fig. 13)",
+    "displacement_cm3_per_rev": "swept volume of all chambers per shaft turn",
+    "compression_ratio_geometric": "V_max / V_min of a chamber, with clearance",
+    "peak_pressure_bar": "highest chamber pressure of the ideal cycle",
+    "indicated_work_J": "indicated work of all chambers per shaft turn",
+    "mean_torque_Nm": "mean gas torque on the shaft (+ drives the shaft)",
+    "torque_ripple": "(max - min) / mean of the gas torque on the shaft",
+    "indicated_power_kW": "indicated power at the run speed",
+    "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+}
 
 #: Samples per shaft turn used for the peaks of the rotor derivatives (independent of run.points).
 _PEAK_SAMPLES = 20_001
