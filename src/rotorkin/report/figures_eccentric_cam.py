@@ -120,7 +120,7 @@ def fig_pistons(params: ec.EccentricCam, path: Path) -> Path:
     beta = _beta()
     b = np.degrees(beta)
     d = ec.decomposition(params, beta)
-    fig, ax = plt.subplots(figsize=(8, 5))
+    fig, ax = plt.subplots(figsize=(8, 5.6))
     ax.plot(b, d["x"], "C0", label="x = z/e (left piston)")
     ax.plot(b, d["x_right"], "C3", label="x' = z'/e (right piston)")
     ax.plot(b, -d["x_right"], "C3:", lw=1, label="-x' (mirror: x + x' = delta)")
@@ -129,10 +129,11 @@ def fig_pistons(params: ec.EccentricCam, path: Path) -> Path:
     e = float(params.eccentricity)
     ax.plot([np.degrees(bmin)], [dmin / e], "ko")
     ax.annotate(f"delta = {dmin / e:.4f}\nDelta = {dmin * 1e3:.3g} mm",
-                (np.degrees(bmin), dmin / e), textcoords="offset points", xytext=(12, 40),
-                fontsize=8)  # fmt: skip
+                (np.degrees(bmin), dmin / e), textcoords="offset points", xytext=(-95, -10),
+                fontsize=8, va="center", bbox={"fc": "white", "ec": "0.7", "pad": 2},
+                arrowprops={"arrowstyle": "-", "color": "0.4"})  # fmt: skip
     _axes_deg(ax, "x, x', delta [-]")
-    ax.legend(fontsize=8, loc="lower left")
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=4)
     ax.set_title("Fig. 8  Left and right pistons and gap change\n" + _tag(params))
     return _save(fig, path)
 

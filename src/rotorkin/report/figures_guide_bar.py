@@ -299,8 +299,10 @@ def fig_pump_chambers(pump, ports, theta, state, path: Path) -> Path:
         _shade_strokes(ax, theta, state["dV"][0])
     ax1.plot(deg, state["V"][0] * 1e6, "C0", lw=2, label=f"chambers A (x{z}): impeller 1 -> 2")
     ax1.plot(deg, state["V"][1] * 1e6, "C1", lw=2, label=f"chambers B (x{z}): impeller 2 -> 1")
-    ax1.plot(deg, (state["V"][0] + state["V"][1]) * 1e6, "0.5", ls=":",
-             label="A + B (constant)")  # fmt: skip
+    total = (state["V"][0] + state["V"][1]) * 1e6
+    same = np.allclose(total, pump.chamber_angle_range[1] * pump.volume_per_angle * 1e6)
+    ax1.plot(deg, total, color="C2", lw=4, alpha=0.35,
+             label="A + B (constant" + (", = V_max)" if same else ")"))  # fmt: skip
     lo, hi = pump.chamber_angle_range
     k = pump.volume_per_angle * 1e6
     ax1.axhline(lo * k, color="k", lw=0.8, ls="--")
