@@ -32,6 +32,7 @@ from rotorkin.report.html_scenes import (
     frame_angles,
     join,
     lines_plot,
+    mean_trace,
     panels,
     svaj_plot,
     torque_plot,
@@ -327,9 +328,17 @@ def plots(result, cfg) -> list[Plot]:
             cols,
             be,
             x_lab,
-            ("fluid [N*m]", [("fluid torque", cols["shaft_torque_Nm"])]),
-            s.get("mean_torque_Nm", np.nan),
-            f"Torque on the shaft by virtual work at {rpm} rpm",
+            [
+                (
+                    "fluid [N*m]",
+                    [
+                        ("fluid torque", cols["shaft_torque_Nm"]),
+                        mean_trace(be, s.get("mean_torque_Nm", np.nan)),
+                    ],
+                )
+            ],
+            f"Torque on the shaft by virtual work at {rpm} rpm (positive: the fluid drives "
+            "the shaft)",
             360.0,
         ),
         Plot(

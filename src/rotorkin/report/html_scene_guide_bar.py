@@ -34,6 +34,7 @@ from rotorkin.report.html_scenes import (
     frame_angles,
     join,
     lines_plot,
+    mean_trace,
     panels,
     sector,
     select,
@@ -253,13 +254,34 @@ def plots(result, cfg) -> list[Plot]:
         ),
         ("flow [l/min]", [("delivered flow (ideal ports)", cols["flow_l_per_min"])]),
     ]
-    loads = (
-        "loads [N*m]",
-        [
-            ("eq. 7/8: input torque for constant impeller torques", cols["input_torque_Nm"]),
-            ("port pressures: torque on the shaft", cols["shaft_torque_Nm"]),
-        ],
-    )
+    # one sign convention on the whole plot: the torque the motor must supply at input gear
+    # 1, positive (the paper's eq. 7/8 sense; the study's shaft_torque_* columns are
+    # positive when the machine drives the shaft, so a pump's are negated here)
+    ld = cfg.get("loads", {})
+    m7, m8 = (ld.get(f"impeller_torque_{k}", np.nan) for k in (1, 2))
+    ps, pd = (ld.get(f"{k}_pressure", np.nan) / 1e5 for k in ("suction", "discharge"))
+    loads = [
+        (
+            "paper eq. 7/8 [N*m]",
+            [
+                (
+                    f"paper eq. 7/8: constant impeller loads M7 = {fmt(m7)}, M8 = {fmt(m8)} N*m",
+                    cols["input_torque_Nm"],
+                ),
+                mean_trace(th, s.get("input_torque_mean_Nm", np.nan), "eq. 7/8 mean"),
+            ],
+        ),
+        (
+            "ideal ports [N*m]",
+            [
+                (
+                    f"ideal ports: chamber pressures, suction {fmt(ps)} / discharge {fmt(pd)} bar",
+                    -np.asarray(cols["shaft_torque_Nm"]),
+                ),
+                mean_trace(th, -s.get("mean_torque_Nm", np.nan), "ideal-ports mean"),
+            ],
+        ),
+    ]
     pv = [("chamber A", cols["chamber_a_volume_cm3"], cols["chamber_a_pressure_bar"], None)]
     return [
         svaj_plot(
@@ -296,9 +318,15 @@ def plots(result, cfg) -> list[Plot]:
             th,
             x_lab,
             loads,
-            s.get("mean_torque_Nm", np.nan),
-            f"Torque on input gear 1 at {rpm} rpm (negative: the shaft drives the pump)",
+            f"Input torque the motor must supply at gear 1 at {rpm} rpm (positive), two load "
+            "models",
             per,
+            supplied=True,
+            caption="Both load models on one convention: the torque the motor must supply at "
+            "input gear 1, positive. Top: the paper's eq. 7/8, M1 = M7 dq_1/dtheta + M8 "
+            "dq_2/dtheta with constant impeller loads. Middle: the chamber pressures of ideal "
+            "ports on the vanes, by virtual work. Bottom: the torque spent on the inertia of "
+            "shaft and impellers, and the motor torque with it (ideal ports).",
         ),
         Plot(
             "plot-pv",

@@ -34,6 +34,8 @@ from rotorkin.report.html_scenes import (
     frame_angles,
     join,
     lines_plot,
+    mean_trace,
+    merge_identical,
     panels,
     sector,
     select,
@@ -225,7 +227,7 @@ def scene(result, cfg, frames: int = 120):
         y=rm * np.sin(mid),
         text=[[f"{j + 1}<br>{vol[j, f]:.0f} cm3" for j in range(2 * bp)] for f in range(nf)],
     )
-    lim1 = 1.08 * max(float(np.max(np.abs(outer))), L)
+    lim1 = 1.15 * max(float(np.max(np.abs(outer))), L)
     lim2 = 1.1 * ro
     layout = panels(
         620,
@@ -268,7 +270,7 @@ def plots(result, cfg) -> list[Plot]:
         for k, c in ((1, COLOR_1), (2, COLOR_2))
     ]
     vcols = sorted(c for c in cols if c.startswith("chamber") and c.endswith("_volume_cm3"))
-    volumes = [(f"chamber {c.split('_')[0][7:]}", cols[c]) for c in vcols]
+    volumes = merge_identical([(f"chamber {c.split('_')[0][7:]}", cols[c]) for c in vcols])
     out = [
         svaj_plot(
             cols,
@@ -293,9 +295,17 @@ def plots(result, cfg) -> list[Plot]:
             cols,
             al,
             x_lab,
-            ("blades [N*m]", [("blade torque (virtual work)", cols["shaft_torque_Nm"])]),
-            s.get("mean_torque_Nm", np.nan),
-            f"Torque on the output shaft at {rpm} rpm ({s.get('pressure_model')} model)",
+            [
+                (
+                    "blades [N*m]",
+                    [
+                        ("blade torque (virtual work)", cols["shaft_torque_Nm"]),
+                        mean_trace(al, s.get("mean_torque_Nm", np.nan)),
+                    ],
+                )
+            ],
+            f"Torque on the output shaft at {rpm} rpm ({s.get('pressure_model')} model; "
+            "positive: the blades drive the shaft)",
             per,
         ),
     ]

@@ -40,6 +40,8 @@ from rotorkin.report.html_scenes import (
     frame_angles,
     join,
     lines_plot,
+    mean_trace,
+    merge_identical,
     panels,
     sector,
     select,
@@ -279,7 +281,7 @@ def scene(result, cfg, frames: int = 120):
         "xaxis": {"title": {"text": "x [mm]"}, **axis},
         "yaxis": {"title": {"text": "y [mm]"}, **axis},
         "zaxis": {"title": {"text": "z [mm]"}, **axis},
-        "camera": {"eye": {"x": 1.55, "y": -0.82, "z": 0.3}},
+        "camera": {"eye": {"x": 1.8, "y": -0.95, "z": 0.35}},
     }
     readouts = [
         ("Phi_1 (rotor 1)", "deg", np.degrees(q[0])),
@@ -336,7 +338,9 @@ def plots(result, cfg) -> list[Plot]:
     ]
     pcols = [c for c in cols if c.startswith("chamber") and c.endswith("_pressure_bar")]
     if pcols:
-        rows = [("pressure [bar]", [(f"chamber {c.split('_')[0][7:]}", cols[c]) for c in pcols])]
+        named = [(f"chamber {c.split('_')[0][7:]}", cols[c]) for c in pcols]
+        shown = merge_identical(named)
+        rows = [("pressure [bar]", shown)]
         out.append(
             lines_plot(
                 "plot-pressure",
@@ -344,9 +348,17 @@ def plots(result, cfg) -> list[Plot]:
                 th,
                 x_lab,
                 rows,
-                "Chamber pressures, ideal four-stroke cycle",
+                "Chamber pressures, ideal four-stroke cycle"
+                + (
+                    f" ({len(shown)} distinct of {len(named)} chambers)"
+                    if len(shown) < len(named)
+                    else ""
+                ),
                 360.0,
                 height=440,
+                caption="Chambers whose pressure is the same at every shaft angle share one "
+                "curve, named for all of them in the legend (drawn separately, one would hide "
+                "the other).",
             )
         )
     out.append(
@@ -354,9 +366,17 @@ def plots(result, cfg) -> list[Plot]:
             cols,
             th,
             x_lab,
-            ("gas [N*m]", [("gas torque", cols["shaft_torque_Nm"])]),
-            s.get("mean_torque_Nm", np.nan),
-            f"Torque on the Z-shaft by virtual work at {rpm} rpm",
+            [
+                (
+                    "gas [N*m]",
+                    [
+                        ("gas torque", cols["shaft_torque_Nm"]),
+                        mean_trace(th, s.get("mean_torque_Nm", np.nan)),
+                    ],
+                )
+            ],
+            f"Torque on the Z-shaft by virtual work at {rpm} rpm (positive: the gas drives "
+            "the shaft)",
             360.0,
         )
     )

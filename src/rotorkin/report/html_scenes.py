@@ -38,7 +38,10 @@ __all__ = [  # fmt: skip
     "svaj_figure",
     "svaj_plot",
     "torque_plot",
+    "mean_trace",
     "xy_figure",
+    "merge_identical",
+    "log_ticks",
     "detrend",
     "flywheel_checks",
     "fmt",
@@ -416,7 +419,10 @@ def line_figure(x, x_label, rows, title, height=None):
     """Stacked line plots sharing the x axis.
 
     ``rows``: ``[(y_label, [(name, y), ...]), ...]``, one subplot per row, one trace per
-    ``(name, y)``, coloured in turn from the palette.
+    ``(name, y)``, coloured in turn from the palette; a ``(name, y, style)`` triple adds
+    line options (``dash``, ``color``, ``width``; ``like_previous``: the previous trace's
+    colour). Each y range is padded (:func:`_pad`),
+    so that a curve at the extreme of its row is not drawn on the plot's edge.
     """
     from plotly.subplots import make_subplots
 
@@ -424,14 +430,83 @@ def line_figure(x, x_label, rows, title, height=None):
     fig = make_subplots(rows=n, cols=1, shared_xaxes=True, vertical_spacing=0.05 if n > 1 else 0)
     k = 0
     for r, (y_label, traces) in enumerate(rows, start=1):
-        for name, y in traces:
-            line = {"color": _PALETTE[k % len(_PALETTE)], "width": 2}
+        for name, y, *style in traces:
+            style = dict(style[0]) if style else {}
+            if style.pop("like_previous", False) and k:  # e.g. a mean: the colour of its curve
+                k -= 1
+            line = {"color": _PALETTE[k % len(_PALETTE)], "width": 2, **style}
             fig.add_trace(_go().Scatter(x=x, y=y, name=name, mode="lines", line=line), r, 1)
             k += 1
         fig.update_yaxes(title_text=y_label, row=r, col=1)
+        fig.update_yaxes(range=_pad([y for _, y, *_ in traces]), row=r, col=1)
     fig.update_xaxes(title_text=x_label, row=n, col=1)
     fig.update_layout(**_base_layout(title, height or (260 + 190 * n)))
     return fig
+
+
+def _pad(arrays, frac: float = 0.05, log: bool = False):
+    """Axis range ``[lo, hi]`` over ``arrays``, widened by ``frac`` of the span on each side.
+
+    Plotly's autorange puts the extreme of a line on the plot's edge, where it hides
+    under the axis (a horizontal limit line, the straight sides of a p-V loop). With
+    ``log`` the range is in decades (``log10``), as plotly wants for a log axis.
+    Returns ``None`` (autorange) when there is no finite value.
+    """
+    vals = np.concatenate([np.ravel(np.asarray(a, dtype=float)) for a in arrays])
+    vals = vals[np.isfinite(vals)]
+    if log:
+        vals = np.log10(vals[vals > 0.0])
+    if vals.size == 0:
+        return None
+    lo, hi = float(vals.min()), float(vals.max())
+    span = hi - lo if hi > lo else max(abs(hi), 1.0)
+    return [lo - frac * span, hi + frac * span]
+
+
+def log_ticks(lo: float, hi: float) -> list[float]:
+    """Readable tick values of a log axis from ``lo`` to ``hi``: 1, 2, 5, 10, 20, 50 ...
+
+    Plotly labels the minor ticks of a log axis with their leading digit only
+    ("2 ... 8" for 20 ... 80); explicit ``tickvals`` give full numbers. When the range
+    spans less than about a decade, 3 and 7 are added (1, 2, 3, 5, 7, 10 ...).
+    """
+    if not (lo > 0.0 and hi > lo):
+        return []
+    decades = range(int(np.floor(np.log10(lo))), int(np.ceil(np.log10(hi))) + 1)
+    for mantissas in ((1, 2, 5), (1, 2, 3, 5, 7), (1, 1.5, 2, 3, 4, 5, 6, 7, 8)):
+        ticks = [float(f"{m * 10.0**e:.6g}") for e in decades for m in mantissas]
+        ticks = [t for t in ticks if lo * (1 - 1e-9) <= t <= hi * (1 + 1e-9)]
+        if len(ticks) >= 4:
+            break
+    return ticks
+
+
+def merge_identical(traces, what: str = "chambers"):
+    """Merge the ``(name, y)`` traces whose curves are identical into one, named for all.
+
+    Identical curves drawn one over the other hide all but the last; merged, the
+    legend says which they are: ``("chamber 1", p1), ("chamber 5", p1)`` become
+    ``("chambers 1 and 5 (identical)", p1)``. ``name`` ends with the member's label
+    (``"chamber 1"`` -> ``"1"``); ``what`` is the plural used for a merged trace.
+    """
+    groups: list[list] = []
+    for name, y in traces:
+        y = np.asarray(y, dtype=float)
+        for g in groups:
+            if g[1].shape == y.shape and np.allclose(g[1], y, rtol=1e-9, atol=1e-12):
+                g[0].append(name)
+                break
+        else:
+            groups.append([[name], y])
+    out = []
+    for names, y in groups:
+        if len(names) == 1:
+            out.append((names[0], y))
+            continue
+        labels = [str(n).rsplit(" ", 1)[-1] for n in names]
+        listed = ", ".join(labels[:-1]) + f" and {labels[-1]}"
+        out.append((f"{what} {listed} (identical)", y))
+    return out
 
 
 def svaj_figure(x, x_label, members, title):
@@ -449,6 +524,7 @@ def svaj_figure(x, x_label, members, title):
             fig.add_trace(_go().Scatter(x=x, y=y, showlegend=r == 1, **style), r, 1)
     for r, (lab, _) in enumerate(members[0][2], start=1):
         fig.update_yaxes(title_text=lab, row=r, col=1, title_font={"size": 11})
+        fig.update_yaxes(range=_pad([m[2][r - 1][1] for m in members]), row=r, col=1)
     fig.update_xaxes(title_text=x_label, row=4, col=1)
     fig.update_layout(**_base_layout(title, 860))
     return fig
@@ -457,7 +533,12 @@ def svaj_figure(x, x_label, members, title):
 def xy_figure(
     traces, x_label, y_label, title, equal=False, height=520, legend_right=False, log=False
 ):
-    """One plot of parametric curves ``[(name, x, y, style), ...]`` (style: dict of line opts)."""
+    """One plot of parametric curves ``[(name, x, y, style), ...]`` (style: dict of line opts).
+
+    Both ranges are padded (:func:`_pad`) so that a loop's straight sides stay off the
+    plot's edges, unless ``equal`` (equal scales: plotly sets the ranges). ``log``: both
+    axes logarithmic, ticked with full numbers (:func:`log_ticks`).
+    """
     go = _go()
     fig = go.Figure()
     for k, (name, x, y, style) in enumerate(traces):
@@ -475,9 +556,15 @@ def xy_figure(
     fig.update_yaxes(title_text=y_label)
     if equal:
         fig.update_yaxes(scaleanchor="x", scaleratio=1)
-    if log:
-        fig.update_xaxes(type="log")
-        fig.update_yaxes(type="log")
+        return fig
+    for axis, k in ((fig.update_xaxes, 1), (fig.update_yaxes, 2)):
+        data = [t[k] for t in traces]
+        axis(range=_pad(data, log=log))
+        if log:
+            vals = np.concatenate([np.ravel(np.asarray(a, dtype=float)) for a in data])
+            vals = vals[np.isfinite(vals) & (vals > 0.0)]
+            ticks = log_ticks(float(vals.min()), float(vals.max())) if vals.size else []
+            axis(type="log", tickvals=ticks, ticktext=[fmt(t) for t in ticks])
     return fig
 
 
@@ -522,21 +609,39 @@ def svaj_plot(cols, x, x_label, members, unit, heading, period) -> Plot:
     )
 
 
-def torque_plot(cols, x, x_label, first, mean, heading, period) -> Plot:
-    """Shaft torque: the load row ``first = (label, [(name, y), ...])`` with the mean, and
-    the inertia torque with the net torque below it."""
-    label, traces = first
+def torque_plot(cols, x, x_label, rows, heading, period, supplied=False, caption="") -> Plot:
+    """Shaft torque: the load rows ``rows = [(label, [(name, y), ...]), ...]`` (with their
+    means, :func:`mean_trace`), and the inertia torque with the net torque below them.
+
+    The study's ``shaft_torque_*`` columns are positive when the machine drives the
+    shaft. ``supplied=True`` (a pump: the rows given are the torque the motor must
+    supply, positive) shows the net torque on the same convention, i.e. as the motor
+    torque with inertia, ``inertia - shaft torque``.
+    """
+    if supplied:
+        net = ("motor torque with inertia", -np.asarray(cols["shaft_torque_with_inertia_Nm"]))
+    else:
+        net = ("net: minus inertia", cols["shaft_torque_with_inertia_Nm"])
     rows = [
-        (label, [*traces, ("mean", np.full_like(x, mean))]),
-        (
-            "with inertia [N*m]",
-            [
-                ("inertia torque", cols["inertia_torque_Nm"]),
-                ("net: minus inertia", cols["shaft_torque_with_inertia_Nm"]),
-            ],
-        ),
+        *rows,
+        ("with inertia [N*m]", [("inertia torque", cols["inertia_torque_Nm"]), net]),
     ]
-    return lines_plot("plot-torque", "Shaft torque", x, x_label, rows, heading, period)
+    return lines_plot(
+        "plot-torque", "Shaft torque", x, x_label, rows, heading, period, caption=caption
+    )
+
+
+def mean_trace(x, mean, what: str = "mean") -> tuple:
+    """A dotted line at ``mean`` in the colour of the trace before it, named with its value.
+
+    For :func:`line_figure` rows: ``("mean 5 N*m", y, style)``.
+    """
+    y = np.full(np.shape(x), float(mean))
+    return (
+        f"{what} {fmt(float(mean))} N*m",
+        y,
+        {"dash": "dot", "width": 1.5, "like_previous": True},
+    )
 
 
 def detrend(q, x):
