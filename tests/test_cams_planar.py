@@ -321,3 +321,26 @@ def test_eccentric_pressure_angles_by_geometry(follower, r):
     assert chk.ok
     if follower != "flat":
         np.testing.assert_allclose(chk.max_pressure_angle, np.max(np.abs(mu)), atol=1e-12)
+
+
+@pytest.mark.parametrize("law", LAWS)
+def test_roller_radius_limit(law):
+    """The largest roller that passes check_profile; the message states it (rounded down)."""
+    limit, reason = rhomboid.roller_radius_limit(L, *law)
+    chk0 = rhomboid.profile_check(L, *law, 0.0)
+    if reason == "clearance":
+        # independent: the rollers at the waist (rho_min) meet at the centre when r = rho_min
+        t = np.linspace(0, np.pi, 200_001)
+        rho_min = np.min(np.hypot(*_pitch_xy(t, law)))
+        assert limit == pytest.approx(rho_min, rel=1e-5)
+    else:
+        assert reason == "undercut" and limit == chk0.min_convex_radius
+    assert limit <= chk0.min_convex_radius and limit <= L / 2
+    rhomboid.check_profile(L, *law, limit * (1 - 1e-6))  # passes
+    with pytest.raises(ParameterError) as info:
+        rhomboid.check_profile(L, *law, limit * (1 + 1e-6))
+    stated = float(str(info.value).split("roller_radius < ")[1].split(" mm")[0])
+    assert limit * 1e3 - 0.01 < stated <= limit * 1e3
+    with pytest.raises(ParameterError) as info:  # any failing roller states the same range
+        rhomboid.check_profile(L, *law, 0.059)
+    assert f"roller_radius < {stated:.4g} mm" in str(info.value)

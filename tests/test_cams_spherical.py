@@ -382,3 +382,58 @@ def test_figure(example, tmp_path):
     assert img.shape[0] > 1000 and img.shape[1] > 1400
     with pytest.raises(TypeError):
         plot_spherical_cam(drive, tmp_path)
+
+
+def test_guided_leaves_out_the_unguided_stretch(example):
+    """Around each crossing the roller is unguided over 2 rho / sin(angle) of its path."""
+    drive, cam = example
+    crossings = sph.groove_crossings(drive)
+    theta = np.linspace(0.0, np.pi, 180_001)
+    ok = sph.guided(drive, cam, theta, crossings)
+    dg = sph.groove_derivatives(drive, theta)[1]
+    speed = np.linalg.norm(dg, axis=1)  # |dg/dtheta| (4, n)
+    step = theta[1] - theta[0]
+    for c in crossings:
+        i = c.rollers[0]
+        for t0 in c.theta:
+            near = np.abs(theta - t0) < np.radians(20)
+            off = near & ~ok[i]
+            assert off.any() and not ok[i, np.argmin(np.abs(theta - t0))]
+            length = np.sum(speed[i, off]) * step  # path length left out
+            assert length == pytest.approx(c.gap_length(cam.roller_radius), rel=2e-3)
+    # away from every crossing (more than 20 deg of shaft angle) every roller is guided
+    far = np.ones_like(ok)
+    for c in crossings:
+        for k in (0, 1):
+            for t0 in c.shaft_angles(k, np.pi):
+                far[c.rollers[k]] &= np.abs(theta - t0) > np.radians(20)
+    assert ok[far].all()
+
+
+def test_pressure_angle_peaks(example):
+    drive, cam = example
+    peaks = sph.pressure_angle_peaks(drive, cam)
+    s = sph.summary(drive, cam)
+    deg = np.degrees
+    assert deg(peaks["any"][0]) == pytest.approx(s["cam_pressure_angle_max_deg"])
+    assert deg(peaks["best"][0]) == pytest.approx(s["cam_pressure_angle_best_roller_max_deg"])
+    assert deg(peaks["guided"][0]) == pytest.approx(s["cam_pressure_angle_guided_max_deg"])
+    # each value is the roller's own pressure angle at the shaft angle named
+    for key in ("any", "guided", "best", "best_guided"):
+        mu, th, roller = peaks[key]
+        assert sph.pressure_angle(drive, th)[roller] == pytest.approx(mu, abs=1e-12)
+    # the best-placed roller: of the 4, the smallest at that angle
+    mu, th, roller = peaks["best"]
+    assert mu == pytest.approx(sph.pressure_angle(drive, th).min(), abs=1e-12)
+    # the guided peaks are of rollers between both walls
+    for key in ("guided", "fixed_guided", "best_guided"):
+        _, th, roller = peaks[key]
+        assert sph.guided(drive, cam, th)[roller]
+    # leaving rollers out cannot lower the best roller's worst angle, nor raise the peak
+    assert peaks["best_guided"][0] >= peaks["best"][0] - 1e-12
+    assert peaks["guided"][0] <= peaks["any"][0] + 1e-12
+    # the example: 30.36 deg with every roller, but at theta = 22.5 deg rollers 1, 1' are at
+    # their crossings and 2, 2' at their lobe tips (90 deg): no roller guides the plate well
+    assert deg(peaks["best"][0]) == pytest.approx(30.36, abs=0.01)
+    assert deg(peaks["best_guided"][0]) == pytest.approx(90.0, abs=1e-6)
+    assert deg(peaks["best_guided"][1]) % 45.0 == pytest.approx(22.5)

@@ -51,6 +51,7 @@ __all__ = [
     "pressure_angles",
     "profile_check",
     "roller_alphas",
+    "roller_radius_limit",
 ]
 
 #: Names of the rollers, at the polar angles alpha + k pi/2.
@@ -197,6 +198,28 @@ def profile_check(link_length, psi_min, a, b, roller_radius) -> ProfileCheck:
         return failed
 
 
+def _clearance(L, law, r):
+    """The checks that depend on the roller radius: ``(min_clearance, its alpha, profile_min)``.
+
+    ``min_clearance`` [m] of :func:`rotorkin.cams.planar.facing_clearance` on 1024
+    profile samples per turn, its roller's angle in ``[0, pi)`` (nan when ``inf``) and
+    the smallest distance of the actual profile from the centre [m] (2048 samples per
+    half turn).
+    """
+    q = actual_profile(np.pi * np.arange(_GRID) / _GRID, L, *law, r)
+    s = 2.0 * np.pi * np.arange(_CLEAR) / _CLEAR
+    p, dp, _ = pitch_curve(s, L, *law)
+    prof = planar.offset_curve(p, dp, -r)
+    half = _CLEAR // 2  # roller centres over half a turn cover every position (symmetry)
+    gap, _ = planar.facing_clearance(
+        p[:, :half], prof, planar.outward_normal(dp), r, np.arange(half)
+    )
+    ic = int(np.argmin(gap))
+    clearance = float(gap[ic])
+    alpha = _wrap(s[ic]) if np.isfinite(clearance) else float("nan")
+    return clearance, alpha, float(np.min(np.hypot(q[0], q[1])))
+
+
 def _profile_check(L, psi_min, a, b, r) -> ProfileCheck:
     law = (psi_min, a, b)
     h = np.pi / _GRID
@@ -221,16 +244,7 @@ def _profile_check(L, psi_min, a, b, r) -> ProfileCheck:
     x_mu, f_mu = _refine(lambda x: -np.abs(mu(x)), g, im, h)
 
     rho = rc.profile_radius(g, L, *law)[0]
-    q = actual_profile(g, L, *law, r)
-    s = 2.0 * np.pi * np.arange(_CLEAR) / _CLEAR
-    p, dp, _ = pitch_curve(s, L, *law)
-    prof = planar.offset_curve(p, dp, -r)
-    half = _CLEAR // 2  # roller centres over half a turn cover every position (symmetry)
-    gap, _ = planar.facing_clearance(
-        p[:, :half], prof, planar.outward_normal(dp), r, np.arange(half)
-    )
-    ic = int(np.argmin(gap))
-    clearance = float(gap[ic])
+    clearance, clearance_alpha, profile_min = _clearance(L, law, r)
     undercut = bool(r >= min_convex) or not np.isfinite(min_convex)
     return ProfileCheck(
         roller_radius=r,
@@ -241,8 +255,8 @@ def _profile_check(L, psi_min, a, b, r) -> ProfileCheck:
         max_pressure_angle_alpha=_wrap(x_mu),
         undercut=undercut,
         min_clearance=clearance,
-        min_clearance_alpha=_wrap(s[ic]) if np.isfinite(clearance) else float("nan"),
-        profile_min_radius=float(np.min(np.hypot(q[0], q[1]))),
+        min_clearance_alpha=clearance_alpha,
+        profile_min_radius=profile_min,
         extra={
             "roller_gap": L - 2.0 * r,
             "pitch_radius_min": float(np.min(rho)),
@@ -252,14 +266,101 @@ def _profile_check(L, psi_min, a, b, r) -> ProfileCheck:
     )
 
 
+def _mm_below(x) -> str:
+    """A length limit [m] in mm rounded *down* to 4 significant digits: ``'41.04 mm'``.
+
+    A roller radius below the stated value is then below the limit itself.
+    """
+    v = float(x) * 1e3
+    if not (np.isfinite(v) and v > 0.0):
+        return fmt_mm(x)
+    unit = 10.0 ** (np.floor(np.log10(v)) - 3)
+    return f"{np.floor(v / unit) * unit:.4g} mm"
+
+
+def roller_radius_limit(link_length, psi_min, a=(), b=(), rtol=1e-7):
+    """Largest roller radius that :func:`check_profile` admits, and the check that sets it.
+
+    Every roller radius ``0 <= r < limit`` passes :func:`check_profile`. The limit is
+    the smallest of: the smallest convex radius of curvature of the pitch curve
+    (undercut), half the side ``2l`` (neighbouring rollers), and the smallest roller
+    radius at which the clearance to another flank turns negative or the actual
+    profile reaches the cam centre. The last is found by a scan of 16 radii below the
+    other two limits, then bisection of the first failing interval to ``rtol`` of the
+    limit (the same clearance function as :func:`profile_check`, so a roller just below
+    the limit passes the check and one just above fails it).
+
+    Parameters
+    ----------
+    link_length : float
+        Side ``2l`` of the rhombus [m].
+    psi_min : float
+        [rad].
+    a, b : sequence of float
+        Higher harmonics [rad].
+    rtol : float, optional
+        Relative width of the final bisection interval.
+
+    Returns
+    -------
+    (limit, reason) : float, str
+        The limit [m] and what sets it: ``"undercut"``, ``"rollers"`` (neighbouring
+        rollers touch), ``"clearance"`` (a roller reaches another flank, e.g. across the
+        cam's waist) or ``"centre"``; ``(nan, "cam")`` when the law is not a cam.
+    """
+    L = float(link_length)
+    chk0 = profile_check(L, psi_min, a, b, 0.0)
+    if not chk0.ok:
+        return float("nan"), "cam"
+    law = (float(psi_min), a, b)
+    limit, reason = float(chk0.min_convex_radius), "undercut"
+    if 0.5 * L < limit:
+        limit, reason = 0.5 * L, "rollers"
+
+    def fails(r) -> str:
+        clearance, _, profile_min = _clearance(L, law, r)
+        if clearance < 0.0:
+            return "clearance"
+        return "" if profile_min > 0.0 else "centre"
+
+    lo, hi = 0.0, None
+    for r in limit * np.append(np.arange(1, 16) / 16.0, 1.0 - rtol):
+        if fails(r):
+            hi = r
+            break
+        lo = r
+    if hi is None:
+        return limit, reason
+    while hi - lo > rtol * limit:
+        mid = 0.5 * (lo + hi)
+        if fails(mid):
+            hi = mid
+        else:
+            lo = mid
+    return float(lo), fails(hi)
+
+
+_LIMIT_REASONS = {
+    "undercut": "the smallest convex radius of curvature of the pitch curve; a larger roller "
+    "undercuts the cam",
+    "rollers": "half the side 2l of the rhombus; neighbouring rollers overlap above it",
+    "clearance": "the largest roller that clears every other flank of the cam; a larger one "
+    "reaches across the cam's waist",
+    "centre": "the largest roller whose actual profile stays clear of the cam centre",
+}
+
+
 def check_profile(link_length, psi_min, a, b, roller_radius, name="cam.roller_radius"):
     """Raise :class:`ParameterError` named ``name`` unless the roller fits the cam.
 
-    Errors, in this order: ``r < 0``; ``r >= `` the smallest convex radius of
-    curvature (undercut: the message names the angle alpha of the smallest
-    radius and the stretch of alpha where the profile has a cusp); a negative
-    clearance to another flank; neighbouring rollers overlapping
-    (``2r >= 2l``); the actual profile reaching the cam centre.
+    Errors: ``r < 0``; a roller that fails any of: ``r <`` the smallest convex radius
+    of curvature (else it undercuts the cam), a clearance ``>= 0`` to every other
+    flank, neighbouring rollers apart (``2r < 2l``), the actual profile clear of the
+    cam centre. The message states the admissible range ``roller_radius < limit``
+    (:func:`roller_radius_limit`, rounded down to 4 digits) and what this roller
+    does wrong: for an undercut, the angle alpha of the smallest radius and the
+    stretch of alpha where the profile has a cusp; for an overlap, the roller's angle
+    and by how much.
 
     Returns
     -------
@@ -270,36 +371,34 @@ def check_profile(link_length, psi_min, a, b, roller_radius, name="cam.roller_ra
     if not (np.isfinite(r) and r >= 0.0):
         raise ParameterError(name, fmt_mm(r), "roller_radius >= 0 mm")
     chk = profile_check(link_length, psi_min, a, b, r)
+    clash = chk.min_clearance < 0.0
+    rollers = not chk.extra.get("roller_gap", 0.0) > 0.0
+    centre = not chk.profile_min_radius > 0.0
+    if not (chk.undercut or clash or rollers or centre):
+        return chk
+    limit, reason = roller_radius_limit(link_length, psi_min, a, b)
+    if reason == "cam":  # pragma: no cover - the drive rejects such laws first
+        raise ParameterError(name, fmt_mm(r), "a law whose pitch curve is a cam (rho > 0)")
+    head = f"roller_radius < {_mm_below(limit)} ({_LIMIT_REASONS[reason]})"
     if chk.undercut:
         spans = chk.extra.get("undercut_intervals", np.empty((0, 2)))
         where = ", ".join(f"{fmt_deg(lo)} .. {fmt_deg(hi)}" for lo, hi in spans)
-        raise ParameterError(
-            name,
-            fmt_mm(r),
-            f"roller_radius < {fmt_mm(chk.min_convex_radius)}, the smallest convex radius of "
-            f"curvature of the pitch curve, at alpha = {fmt_deg(chk.min_convex_radius_alpha)} "
-            f"(and alpha + 180 deg); a larger roller undercuts the cam (cusp in the actual "
-            f"profile for alpha in {where or 'a point'})",
+        detail = (
+            f"this roller undercuts the cam: the pitch curve's smallest convex radius of "
+            f"curvature is {fmt_mm(chk.min_convex_radius)} at alpha = "
+            f"{fmt_deg(chk.min_convex_radius_alpha)} (and alpha + 180 deg); cusp in the actual "
+            f"profile for alpha in {where or 'a point'}"
         )
-    if chk.min_clearance < 0.0:
-        raise ParameterError(
-            name,
-            fmt_mm(r),
-            f"a roller that clears the cam: the roller at alpha = "
-            f"{fmt_deg(chk.min_clearance_alpha)} overlaps another flank of the cam by "
-            f"{fmt_mm(-chk.min_clearance)}",
+    elif clash:
+        detail = (
+            f"the roller at alpha = {fmt_deg(chk.min_clearance_alpha)} overlaps another flank "
+            f"of the cam by {fmt_mm(-chk.min_clearance)}"
         )
-    if chk.extra["roller_gap"] <= 0.0:
-        raise ParameterError(
-            name, fmt_mm(r), f"roller_radius < {fmt_mm(0.5 * float(link_length))} (half the side "
-            "2l of the rhombus), or neighbouring rollers overlap",
-        )  # fmt: skip
-    if not chk.profile_min_radius > 0.0:
-        raise ParameterError(
-            name, fmt_mm(r), "a roller smaller than the cam's smallest half-width: the actual "
-            "profile reaches the cam centre",
-        )  # fmt: skip
-    return chk
+    elif rollers:
+        detail = f"neighbouring rollers overlap (2 roller_radius >= 2l = {fmt_mm(link_length)})"
+    else:
+        detail = "the actual profile reaches the cam centre"
+    raise ParameterError(name, fmt_mm(r), f"{head}; {detail}")
 
 
 def cam_part(params: rc.RhomboidCam, roller_radius, thickness, tolerance) -> Part:

@@ -43,6 +43,8 @@ __all__ = [
     "roller_radius_limit",
     "sharpest_bend",
     "check_roller_radius",
+    "guided",
+    "pressure_angle_peaks",
     "summary",
 ]
 
@@ -459,6 +461,87 @@ def check_roller_radius(drive: wc.WobbleCam, cam: SphericalCam) -> float:
 # --------------------------------------------------------------------------------------------
 # crossings
 # --------------------------------------------------------------------------------------------
+def guided(drive: wc.WobbleCam, cam: SphericalCam, theta, crossings=None):
+    """Whether each roller runs between both walls of its groove at ``theta``.
+
+    Where two groove branches cross at the angle ``a`` each loses its walls over
+    ``2 rho / sin a`` (:meth:`GrooveCrossing.gap_length`), centred on the crossing: a
+    roller is taken as unguided while its centre is closer than ``rho / sin a`` to a
+    crossing point (straight distance; the branch is nearly straight there).
+
+    Parameters
+    ----------
+    drive, cam : WobbleCam, SphericalCam
+    theta : array_like, shape (...)
+        Shaft angle [rad].
+    crossings : list of GrooveCrossing, optional
+        Default :func:`groove_crossings` of ``drive``.
+
+    Returns
+    -------
+    ndarray of bool, shape (4, ...)
+    """
+    from rotorkin.cams.spherical_crossings import groove_crossings
+
+    _check_pair(drive, cam)
+    crossings = groove_crossings(drive) if crossings is None else crossings
+    g = groove_derivatives(drive, theta)[0]  # (4, 3, ...)
+    out = np.ones(g.shape[:1] + g.shape[2:], dtype=bool)
+    for c in crossings:
+        point = np.asarray(c.point, dtype=float).reshape((1, 3) + (1,) * (g.ndim - 2))
+        out &= np.linalg.norm(g - point, axis=1) >= 0.5 * c.gap_length(cam.roller_radius)
+    return out
+
+
+def pressure_angle_peaks(
+    drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881, crossings=None
+) -> dict:
+    """Largest pressure angles over one turn, where and of which roller.
+
+    Sampled at ``samples`` shaft angles over ``[0, 2 pi]`` (as :func:`summary`).
+
+    Returns
+    -------
+    dict
+        ``name -> (angle [rad], theta [rad], roller index)`` for
+
+        * ``"any"``: largest of any roller (shaft frame), crossings included;
+        * ``"guided"``: the same away from the crossings (:func:`guided`);
+        * ``"fixed_guided"``: the same in the fixed frame;
+        * ``"best"``: over the turn, the largest of the smallest pressure angle of the 4
+          rollers (the best-placed roller guides the plate), crossings included;
+        * ``"best_guided"``: the same over the rollers between both walls only
+          (``pi/2`` where none is);
+
+        the roller is the one reaching the angle (for the best: the best-placed one).
+    """
+    theta = np.linspace(0.0, 2.0 * np.pi, samples)
+    ok = guided(drive, cam, theta, crossings)
+    mu = pressure_angle(drive, theta)
+    fixed = pressure_angle(drive, theta, "fixed")
+
+    def peak(values):  # the first shaft angle reaching the maximum, then its roller
+        j = int(np.argmax(np.max(values, axis=0)))
+        i = int(np.argmax(values[:, j]))
+        return float(values[i, j]), float(theta[j]), i
+
+    def best(values):
+        k = np.argmin(values, axis=0)
+        low = values[k, np.arange(values.shape[1])]
+        j = int(np.argmax(low))
+        if not np.isfinite(low[j]):
+            return 0.5 * np.pi, float(theta[j]), -1
+        return float(low[j]), float(theta[j]), int(k[j])
+
+    return {
+        "any": peak(mu),
+        "guided": peak(np.where(ok, mu, -1.0)),
+        "fixed_guided": peak(np.where(ok, fixed, -1.0)),
+        "best": best(mu),
+        "best_guided": best(np.where(ok, mu, np.inf)),
+    }
+
+
 def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict:
     """Scalar results for a study's ``summary.json`` (units in the key names).
 
@@ -467,6 +550,10 @@ def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict
     smallest pressure angle of the 4 rollers at each shaft angle (all 4 rollers hold
     the one plate, so the best-placed one guides it);
     ``cam_pressure_angle_fixed_max_deg``: largest in the fixed frame;
+    ``cam_pressure_angle_guided_max_deg`` and ``..._theta_deg``: largest of any roller
+    away from the crossings (:func:`guided`, :func:`pressure_angle_peaks`) and where;
+    ``cam_pressure_angle_best_guided_roller_max_deg`` and ``..._theta_deg``: the
+    best-roller value over the rollers between both walls;
     ``cam_curvature_radius_min_mm``: smallest ``1/|kappa_g|`` on r and
     ``cam_curvature_min_theta_deg`` where (first roller reaching it);
     ``cam_roller_radius_limit_mm``: undercut limit at the inner radius R_i;
@@ -487,6 +574,7 @@ def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict
     crossings = groove_crossings(drive)
     distinct = distinct_grooves(drive)
     n_self = sum(c.rollers[0] == c.rollers[1] for c in crossings)
+    peaks = pressure_angle_peaks(drive, cam, samples, crossings)
     return {
         "cam_roller_radius_mm": cam.roller_radius * 1e3,
         "cam_pressure_angle_max_deg": float(np.degrees(mu[:, k].max())),
@@ -494,6 +582,12 @@ def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict
         "cam_pressure_angle_best_roller_max_deg": float(np.degrees(mu.min(axis=0).max())),
         "cam_pressure_angle_fixed_max_deg": float(
             np.degrees(pressure_angle(drive, theta, "fixed").max())
+        ),
+        "cam_pressure_angle_guided_max_deg": float(np.degrees(peaks["guided"][0])),
+        "cam_pressure_angle_guided_max_theta_deg": float(np.degrees(peaks["guided"][1])),
+        "cam_pressure_angle_best_guided_roller_max_deg": float(np.degrees(peaks["best_guided"][0])),
+        "cam_pressure_angle_best_guided_roller_max_theta_deg": float(
+            np.degrees(peaks["best_guided"][1])
         ),
         "cam_curvature_radius_min_mm": 1e3 / kmax,
         "cam_curvature_min_theta_deg": float(np.degrees(th_k)),

@@ -1,8 +1,8 @@
 """CAD export of any drive: the dispatcher behind ``rotorkin export``.
 
 * ``rhomboid_cam``: the cam plate (:mod:`rotorkin.cams.rhomboid`), after the
-  profile check (an undercutting roller is a :class:`ParameterError` on
-  ``cam.roller_radius`` naming the angle);
+  profile check (a roller that does not fit is a :class:`ParameterError` on
+  ``cam.roller_radius`` stating the largest one that does and naming the angle);
 * ``eccentric_cam``: the two discs (:mod:`rotorkin.cams.eccentric`);
 * ``guide_bar``: the two impellers of the vane pump (:mod:`rotorkin.cams.impeller`);
 * ``wobble_cam``: the spherical cam, by :func:`rotorkin.io.cad_wobble.export_wobble`.
@@ -49,6 +49,19 @@ def _tolerance(cfg: dict, scale: float) -> float:
     return tol
 
 
+def _thickness(cfg: dict, diameter: float, what: str) -> float:
+    """``cam.thickness`` [m], checked: ``0 < thickness <= diameter`` (the part's outer diameter)."""
+    t = _positive(cfg, "cam", "thickness", 0.02)
+    if not t <= diameter:
+        raise ParameterError(
+            "cam.thickness",
+            fmt_mm(t),
+            f"0 mm < thickness <= {fmt_mm(diameter)} ({what}: a plate thicker than it is wide "
+            "is no cam plate)",
+        )
+    return t
+
+
 def _rhomboid(cfg: dict, with_parts: bool = True):
     from rotorkin.cams import rhomboid
     from rotorkin.studies.rhomboid_cam import drive_params
@@ -56,8 +69,11 @@ def _rhomboid(cfg: dict, with_parts: bool = True):
     params = drive_params(cfg)
     cam = cfg.get("cam") or {}
     r = float(cam.get("roller_radius", 0.01))
-    thickness = _positive(cfg, "cam", "thickness", 0.02)
-    check = rhomboid.check_profile(params.link_length, params.psi_min, params.a, params.b, r)
+    law = (params.psi_min, params.a, params.b)
+    check = rhomboid.check_profile(params.link_length, *law, r)
+    q = rhomboid.actual_profile(np.linspace(0.0, np.pi, 4097), params.link_length, *law, r)
+    diameter = 2.0 * float(np.max(np.hypot(q[0], q[1])))
+    thickness = _thickness(cfg, diameter, "the cam's outer diameter")
     tol = _tolerance(cfg, check.extra["pitch_radius_min"])
     parts = [rhomboid.cam_part(params, r, thickness, tol)] if with_parts else []
     return parts, [("rhomboid cam", check)]
@@ -68,7 +84,7 @@ def _eccentric(cfg: dict, with_parts: bool = True):
     from rotorkin.studies.eccentric_cam import drive_params
 
     params = drive_params(cfg)
-    thickness = _positive(cfg, "cam", "thickness", 0.02)
+    thickness = _thickness(cfg, 2.0 * float(params.disc_radius), "the disc's diameter")
     tol = _tolerance(cfg, float(params.disc_radius))
     check = eccentric.profile_check(params)
     parts = eccentric.cam_parts(params, thickness, tol) if with_parts else []
@@ -105,7 +121,8 @@ def planar_parts(cfg: dict, with_parts: bool = True):
     ------
     ParameterError
         Named by config key: bad drive or machine values, ``cam.roller_radius``
-        undercutting the cam, ``cam.thickness`` or ``export.tolerance`` out of range.
+        undercutting the cam, ``cam.thickness`` (``0 < thickness <=`` the part's outer
+        diameter) or ``export.tolerance`` out of range.
     """
     kind = cfg["drive"]["type"]
     if kind not in _PLANAR:
