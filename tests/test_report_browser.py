@@ -266,3 +266,44 @@ def test_report_in_browser(name, browser, reports, artifacts, record_property):
     for path in (shot, full):
         blob = path.read_bytes()
         assert blob[:8] == b"\x89PNG\r\n\x1a\n" and len(blob) > 50_000, path
+
+
+_TEXTS = """
+const gd = document.getElementById(arguments[0]);
+const texts = sel => Array.from(gd.querySelectorAll(sel)).map(t => t.textContent);
+return {x: texts('.xaxislayer-above .xtick text'), y: texts('.yaxislayer-above .ytick text'),
+        y2: texts('.yaxislayer-above .y2tick text'), legend: texts('.legend .legendtext'),
+        lines: Array.from(gd.querySelectorAll('.scatterlayer .trace path.js-line'))
+                    .filter(p => (p.getAttribute('d') || '').length > 20).length};
+"""
+
+
+def _drawn_texts(browser, reports, name, pid):
+    browser.get(reports[name].as_uri())
+    _wait(browser, "return window.ROTORKIN && window.ROTORKIN.ready", LOAD_TIMEOUT, "the report")
+    return browser.execute_script(_TEXTS, pid)
+
+
+def _number(label):  # plotly draws minus signs as U+2212
+    return float(label.replace("\u2212", "-").replace(",", ""))
+
+
+def test_drawn_labels_are_readable(browser, reports):
+    """What the reader sees: full tick numbers on the log p-V, every chamber curve drawn and
+    named, the pump's torque curves named by their model."""
+    pv = _drawn_texts(browser, reports, "wobble-cam-engine", "plot-pv")
+    assert [_number(t) for t in pv["y"]] == [1, 2, 5, 10, 20, 50], pv["y"]
+    assert [_number(t) for t in pv["x"]] == [10, 20, 30, 50, 70], pv["x"]
+    pressure = browser.execute_script(_TEXTS, "plot-pressure")
+    assert pressure["lines"] == len(pressure["legend"]) == 4, pressure
+    named = sorted(int(n) for t in pressure["legend"] for n in t.split() if n.isdigit())
+    assert named == list(range(1, 9)), pressure["legend"]
+    torque = _drawn_texts(browser, reports, "guide-bar-pump", "plot-torque")
+    legend = " | ".join(torque["legend"])
+    assert "paper eq. 7/8: constant impeller loads M7" in legend, legend
+    assert "ideal ports: chamber pressures" in legend, legend
+    assert "motor torque with inertia" in legend, legend
+    # one sign convention: both load panels read positive (the motor supplies the torque)
+    eq78, ports = ([_number(t) for t in torque[k]] for k in ("y", "y2"))
+    assert min(eq78) >= 4 and max(eq78) <= 6.67, eq78  # eq. 7/8: 4 ... 6.67 N*m
+    assert min(ports) >= 0 and max(ports) >= 30, ports  # ideal ports: 0 ... 36.7 N*m

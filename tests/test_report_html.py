@@ -7,6 +7,7 @@ copied from the code's output. The browser checks live in test_report_browser.py
 
 from __future__ import annotations
 
+import base64
 import html
 import json
 import os
@@ -264,6 +265,139 @@ def test_checks_in_plain_words(tmp_path, reports):
     assert any(lvl == "error" and "cavitat" in t.lower() for lvl, t in liquid["page"].checks)
     wob = reports["wobble-cam-engine"]["page"].checks
     assert any("65.53" in t and "69 %" in t for _, t in wob), "plate tilt vs eq. 20 limit"
+
+
+# --------------------------------------------------------------------------------------------
+# readability of the plots
+# --------------------------------------------------------------------------------------------
+def _plot(r, pid):
+    return next(p for p in r["data"]["plots"] if p["id"] == pid)
+
+
+def _arr(values):
+    """A plot array from the page's JSON: a list (None for NaN) or plotly's typed array."""
+    if isinstance(values, dict):  # {"dtype": "f8", "bdata": base64, "shape": ...}
+        a = np.frombuffer(base64.b64decode(values["bdata"]), dtype=values["dtype"])
+        return a.astype(float).reshape(values.get("shape", a.shape))
+    return np.array([np.nan if v is None else v for v in values], float)
+
+
+def _twod_traces(fig):
+    """(x axis, y axis, name, x, y) of the 2D line traces of a plot figure."""
+    out = []
+    for t in fig["data"]:
+        if t.get("type", "scatter") == "scatter" and t.get("y") is not None:
+            xa, ya = t.get("xaxis", "x"), t.get("yaxis", "y")
+            out.append((xa, ya, t.get("name", ""), _arr(t["x"]), _arr(t["y"])))
+    return out
+
+
+def _axis_key(ref):  # "y2" -> "yaxis2"
+    return f"{ref[0]}axis{ref[1:]}"
+
+
+@pytest.mark.parametrize("name", EXAMPLES)
+def test_no_curve_hides_another(reports, name):
+    """Two traces drawn identically on the same axes would show as one: none may."""
+    for p in reports[name]["data"]["plots"]:
+        traces = _twod_traces(p["figure"])
+        for i, (xa, ya, n1, x1, y1) in enumerate(traces):
+            for xb, yb, n2, x2, y2 in traces[i + 1 :]:
+                if (xa, ya) != (xb, yb) or x1.shape != x2.shape or y1.shape != y2.shape:
+                    continue
+                same = np.allclose(x1, x2, equal_nan=True) and np.allclose(y1, y2, equal_nan=True)
+                assert not same, f"{p['id']}: {n2!r} hides {n1!r}"
+
+
+@pytest.mark.parametrize("name", EXAMPLES)
+def test_curves_stay_off_the_plot_edges(reports, name):
+    """Every padded axis range holds its data with a margin: no line on the frame."""
+    checked = 0
+    for p in reports[name]["data"]["plots"]:
+        layout = p["figure"]["layout"]
+        for xa, ya, tname, x, y in _twod_traces(p["figure"]):
+            for ref, v in ((ya, y), (xa, x)):
+                axis = layout.get(_axis_key(ref), {})
+                if "range" not in axis:
+                    continue
+                v = v[np.isfinite(v)]
+                if axis.get("type") == "log":
+                    v = np.log10(v)
+                lo, hi = axis["range"]
+                margin = 0.02 * (hi - lo)
+                assert lo + margin < v.min() and v.max() < hi - margin, (p["id"], tname, ref)
+                checked += 1
+    assert checked >= 10
+
+
+def test_wobble_chamber_pressures_all_visible_and_named(reports):
+    fig = _plot(reports["wobble-cam-engine"], "plot-pressure")["figure"]
+    names = [t["name"] for t in fig["data"]]
+    assert len(names) == 4, names
+    named = [int(n) for name in names for n in name.replace(",", " ").split() if n.isdigit()]
+    assert sorted(named) == list(range(1, 9)), "every chamber named once"
+    assert all("identical" in n for n in names)
+    assert "4 distinct of 8 chambers" in fig["layout"]["title"]["text"]
+    # the four-stroke cycle: each curve peaks once per half turn, the peaks a quarter apart
+    x = _arr(fig["data"][0]["x"])
+    peaks = sorted(x[np.argmax(_arr(t["y"]) * (x < 180))] for t in fig["data"])
+    assert np.allclose(np.diff(peaks), 45.0, atol=1.0), peaks
+
+
+def test_wobble_log_pv_ticks_are_full_numbers(reports):
+    layout = _plot(reports["wobble-cam-engine"], "plot-pv")["figure"]["layout"]
+    for key, want in (("yaxis", [1, 2, 5, 10, 20, 50]), ("xaxis", [10, 20, 30, 50, 70])):
+        axis = layout[key]
+        assert axis["type"] == "log"
+        assert axis["tickvals"] == want
+        assert [float(t) for t in axis["ticktext"]] == want, "labels read 20, not 2"
+
+
+def test_log_ticks_and_merge_identical_helpers():
+    from rotorkin.report.html_scenes import log_ticks, merge_identical
+
+    assert log_ticks(1.0, 65.8) == [1, 2, 5, 10, 20, 50]
+    assert log_ticks(0.9, 1000.0) == [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000]
+    assert log_ticks(7.2, 72.0) == [10, 20, 30, 50, 70]  # under a decade: 3 and 7 too
+    assert log_ticks(0.0, 10.0) == [] and log_ticks(5.0, 5.0) == []
+    a, b = np.sin(np.arange(5.0)), np.cos(np.arange(5.0))
+    out = merge_identical([("chamber 1", a), ("chamber 2", b), ("chamber 3", a + 0.0),
+                           ("chamber 4", b + 1e-3), ("chamber 5", a)])  # fmt: skip
+    assert [n for n, _ in out] == ["chambers 1, 3 and 5 (identical)", "chamber 2", "chamber 4"]
+    assert np.array_equal(out[0][1], a) and np.array_equal(out[2][1], b + 1e-3)
+
+
+def test_guide_bar_torque_one_sign_convention(reports):
+    """Both load models as the torque the motor must supply (positive), each named by model."""
+    r = reports["guide-bar-pump"]
+    p = _plot(r, "plot-torque")
+    fig, cfg = p["figure"], r["cfg"]
+    assert "motor must supply" in fig["layout"]["title"]["text"]
+    assert "motor must supply" in p["figure"]["layout"]["title"]["text"]
+    by = {t["name"]: (_arr(t["x"]), _arr(t["y"]), t.get("yaxis", "y")) for t in fig["data"]}
+    paper = next(n for n in by if n.startswith("paper eq. 7/8") and "M7 = 10" in n)
+    ports = next(n for n in by if n.startswith("ideal ports") and "discharge 6 bar" in n)
+    motor = next(n for n in by if n.startswith("motor torque with inertia"))
+    inertia = by["inertia torque"][1]
+    d = cfg["drive"]
+    speed_ratio = 1.0 / (d["gear_ratio"] * d["input_gear_ratio"])  # mean impeller / input
+    ld = cfg["loads"]
+    _, m1, _ = by[paper]
+    assert np.all(m1 > 0) and m1.min() == pytest.approx(4.0, abs=1e-4)  # eq. 7 at x = 0
+    mean_eq7 = (ld["impeller_torque_1"] + ld["impeller_torque_2"]) * speed_ratio
+    assert np.mean(m1[:-1]) == pytest.approx(mean_eq7, rel=1e-3)
+    # ideal ports: the motor's work over a period = (p_d - p_s) x displaced volume
+    x, mp, _ = by[ports]
+    assert mp.min() > -1e-6 and mp.max() > 30.0
+    dp = ld["discharge_pressure"] - ld["suction_pressure"]
+    disp = _num(r["page"].rows["displacement_cm3_per_rev"][1]) * 1e-6  # per input-gear turn
+    work = np.trapezoid(mp, np.radians(x))
+    assert work == pytest.approx(dp * disp * x[-1] / 360.0, rel=2e-3)
+    mean_line = next(v[1] for n, v in by.items() if n.startswith("ideal-ports mean"))
+    assert np.allclose(mean_line, work / np.radians(x[-1]), rtol=2e-3)
+    # with inertia, on the same convention: the motor supplies the load and the inertia torque
+    assert np.allclose(by[motor][1], mp + inertia, atol=1e-3 * np.abs(mp).max())
+    assert by[paper][2] != by[ports][2], "eq. 7/8 and ideal ports: two panels, own scales"
 
 
 # --------------------------------------------------------------------------------------------

@@ -488,7 +488,7 @@ def _sphere_figure(params):
             "xaxis_title": "x [mm]",
             "yaxis_title": "y [mm]",
             "zaxis_title": "z [mm]",
-            "camera": {"eye": {"x": 1.5, "y": -1.4, "z": 0.8}},
+            "camera": {"eye": {"x": 1.7, "y": -1.6, "z": 0.9}},
         },
         updatemenus=[
             {

@@ -636,9 +636,11 @@ def mean_trace(x, mean, what: str = "mean") -> tuple:
 
     For :func:`line_figure` rows: ``("mean 5 N*m", y, style)``.
     """
-    y = np.full(np.shape(x), float(mean))
+    mean = float(mean)
+    mean = 0.0 if abs(mean) < 1e-9 else mean  # round-off of a zero mean, not "1.4e-16 N*m"
+    y = np.full(np.shape(x), mean)
     return (
-        f"{what} {fmt(float(mean))} N*m",
+        f"{what} {fmt(mean)} N*m",
         y,
         {"dash": "dot", "width": 1.5, "like_previous": True},
     )
