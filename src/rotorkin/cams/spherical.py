@@ -278,7 +278,11 @@ def groove_walls(drive: wc.WobbleCam, cam: SphericalCam, theta, radius=None):
     _check_pair(drive, cam)
     rad = cam.sphere_radius if radius is None else np.asarray(radius, dtype=float)
     if np.any(rad <= cam.roller_radius):
-        raise ParameterError("radius", fmt_mm(np.min(rad)), "radius > cam.roller_radius")
+        raise ParameterError(
+            "radius",
+            fmt_mm(np.min(rad)),
+            f"radius > {fmt_mm(cam.roller_radius)} (the roller radius)",
+        )
     e_r, _, n = groove_frame(drive, theta)
     lam = np.sqrt(rad * rad - cam.roller_radius**2)
     return np.stack([lam * e_r + cam.roller_radius * n, lam * e_r - cam.roller_radius * n], 1)
