@@ -398,6 +398,10 @@ def test_guide_bar_torque_one_sign_convention(reports):
     # with inertia, on the same convention: the motor supplies the load and the inertia torque
     assert np.allclose(by[motor][1], mp + inertia, atol=1e-3 * np.abs(mp).max())
     assert by[paper][2] != by[ports][2], "eq. 7/8 and ideal ports: two panels, own scales"
+    # the checks say it on the same convention
+    checks = " ".join(t for _, t in r["page"].checks)
+    assert "motor must supply stays between 0 and 36.67 N*m" in checks, checks
+    assert "-36.67" not in checks
 
 
 # --------------------------------------------------------------------------------------------

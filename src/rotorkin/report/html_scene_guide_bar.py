@@ -386,4 +386,4 @@ def checks(result, cfg) -> list[Check]:
                 "guide-driven would fluctuate less (paper, Fig. 10-11).",
             )
         )
-    return out + flywheel_checks(s, "the impellers")
+    return out + flywheel_checks(s, "the impellers", supplied=True)

@@ -657,10 +657,21 @@ def detrend(q, x):
 # --------------------------------------------------------------------------------------------
 # checks shared by the drives
 # --------------------------------------------------------------------------------------------
-def flywheel_checks(s: dict, member_word: str = "the members") -> list[Check]:
-    """Torque reversal and the flywheel, from the common summary keys (when present)."""
+def flywheel_checks(s: dict, member_word: str = "the members", supplied=False) -> list[Check]:
+    """Torque reversal and the flywheel, from the common summary keys (when present).
+
+    ``supplied``: state the torque range as the torque the motor must supply (a pump's
+    plot convention), i.e. the negated ``shaft_torque_*`` range.
+    """
     out = []
     lo, hi = s.get("shaft_torque_min_Nm"), s.get("shaft_torque_max_Nm")
+    if supplied and lo is not None and hi is not None:
+        lo, hi = -hi + 0.0, -lo + 0.0  # + 0.0: no "-0"
+        if not lo < 0.0 < hi:
+            text = (f"The torque the motor must supply stays between {fmt(lo)} and {fmt(hi)} "
+                    f"N*m: {member_word} never drive the shaft back.")  # fmt: skip
+            out.append(Check("ok", "Shaft torque keeps its sign", text))
+            lo = hi = None
     if lo is not None and hi is not None and lo < 0.0 < hi:
         text = (f"Without inertia the torque on the input shaft swings from {fmt(lo)} to "
                 f"{fmt(hi)} N*m: part of each turn the shaft drives {member_word} and part of "
