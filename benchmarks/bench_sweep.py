@@ -1,20 +1,24 @@
 """Benchmark: a million-design wobble-cam sweep, time, peak memory and time per design.
 
-    python benchmarks/bench_sweep.py                    # 1e4, 1e5, 1e6 designs (about 1 minute)
+    python benchmarks/bench_sweep.py                    # 1e4, 1e5, 1e6 designs (a few minutes)
     python benchmarks/bench_sweep.py --sizes 1e4,1e5    # quick look
     python benchmarks/bench_sweep.py --help
 
 The sweep: plate tilt (30 ... 50 deg) x roller axis angle (80 ... 100 deg) x
 compression ratio (8 ... 16), ``--angles`` shaft angles per design (default
 360), through :func:`rotorkin.sweep.run_sweep`'s two steps, timed apart:
-``build_spec`` (validating the spec: units, each swept value's admissibility,
-one scalar study run of the base) and ``execute`` (the computation). Every
-design gets the kernel's 53 summary metrics: the closed forms of the paper
-(slider and chamber angle extremes eq. 17-23, the eq. 20 tilt limit, piston
-width eq. 21, compression ratios, volumes, displacement, cycle pressures and
-work) and, per design and shaft angle, the acceleration and jerk coefficients
-of both rotors (``Phi''``, ``Phi'''``: the design x angle array, in cache-sized
-blocks on all cores) reduced to their peaks. Results stay in memory (no store).
+``build_spec`` (validating the spec: units, the admissibility scan of the grid,
+one scalar study run of an admissible design) and ``execute`` (the computation).
+Every design gets every metric of the wobble kernel (67): the 53 default ones
+-- closed forms of the paper (slider and chamber angle extremes eq. 17-23, the
+eq. 20 tilt limit, piston width eq. 21, compression ratios, volumes,
+displacement, cycle pressures and work) -- and the 12 opt-in ``sampled_*``
+ones, for which *every kinematic curve is evaluated per design and shaft angle*
+(the design x angle array, in cache-sized blocks on all cores): both rotor
+angles (an ``arctan`` each) and their first, second and third derivatives, the
+slider angle, the chamber angles of both kinds and the chamber volumes, reduced
+to their extremes, the rotors' speed-ratio extremes and the peaks of
+acceleration and jerk. Results stay in memory (no store).
 
 Memory: each size runs once in a fresh process (its own peak RSS, measured with
 ``resource.getrusage``; the results, 8 bytes per design and metric, included).
@@ -62,12 +66,21 @@ def _vary(designs: int) -> dict:
     }
 
 
+def metrics() -> list[str]:
+    """Every metric of the wobble kernel: its defaults and the sampled extremes of every curve."""
+    from rotorkin.sweep.kernels_wobble import OPTIONAL_METRICS, metric_names
+
+    return [*metric_names({}), *OPTIONAL_METRICS]
+
+
 def _setup(angles: int, threads):
     from rotorkin.io.config import load_config
     from rotorkin.sweep import run_sweep
 
     _, raw, _ = load_config(None, "wobble-cam-engine")
-    run_sweep(raw, _vary(8), samples=angles, progress=False, threads=threads)  # warm-up
+    run_sweep(
+        raw, _vary(8), samples=angles, progress=False, threads=threads, metrics=metrics()
+    )  # warm-up
     return raw
 
 
@@ -78,7 +91,7 @@ def child(designs: int, angles: int, threads) -> dict:
     raw = _setup(angles, threads)
     rss_start = peak_rss()
     t0 = time.perf_counter()
-    spec = build_spec(raw, _vary(designs), samples=angles)
+    spec = build_spec(raw, _vary(designs), samples=angles, metrics=metrics())
     ds = execute(spec, progress=False, threads=threads)
     seconds = time.perf_counter() - t0
     return {
@@ -90,6 +103,7 @@ def child(designs: int, angles: int, threads) -> dict:
         "peak_rss_MiB": peak_rss() / 2**20,
         "rss_after_warmup_MiB": rss_start / 2**20,
         "checksum_accel_peaks": float(np.nansum(ds["rotor_accel_peak_per_rad"].values)),
+        "checksum_sampled_slider_min": float(np.nansum(ds["sampled_slider_angle_min_deg"].values)),
     }
 
 
@@ -132,7 +146,7 @@ def timings(sizes, angles: int, threads, repeat: int, baseline: int = 20) -> dic
     from rotorkin.sweep import build_spec, execute
 
     raw = _setup(angles, threads)
-    specs = {n: build_spec(raw, _vary(n), samples=angles) for n in sizes}
+    specs = {n: build_spec(raw, _vary(n), samples=angles, metrics=metrics()) for n in sizes}
     best = {n: {"spec_s": np.inf, "compute_s": np.inf, "compute_cpu_s": np.inf} for n in sizes}
     loop = _one_by_one(raw, angles, baseline)
     best["one_by_one_s"] = np.inf
@@ -142,7 +156,7 @@ def timings(sizes, angles: int, threads, repeat: int, baseline: int = 20) -> dic
         best["one_by_one_s"] = min(best["one_by_one_s"], (time.perf_counter() - t0) / baseline)
         for n in sizes[r % len(sizes) :] + sizes[: r % len(sizes)]:
             t0 = time.perf_counter()
-            build_spec(raw, _vary(n), samples=angles)
+            build_spec(raw, _vary(n), samples=angles, metrics=metrics())
             t1, c1 = time.perf_counter(), time.process_time()
             execute(specs[n], progress=False, threads=threads)
             t2, c2 = time.perf_counter(), time.process_time()

@@ -325,6 +325,16 @@ def test_paper_figures_of_the_guide_bar_match_eq5_eq6(tmp_path, capsys):
         # eq. 5: arccos(lambda / sqrt(1 + lambda^2)) = u gamma_0 / 2; eq. 6: arccos(lambda) = ...
         assert np.allclose(crank, np.degrees(2 * np.arccos(lam / np.sqrt(1 + lam**2)) / u))
         assert np.allclose(guide, np.degrees(2 * np.arccos(lam) / u))
+    # Fig. 10/11 (docs/sweeps.md): M7 = M8 = 10 N*m, Sigma = 180 deg, u = i12 = 2: guide-driven
+    # M1 = 2 M/(u i12) = 5 N*m exactly at every lambda (flat, unlike the paper's plot);
+    # crank-driven it fluctuates
+    ds = xr.open_dataset(out / "paper_fig10_11.nc", engine="scipy").load()
+    torque = ds["input_torque_Nm"]
+    guide = torque.sel({"drive.driver": "guide"}).values
+    crank = torque.sel({"drive.driver": "crank"}).values
+    assert guide.shape[0] >= 3 and np.all(np.isfinite(guide))
+    assert np.allclose(guide, 5.0, rtol=0, atol=1e-12)
+    assert np.all(np.ptp(crank, axis=-1) > 0.1)
 
 
 def test_paper_figures_of_the_eccentric_cams_hold_the_published_delta(tmp_path):
@@ -390,3 +400,176 @@ def test_paper_figures_of_the_wobble_cam_hold_the_published_numbers(tmp_path):
         s = d["slider_angle_deg"].values
         assert s.max() == pytest.approx(float(d["slider_angle_max_deg"]), abs=1e-3)
         assert s.min() == pytest.approx(float(d["slider_angle_min_deg"]), abs=1e-3)
+
+
+# the kernel's opt-in metrics: every curve evaluated per design and angle, reduced
+_SAMPLED_OF = {
+    "sampled_slider_angle_min_deg": ("slider_angle_min_deg", "slider_angle_deg", min),
+    "sampled_slider_angle_max_deg": ("slider_angle_max_deg", "slider_angle_deg", max),
+    "sampled_chamber_a_angle_min_deg": ("chamber_a_angle_min_deg", "chamber_a_angle_deg", min),
+    "sampled_chamber_a_angle_max_deg": ("chamber_a_angle_max_deg", "chamber_a_angle_deg", max),
+    "sampled_chamber_b_angle_min_deg": ("chamber_b_angle_min_deg", "chamber_b_angle_deg", min),
+    "sampled_chamber_b_angle_max_deg": ("chamber_b_angle_max_deg", "chamber_b_angle_deg", max),
+    "sampled_chamber_a_volume_min_cm3": ("chamber_a_volume_min_cm3", "chamber_a_volume_cm3", min),
+    "sampled_chamber_a_volume_max_cm3": ("chamber_a_volume_max_cm3", "chamber_a_volume_cm3", max),
+    "sampled_chamber_b_volume_min_cm3": ("chamber_b_volume_min_cm3", "chamber_b_volume_cm3", min),
+    "sampled_chamber_b_volume_max_cm3": ("chamber_b_volume_max_cm3", "chamber_b_volume_cm3", max),
+    "sampled_rotor_speed_ratio_min": ("rotor_speed_ratio_min", "rotor{}_speed_ratio", min),
+    "sampled_rotor_speed_ratio_max": ("rotor_speed_ratio_max", "rotor{}_speed_ratio", max),
+}  # fmt: skip
+_SAMPLED_VARY = {
+    "drive.plate_tilt": "25deg:57deg:5",
+    "drive.roller_axis_angle": "80deg,90deg,104deg",
+    "machine.compression_ratio": "12,30",
+    "machine.clearance_volume": "0cm^3,2cm^3",
+}
+
+
+def test_sampled_extremes_of_every_curve_agree_with_the_closed_forms_to_the_sampling_error():
+    from rotorkin.sweep.kernels_wobble import SAMPLED_METRICS
+
+    assert set(SAMPLED_METRICS) == set(_SAMPLED_OF)
+    _, raw, _ = load_config(None, "wobble-cam-engine")
+    closed = [v[0] for v in _SAMPLED_OF.values()]
+    peaks = ["rotor_accel_peak_per_rad", "rotor_jerk_peak_per_rad2"]
+    ds = run_sweep(raw, _SAMPLED_VARY, metrics=[*SAMPLED_METRICS, *closed, *peaks], samples=360,
+                   progress=False)  # fmt: skip
+    default = run_sweep(raw, _SAMPLED_VARY, samples=360, progress=False)
+    ok = ds["reason"].values == 0
+    assert 20 <= ok.sum() < ok.size
+    h = 2 * np.pi / 359  # grid step [rad]
+    missed = {}
+    for name, (ref, _, pick) in _SAMPLED_OF.items():
+        s, c = ds[name].values, ds[ref].values
+        assert np.all(np.isnan(s[~ok])) and np.all(np.isfinite(s[ok]))
+        # sampled extremes never pass the true ones, and miss them by O(f'' h^2 / 8)
+        inner = (s - c) if pick is min else (c - s)
+        scale = np.abs(c[ok]).max()
+        assert np.all(inner[ok] >= -1e-12 * scale), name
+        assert np.all(inner[ok] <= h * h * scale), name
+        missed[name] = inner[ok].max() / scale
+    # the slider's largest angle is at theta = 0, a grid point (exact); its smallest is not:
+    # really sampled, not the closed form copied
+    assert missed["sampled_slider_angle_max_deg"] < 1e-14
+    assert 1e-7 < missed["sampled_slider_angle_min_deg"] < 1e-4
+    assert 1e-7 < missed["sampled_rotor_speed_ratio_max"] < 1e-4
+    # the peaks come out of the same pass bit for bit as without the curves
+    for m in peaks:
+        np.testing.assert_array_equal(ds[m].values, default[m].values)
+
+
+def test_sampled_extremes_equal_the_study_columns_on_the_same_grid():
+    from rotorkin.sweep.kernels_wobble import SAMPLED_METRICS
+
+    _, raw, _ = load_config(None, "wobble-cam-engine")
+    points = int(load_config(None, "wobble-cam-engine")[0]["run"]["points"])
+    ds = run_sweep(raw, _SAMPLED_VARY, metrics=list(SAMPLED_METRICS), samples=points,
+                   progress=False)  # fmt: skip
+    checked = 0
+    for idx, items in _designs([f"{k}={v}" for k, v in {
+            "drive.plate_tilt": "25deg,33deg,41deg,49deg,57deg",
+            "drive.roller_axis_angle": "80deg,90deg,104deg",
+            "machine.compression_ratio": "12,30",
+            "machine.clearance_volume": "0cm^3,2cm^3"}.items()]):  # fmt: skip
+        d = ds.isel(dict(zip(_SAMPLED_VARY, idx, strict=True)))
+        try:
+            res = evaluate(load_config(None, "wobble-cam-engine", items)[0])
+        except ParameterError:
+            assert int(d["reason"]) != 0
+            continue
+        checked += 1
+        for name, (_, column, pick) in _SAMPLED_OF.items():
+            cols = [res.columns[column.format(k)] for k in (1, 2)] if "{}" in column else \
+                [res.columns[column]]  # fmt: skip
+            expect = pick(float(pick(c)) for c in cols)
+            assert float(d[name]) == pytest.approx(expect, rel=1e-12, abs=1e-12), (name, items)
+    assert checked >= 30
+
+
+def test_sampled_extremes_of_a_corrected_spin_law_take_the_library_path():
+    from rotorkin.drives import wobble_cam as wc
+    from rotorkin.sweep.kernels_wobble import SAMPLED_METRICS
+
+    sets = ["drive.spin_a=[0.05]", "drive.spin_b=[0.02]", "machine.compression_ratio=30"]
+    try:
+        _, raw, _ = load_config(None, "wobble-cam-engine", sets)
+    except ConfigError:
+        pytest.skip("spin_a/spin_b not settable with --set")
+    ds = run_sweep(raw, {"drive.plate_tilt": "30deg,45deg"}, samples=361,
+                   metrics=[*SAMPLED_METRICS, "rotor_speed_ratio_min"], progress=False)  # fmt: skip
+    for i, tilt in enumerate((30.0, 45.0)):
+        cfg = load_config(None, "wobble-cam-engine", [*sets, f"drive.plate_tilt={tilt}deg"])[0]
+        d = cfg["drive"]
+        params = wc.WobbleCam(d["plate_tilt"], d["roller_axis_angle"], d["spin_ratio"],
+                              d["sphere_radius"], 4, tuple(d["spin_a"]),
+                              tuple(d["spin_b"]))  # fmt: skip
+        theta = np.linspace(0, 2 * np.pi, 361)
+        q, d1, _, _ = wc.rotor_angles(params, theta)
+        s = np.degrees(q[1] - q[0])
+        assert float(ds["sampled_slider_angle_max_deg"][i]) == pytest.approx(s.max(), rel=1e-12)
+        assert float(ds["sampled_slider_angle_min_deg"][i]) == pytest.approx(s.min(), rel=1e-12)
+        assert float(ds["sampled_rotor_speed_ratio_min"][i]) == d1.min()
+        assert float(ds["rotor_speed_ratio_min"][i]) == d1.min()
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--vary", "drive.plate_tilt=20deg:65deg:10000000000000"],
+         "N = 10000000000000; N <= 1e+08"),
+        (["--vary", "drive.plate_tilt=20deg:65deg:20000", "--vary",
+          "drive.roller_axis_angle=80deg:100deg:10000"], "2e+08 designs is not admissible"),
+        (["--vary", "drive.plate_tilt=20deg:65deg:1000", "--vary",
+          "drive.roller_axis_angle=80deg:100deg:200", "--curves"], "would take 11.9 GiB"),
+        (["--vary", "drive.type=a,b"], "drive.type = 'a' is not admissible"),
+        (["--vary", "drive.type=eccentric_cam"], "one sweep per drive type"),
+    ],
+)  # fmt: skip
+def test_cli_huge_sweeps_and_drive_type_exit_2_with_one_line(args, words, tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["sweep", "-e", "wobble-cam-engine", *args, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert words in err and err.count("\n") == 1 and "Traceback" not in err, err
+    assert not out.exists()
+
+
+def test_result_memory_estimate_matches_the_dataset():
+    from rotorkin.sweep import build_spec, execute, result_bytes
+
+    _, raw, _ = load_config(None, "wobble-cam-engine")
+    vary = ["drive.plate_tilt=30deg:50deg:6", "drive.roller_axis_angle=85deg,95deg"]
+    spec = build_spec(raw, vary, keep_curves=True, samples=101)
+    ds = execute(spec, progress=False)
+    data = sum(v.nbytes for v in ds.data_vars.values()) + ds["theta_deg"].nbytes
+    assert result_bytes(spec.size, len(spec.metrics), 11, spec.points) == data
+
+
+def test_progress_moves_block_by_block_within_a_chunk(monkeypatch):
+    import rotorkin.sweep as sweep
+    from rotorkin.sweep import build_spec
+    from rotorkin.sweep.engine import compute_chunk
+
+    class Bar:
+        def __init__(self):
+            self.moves = []
+
+        def advance(self, task, n):
+            self.moves.append(n)
+
+    monkeypatch.setattr(sweep, "_PROGRESS_EVERY", 0.0)
+    _, raw, _ = load_config(None, "wobble-cam-engine")
+    vary = ["drive.plate_tilt=30deg:50deg:40", "drive.roller_axis_angle=85deg:95deg:50"]
+    spec = build_spec(raw, vary, samples=360, chunk_size=2000)
+    progress = sweep._Progress(False, spec.size)
+    progress.bar, progress.task = Bar(), 0
+    with progress.within(2000):
+        res = compute_chunk(spec, 0, 2000)
+    during = list(progress.bar.moves)
+    progress.finish_chunk(res["stop"] - res["start"])
+    assert len(during) >= 5 and max(during) <= 2000 // 5  # moved many times inside the chunk
+    assert sum(progress.bar.moves) == 2000  # and exactly the chunk's designs in all
+    # without a bar nothing is reported and the chunk is counted whole
+    quiet = sweep._Progress(False, spec.size)
+    with quiet.within(2000):
+        compute_chunk(spec, 0, 2000)
+    quiet.finish_chunk(2000)

@@ -17,6 +17,8 @@ run on dask.distributed (``client=``). See ``docs/sweeps.md``.
 
 from __future__ import annotations
 
+import contextlib
+import math
 import sys
 import time
 from collections.abc import Mapping
@@ -24,7 +26,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from rotorkin.errors import ConfigError
-from rotorkin.sweep._common import DEFAULT_SAMPLES, Designs, reason_keys
+from rotorkin.sweep._common import DEFAULT_SAMPLES, Designs, block_progress, reason_keys
 from rotorkin.sweep.engine import (
     SweepFallbackWarning,
     SweepSpec,
@@ -53,12 +55,20 @@ __all__ = [
     "DEFAULT_SAMPLES",
     "reason_keys",
     "reason_text",
+    "result_bytes",
+    "MAX_DESIGNS",
+    "MAX_RESULT_BYTES",
 ]
 
 #: Default memory budget of one chunk's results [bytes].
 MEMORY_BUDGET = 64 * 2**20
 #: Largest chunk (designs), so that progress and resumption stay fine-grained.
 MAX_CHUNK = 65_536
+#: Most designs in one sweep (the grid's size); beyond, split the sweep.
+MAX_DESIGNS = 100_000_000
+#: Most memory the whole result may take (metrics, reasons and, with curves, the curves),
+#: as estimated before anything runs [bytes]: the result is assembled in memory.
+MAX_RESULT_BYTES = 8 * 2**30
 
 
 def reason_text(ds, code: int) -> str:
@@ -69,9 +79,11 @@ def reason_text(ds, code: int) -> str:
 def resolve_metrics(cfg: dict, metrics=None) -> tuple[str, ...]:
     """The summary keys a sweep computes.
 
-    ``None``: those the drive's kernel computes (the fast path); ``"all"``: every
-    numeric summary key of :func:`rotorkin.studies.evaluate` (the others
-    through the scalar study); or a list of names (or one comma-separated string).
+    ``None``: those the drive's kernel computes by default (the fast path);
+    ``"all"``: those, the kernel's optional ones (e.g. the wobble cam's
+    ``sampled_*`` extremes of every curve) and every numeric summary key of
+    :func:`rotorkin.studies.evaluate` (the others through the scalar study); or a
+    list of names (or one comma-separated string).
     """
     kern = kernel_of(cfg["drive"]["type"])
     if metrics is None:
@@ -94,7 +106,7 @@ def _all_metrics(cfg: dict) -> tuple[str, ...]:
     from rotorkin.studies import evaluate
 
     kern = kernel_of(cfg["drive"]["type"])
-    names = list(kern.metric_names(cfg))
+    names = [*kern.metric_names(cfg), *getattr(kern, "OPTIONAL_METRICS", ())]
     try:
         summary = evaluate(cfg).summary
     except ParameterError:
@@ -127,6 +139,28 @@ def _chunk_size(n_metrics: int, curves: int, points: int, size: int, budget: int
     return int(max(1, min(MAX_CHUNK, budget // per_design, max(size, 1))))
 
 
+def result_bytes(size: int, n_metrics: int, n_curves: int = 0, points: int = 0) -> int:
+    """Estimated memory of a sweep's result [bytes]: float64 metrics and curves, the reasons."""
+    return size * (8 * n_metrics + 2 + 8 * n_curves * points) + (8 * points if n_curves else 0)
+
+
+def _check_size(varies, size: int, n_metrics: int, n_curves: int, points: int) -> None:
+    """Refuse a grid beyond :data:`MAX_DESIGNS` or a result beyond :data:`MAX_RESULT_BYTES`."""
+    dims = " x ".join(f"{v.key}[{len(v)}]" for v in varies)
+    if size > MAX_DESIGNS:
+        raise ConfigError(f"--vary: {dims} = {size:.4g} designs is not admissible: at most "
+                          f"{MAX_DESIGNS:.0e} designs per sweep; split it")  # fmt: skip
+    need = result_bytes(size, n_metrics, n_curves, points)
+    if need > MAX_RESULT_BYTES:
+        what = f"{n_metrics} metrics" + (f" and {n_curves} curves x {points} points (--curves)"
+                                         if n_curves else "")  # fmt: skip
+        raise ConfigError(f"--vary: {dims} = {size} designs is not admissible: its result ("
+                          f"{what} per design) would take {need / 2**30:.3g} GiB in memory, "
+                          f"at most {MAX_RESULT_BYTES / 2**30:.3g} GiB; fewer designs"
+                          + (", fewer run.points or no --curves" if n_curves else
+                             " or --metrics") )  # fmt: skip
+
+
 def build_spec(base_cfg_raw: dict, vary, *, keep_curves=False, chunk_size=None, metrics=None,
                samples=None, memory_budget=MEMORY_BUDGET, name="sweep", extra=None,
                check=True) -> SweepSpec:  # fmt: skip
@@ -140,8 +174,9 @@ def build_spec(base_cfg_raw: dict, vary, *, keep_curves=False, chunk_size=None, 
     if samples < 3:
         raise ConfigError(f"--samples = {samples} is not admissible: --samples >= 3")
     points = int(cfg["run"]["points"])
-    size = int(np.prod([len(v) for v in varies], dtype=np.int64))
+    size = math.prod(len(v) for v in varies)
     n_curves = len(kernel_of(cfg["drive"]["type"]).CURVES) if keep_curves else 0
+    _check_size(varies, size, len(names), n_curves, points)
     if chunk_size is None:
         chunk_size = _chunk_size(len(names), n_curves, points, size, memory_budget)
     elif int(chunk_size) < 1:
@@ -237,7 +272,7 @@ def execute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
                 chunks.commit(index, res)
             else:
                 _place(flat, res)
-            bar.advance(res["stop"] - res["start"])
+            bar.finish_chunk(res["stop"] - res["start"])
 
         if client is not None:
             from rotorkin.sweep.dask import run_chunks
@@ -245,7 +280,9 @@ def execute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
             run_chunks(client, spec, todo, take)
         else:
             for index, start, stop in todo:
-                take(index, compute_chunk(spec, start, stop, threads))
+                with bar.within(stop - start):  # advanced block by block inside the chunk
+                    res = compute_chunk(spec, start, stop, threads)
+                take(index, res)
     if chunks:
         flat = _assemble(spec, chunks)
     ds = to_dataset(spec, flat)
@@ -301,11 +338,16 @@ def _assemble(spec: SweepSpec, chunks) -> dict:
     return flat
 
 
+#: Seconds between two moves of the progress bar within a chunk.
+_PROGRESS_EVERY = 0.1
+
+
 class _Progress:
     """A rich progress bar over designs on stderr (only on a terminal and when wanted)."""
 
     def __init__(self, wanted: bool, total: int, done_designs: int = 0):
         self.bar = None
+        self._chunk_left = None  # designs of the running chunk not shown yet
         self.total, self.done = total, done_designs
         self.wanted = bool(wanted) and sys.stderr.isatty()
         self.t0 = time.perf_counter()
@@ -332,6 +374,40 @@ class _Progress:
     def advance(self, n: int) -> None:
         if self.bar is not None:
             self.bar.advance(self.task, n)
+
+    @contextlib.contextmanager
+    def within(self, designs: int):
+        """Advance block by block while a chunk of ``designs`` is computed (local runs).
+
+        The kernels report their finished blocks
+        (:func:`rotorkin.sweep._common.block_progress`); the bar is moved at most
+        every :data:`_PROGRESS_EVERY` seconds, and by at most ``designs`` before
+        :meth:`finish_chunk` adds the rest.
+        """
+        self._chunk_left = designs
+        if self.bar is None:
+            yield
+            return
+        pending, last = 0, time.perf_counter()
+
+        def done(n):
+            nonlocal pending, last
+            n = min(n, self._chunk_left - pending)
+            pending += n
+            now = time.perf_counter()
+            if pending and now - last >= _PROGRESS_EVERY:
+                self.bar.advance(self.task, pending)
+                self._chunk_left -= pending
+                pending, last = 0, now
+
+        with block_progress(done):
+            yield
+
+    def finish_chunk(self, designs: int) -> None:
+        """A chunk of ``designs`` is committed: show what its blocks have not shown yet."""
+        left = self._chunk_left
+        self.advance(designs if left is None else left)
+        self._chunk_left = None
 
     def __exit__(self, *exc):
         if self.bar is not None:

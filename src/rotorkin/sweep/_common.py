@@ -7,9 +7,11 @@ at once by broadcasting: per-design values are arrays of shape ``(n,)`` (or
 
 from __future__ import annotations
 
+import contextlib
 import copy
 import os
 from concurrent.futures import ThreadPoolExecutor
+from contextvars import ContextVar
 
 import numpy as np
 
@@ -22,6 +24,7 @@ __all__ = [
     "run_blocks",
     "reason_keys",
     "flag",
+    "block_progress",
 ]
 
 #: Samples per period of the sampled peaks: the studies' ``_PEAK_SAMPLES``.
@@ -105,6 +108,25 @@ def sample_grid(period, samples: int) -> np.ndarray:
     return grid
 
 
+#: ``callable(designs)`` told of each finished block of :func:`run_blocks` (progress bars).
+_BLOCK_DONE: ContextVar = ContextVar("rotorkin_sweep_block_done", default=None)
+
+
+@contextlib.contextmanager
+def block_progress(callback):
+    """Within the block, :func:`run_blocks` calls ``callback(designs)`` after each block.
+
+    Called from the thread that called :func:`run_blocks`, in design order; the
+    counts of one kernel call add up to at most its designs (a drive with several
+    spin ratios runs a call per ratio, on a subset each).
+    """
+    token = _BLOCK_DONE.set(callback)
+    try:
+        yield
+    finally:
+        _BLOCK_DONE.reset(token)
+
+
 def block_size(samples: int) -> int:
     """Designs per block so that a block holds about :data:`BLOCK_ELEMENTS` samples."""
     return max(1, BLOCK_ELEMENTS // max(int(samples), 1))
@@ -121,11 +143,19 @@ def run_blocks(fn, n: int, samples: int, threads: int | None = None) -> dict:
     if not bounds:
         return {}
     threads = (os.cpu_count() or 1) if threads is None else max(1, int(threads))
+    done = _BLOCK_DONE.get()
+    parts = []
     if threads == 1 or len(bounds) == 1:
-        parts = [fn(lo, hi) for lo, hi in bounds]
+        for lo, hi in bounds:
+            parts.append(fn(lo, hi))
+            if done is not None:
+                done(hi - lo)
     else:
         with ThreadPoolExecutor(max_workers=min(threads, len(bounds))) as pool:
-            parts = list(pool.map(lambda b: fn(*b), bounds))
+            for (lo, hi), part in zip(bounds, pool.map(lambda b: fn(*b), bounds), strict=True):
+                parts.append(part)
+                if done is not None:
+                    done(hi - lo)
     out = {}
     for name in parts[0]:
         first = np.asarray(parts[0][name])

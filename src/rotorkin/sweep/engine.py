@@ -151,7 +151,7 @@ def coverage(drive_type: str, cfg: dict, keys, metrics) -> tuple[list, list, str
             why = f"the kernel does not vary {', '.join(outside)}"
     if why is not None:
         return [], list(metrics), why
-    names = set(kern.metric_names(cfg))
+    names = set(kern.metric_names(cfg)) | set(getattr(kern, "OPTIONAL_METRICS", ()))
     fast = [m for m in metrics if m in names]
     slow = [m for m in metrics if m not in names]
     return fast, slow, (f"{len(slow)} metric(s) are not vectorized ({', '.join(slow[:4])}"

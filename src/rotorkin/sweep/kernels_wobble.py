@@ -14,6 +14,13 @@ same names), computed for arrays of designs:
   ``cos 2u_k`` and ``sin 2u_k`` follow from tables of ``cos 2n theta``,
   ``sin 2n theta`` and the design's ``cos alpha``, ``sin alpha`` by the angle-sum
   formulas: no transcendental function per design and angle.
+* on request (:data:`SAMPLED_METRICS`, ``--metrics``; the sweep benchmark's
+  workload): every kinematic curve per design and sampled angle -- both rotor
+  angles (one ``arctan`` each) and their three derivatives, the slider angle, the
+  chamber angles of both kinds and their volumes -- reduced to extremes and
+  peaks. The closed forms above give the same extremes exactly; the sampled
+  ones agree with them to the sampling error (tested), and equal the extremes
+  of the study's columns when the grids are the same.
 
 With ``D = (1 + c^2)/2 - (1 - c^2)/2 cos 2u`` (``c = cos phi``), the projected
 angle's derivatives are ``E' = c/D``, ``E'' = -c (1 - c^2) sin 2u / D^2``,
@@ -31,8 +38,8 @@ import numpy as np
 from rotorkin.drives import wobble_cam as wc
 from rotorkin.sweep._common import flag, full, run_blocks, sample_grid
 
-__all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "unsupported", "metric_names", "reasons",
-           "metrics", "curves", "period"]  # fmt: skip
+__all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "SAMPLED_METRICS", "OPTIONAL_METRICS",
+           "unsupported", "metric_names", "reasons", "metrics", "curves", "period"]  # fmt: skip
 
 DRIVE = "wobble_cam"
 
@@ -115,6 +122,25 @@ _MACHINE_METRICS = (
     "mean_torque_Nm",
     "indicated_power_kW",
 )
+
+#: Extremes reduced from every curve evaluated on the sampled grid (opt-in: not in the
+#: default metrics; the closed forms give the exact values of the first ten).
+SAMPLED_METRICS = (
+    "sampled_slider_angle_min_deg",
+    "sampled_slider_angle_max_deg",
+    "sampled_chamber_a_angle_min_deg",
+    "sampled_chamber_a_angle_max_deg",
+    "sampled_chamber_b_angle_min_deg",
+    "sampled_chamber_b_angle_max_deg",
+    "sampled_chamber_a_volume_min_cm3",
+    "sampled_chamber_a_volume_max_cm3",
+    "sampled_chamber_b_volume_min_cm3",
+    "sampled_chamber_b_volume_max_cm3",
+    "sampled_rotor_speed_ratio_min",
+    "sampled_rotor_speed_ratio_max",
+)
+#: Metrics the kernel computes on request only (``--metrics``), not by default.
+OPTIONAL_METRICS = SAMPLED_METRICS
 
 #: Curves over one period (``keep_curves``): the study's columns of the same names.
 CURVES = (
@@ -281,7 +307,9 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
     spin_a, spin_b = p.cfg["drive"].get("spin_a") or [], p.cfg["drive"].get("spin_b") or []
     if spin_a or spin_b:
         sampled |= {"rotor_speed_ratio_min", "rotor_speed_ratio_max"}
-    if names & sampled:
+    if names & set(SAMPLED_METRICS):  # every curve; the peaks come out of the same pass
+        val.update(_sampled_full(p, tilt, alpha, spin, n_f, beta, samples, threads))
+    elif names & sampled:
         val.update(_sampled(p, tilt, alpha, spin, samples, threads))
     if names & set(_MACHINE_METRICS):
         val.update(_machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi))
@@ -292,10 +320,7 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
 
 def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> dict:
     """Volumes and the ideal cycle (:mod:`rotorkin.machines.twin_rotor`, closed forms)."""
-    rect = np.asarray(p["machine.section"]) == "rectangular"
-    ro, ri, w = (p.float(f"machine.{k}") for k in ("outer_radius", "inner_radius", "axial_width"))
-    rm, dd = p.float("machine.mean_radius"), p.float("machine.section_diameter")
-    k = np.where(rect, 0.5 * (ro * ro - ri * ri) * w, rm * np.pi * dd**2 / 4.0)
+    k = _section(p)
     vc = p.float("machine.clearance_volume")
     va_min, va_max, vb_min, vb_max = k * a_lo + vc, k * a_hi + vc, k * b_lo + vc, k * b_hi + vc
     eps_a, eps_b = va_max / va_min, vb_max / vb_min
@@ -346,6 +371,14 @@ def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> di
         "mean_torque_Nm": work / (2.0 * np.pi),
         "indicated_power_kW": work * omega_mean / (2.0 * np.pi) / 1e3,
     }
+
+
+def _section(p):
+    """Chamber volume per radian of chamber angle, ``V = K delta + V_c`` [m^3/rad]."""
+    rect = np.asarray(p["machine.section"]) == "rectangular"
+    ro, ri, w = (p.float(f"machine.{k}") for k in ("outer_radius", "inner_radius", "axial_width"))
+    rm, dd = p.float("machine.mean_radius"), p.float("machine.section_diameter")
+    return np.where(rect, 0.5 * (ro * ro - ri * ri) * w, rm * np.pi * dd**2 / 4.0)
 
 
 def _cycle_work(q, k, eps):
@@ -474,6 +507,173 @@ def _general_block(C, S, tables, tilt, alpha):
             res["jerk"] = np.maximum(res["jerk"], np.abs(h3).max(axis=1))
             res["r_min"] = np.minimum(res["r_min"], (1.0 + h1).min(axis=1))
             res["r_max"] = np.maximum(res["r_max"], (1.0 + h1).max(axis=1))
+        return res
+
+    return fn
+
+
+# --------------------------------------------------------------------------------------------
+# every curve on the sampled grid, reduced (SAMPLED_METRICS)
+# --------------------------------------------------------------------------------------------
+_FULL_KEYS = ("acc", "jerk", "r_min", "r_max", "s_min", "s_max", "a_min", "a_max", "b_min",
+              "b_max", "va_min", "va_max", "vb_min", "vb_max")  # fmt: skip
+
+
+def _sampled_full(p, tilt, alpha, spin, n_f, beta, samples: int, threads) -> dict:
+    """Every kinematic curve of each design on ``samples`` angles, reduced to extremes and peaks.
+
+    Per design and angle: both rotor angles ``Phi_k`` and ``Phi_k'``, ``Phi_k''``,
+    ``Phi_k'''``, the slider angle ``Phi_2 - Phi_1``, the chamber angles of both kinds
+    (eq. 18-19) and their volumes ``K delta + V_c``. Returns the peaks of
+    :func:`_sampled` (bit for bit the same numbers) and :data:`SAMPLED_METRICS`.
+    """
+    n = p.n
+    tilt, alpha, spin, n_f, beta = (full(v, n) for v in (tilt, alpha, spin, n_f, beta))
+    kvol = full(_section(p), n)
+    vc = full(p.float("machine.clearance_volume"), n)
+    g2 = 2.0 * wc.piston_offset(n_f)
+    lo_a, hi_b = g2 + beta, 2.0 * np.pi / n_f + g2 - beta  # delta_A = s - lo_a, delta_B = hi_b - s
+    theta = sample_grid(2.0 * np.pi, samples)
+    linear = not (p.cfg["drive"].get("spin_a") or p.cfg["drive"].get("spin_b"))
+    out = {k: np.empty(n) for k in _FULL_KEYS}
+    per = (tilt, alpha, lo_a, hi_b, kvol, vc)
+    for n_spin in np.unique(spin):
+        rows = np.flatnonzero(spin == n_spin)
+        tables = _spin_tables(p, float(n_spin), theta)
+        args = tuple(v[rows] for v in per)
+        if linear:
+            two_u = 2.0 * tables[0]
+            ring = (1.0 + float(n_spin)) * theta  # theta + varphi
+            fn = _full_linear_block(np.cos(two_u), np.sin(two_u), ring, float(n_spin), *args)
+        else:
+            fn = _full_general_block(theta, tables, *args)
+        res = run_blocks(fn, rows.size, samples, threads)
+        for key, values in res.items():
+            out[key][rows] = values
+    deg, mm3 = np.degrees, 1e6
+    val = {
+        "rotor_accel_peak_per_rad": out["acc"],
+        "rotor_jerk_peak_per_rad2": out["jerk"],
+        "sampled_slider_angle_min_deg": deg(out["s_min"]),
+        "sampled_slider_angle_max_deg": deg(out["s_max"]),
+        "sampled_chamber_a_angle_min_deg": deg(out["a_min"]),
+        "sampled_chamber_a_angle_max_deg": deg(out["a_max"]),
+        "sampled_chamber_b_angle_min_deg": deg(out["b_min"]),
+        "sampled_chamber_b_angle_max_deg": deg(out["b_max"]),
+        "sampled_chamber_a_volume_min_cm3": out["va_min"] * mm3,
+        "sampled_chamber_a_volume_max_cm3": out["va_max"] * mm3,
+        "sampled_chamber_b_volume_min_cm3": out["vb_min"] * mm3,
+        "sampled_chamber_b_volume_max_cm3": out["vb_max"] * mm3,
+        "sampled_rotor_speed_ratio_min": out["r_min"],
+        "sampled_rotor_speed_ratio_max": out["r_max"],
+    }
+    if not linear:
+        val["rotor_speed_ratio_min"] = out["r_min"]
+        val["rotor_speed_ratio_max"] = out["r_max"]
+    return val
+
+
+def _reduce_chambers(res, q1, q2, w, lo_a, hi_b, kvol, vc) -> None:
+    """Slider, chamber-angle and volume curves from the rotor angles (in place), reduced."""
+    np.subtract(q2, q1, out=q2)  # slider angle alpha' = Phi_2 - Phi_1
+    res["s_min"], res["s_max"] = q2.min(axis=1), q2.max(axis=1)
+    for kind in ("a", "b"):
+        if kind == "a":
+            np.subtract(q2, lo_a, out=w)  # delta_A = alpha' - 2 gamma - beta
+        else:
+            np.subtract(hi_b, q2, out=w)  # delta_B = 2 pi/N + 2 gamma - alpha' - beta
+        res[f"{kind}_min"], res[f"{kind}_max"] = w.min(axis=1), w.max(axis=1)
+        np.multiply(w, kvol, out=w)
+        np.add(w, vc, out=w)  # V = K delta + V_c
+        res[f"v{kind}_min"], res[f"v{kind}_max"] = w.min(axis=1), w.max(axis=1)
+
+
+def _full_linear_block(C, S, ring, n_spin, tilt, alpha, lo_a, hi_b, kvol, vc):
+    """Block evaluator of every curve for the linear spin law (in place, per-thread scratch).
+
+    ``C``, ``S``: ``cos 2 varphi``, ``sin 2 varphi`` on the grid; ``ring``:
+    ``theta + varphi``. With ``u_k = varphi -+ alpha/2``, ``c = cos phi``:
+    ``Phi_k = theta + u_k + atan(S_k/(g - C_k))``, ``g = (1 + c)/(1 - c)``, and
+    ``D``, ``Phi'``, ``Phi''``, ``Phi'''`` as in the module doc. The operations on
+    ``Phi''`` and ``Phi'''`` are those of :func:`_linear_block`, so the peaks are
+    bit for bit the same; their positive per-design factors (``2 b c n^2``,
+    ``|c n^3|``) are applied to the peaks, after the reduction.
+    """
+    local = threading.local()
+
+    def fn(lo, hi):
+        c = np.cos(tilt[lo:hi])[:, None]
+        ca, sa = np.cos(alpha[lo:hi])[:, None], np.sin(alpha[lo:hi])[:, None]
+        half = 0.5 * alpha[lo:hi][:, None]
+        a, b = 0.5 * (1.0 + c * c), 0.5 * (1.0 - c * c)
+        b8, b4 = 8.0 * b * b, 4.0 * b
+        g = (1.0 + c) / (1.0 - c)
+        nc = n_spin * c
+        m = hi - lo
+        scratch = getattr(local, "scratch", None)
+        if scratch is None or scratch.shape[1] < m:
+            scratch = local.scratch = np.empty((8, m, C.size))
+        c2, s2, t1, t2, t3, w, q1, q2 = scratch[:, :m]
+        acc, jerk = np.zeros(m), np.zeros(m)
+        r_min, r_max = np.full(m, np.inf), np.full(m, -np.inf)
+        for sign, q in ((-1.0, q1), (1.0, q2)):  # rotor 1 (u = n theta - alpha/2), rotor 2 (+)
+            np.multiply(C, ca, out=c2)
+            np.multiply(S, sa, out=t1)
+            np.subtract(c2, t1, out=c2) if sign > 0 else np.add(c2, t1, out=c2)  # cos 2u
+            np.multiply(S, ca, out=s2)
+            np.multiply(C, sa, out=t1)
+            np.add(s2, t1, out=s2) if sign > 0 else np.subtract(s2, t1, out=s2)  # sin 2u
+            np.multiply(c2, b, out=t1)
+            np.subtract(a, t1, out=t1)
+            np.divide(1.0, t1, out=t1)  # 1/D
+            np.multiply(t1, t1, out=t2)  # 1/D^2
+            np.multiply(s2, t2, out=t3)  # sin 2u / D^2, Phi'' / (-2 b c n^2)
+            acc = np.maximum(acc, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
+            np.multiply(t1, nc, out=w)
+            np.add(w, 1.0, out=w)  # Phi' = 1 + n c / D
+            r_min, r_max = np.minimum(r_min, w.min(axis=1)), np.maximum(r_max, w.max(axis=1))
+            np.subtract(g, c2, out=w)
+            np.divide(s2, w, out=w)
+            np.arctan(w, out=w)
+            np.add(w, ring, out=q)
+            np.add(q, sign * half, out=q)  # Phi = theta + varphi -+ alpha/2 + atan(...)
+            np.multiply(s2, s2, out=t3)
+            np.multiply(t3, t1, out=t3)
+            np.multiply(t3, b8, out=t3)
+            np.multiply(c2, b4, out=c2)
+            np.subtract(t3, c2, out=t3)
+            np.multiply(t3, t2, out=t3)  # (8 b^2 sin^2 2u / D - 4 b cos 2u) / D^2, Phi''' / c n^3
+            jerk = np.maximum(jerk, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
+        cc = c[:, 0]
+        res = {
+            "acc": 2.0 * b[:, 0] * cc * n_spin * n_spin * acc,
+            "jerk": np.abs(cc * n_spin**3) * jerk,
+            "r_min": r_min,
+            "r_max": r_max,
+        }
+        _reduce_chambers(res, q1, q2, w, lo_a[lo:hi, None], hi_b[lo:hi, None],
+                         kvol[lo:hi, None], vc[lo:hi, None])  # fmt: skip
+        return res
+
+    return fn
+
+
+def _full_general_block(theta, tables, tilt, alpha, lo_a, hi_b, kvol, vc):
+    """Block evaluator of every curve for a corrected spin law (the library's fused path)."""
+    from rotorkin.drives.wobble_kernel import rotor_kinematics
+
+    def fn(lo, hi):
+        rot, _ = rotor_kinematics(theta, tables, tilt[lo:hi, None], alpha[lo:hi, None],
+                                  threads=1)  # fmt: skip
+        q, d1, d2, d3 = rot
+        res = {
+            "acc": np.abs(d2).max(axis=(0, 2)),
+            "jerk": np.abs(d3).max(axis=(0, 2)),
+            "r_min": d1.min(axis=(0, 2)),
+            "r_max": d1.max(axis=(0, 2)),
+        }
+        _reduce_chambers(res, q[0], q[1].copy(), np.empty_like(q[0]), lo_a[lo:hi, None],
+                         hi_b[lo:hi, None], kvol[lo:hi, None], vc[lo:hi, None])  # fmt: skip
         return res
 
     return fn

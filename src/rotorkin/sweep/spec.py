@@ -23,6 +23,10 @@ from rotorkin.io.units import parse_quantity
 __all__ = ["Vary", "Field", "DISPLAY_UNITS", "parse_vary", "parse_item", "field_of",
            "display"]  # fmt: skip
 
+#: Most values of one ``--vary`` range (``N``); the whole grid is capped by
+#: :data:`rotorkin.sweep.MAX_DESIGNS` and the result's memory by ``MAX_RESULT_BYTES``.
+MAX_VALUES = 100_000_000
+
 #: quantity kind -> (unit shown in coordinates and messages, factor from SI)
 DISPLAY_UNITS = {
     "angle": ("deg", 180.0 / np.pi),
@@ -146,7 +150,14 @@ def field_of(drive_type: str, key: str) -> Field | None:
     return Field(key, "other")
 
 
-def _check_key(base_raw: dict, key: str, option: str) -> tuple[str, Field]:
+def _check_key(base_raw: dict, key: str, option: str, value: str | None = None
+               ) -> tuple[str, Field]:  # fmt: skip
+    """The drive type and :class:`Field` of a swept key; one-line errors.
+
+    ``value`` (the first value as given, e.g. ``"a"`` of ``drive.type=a,b``) is
+    what the config schema is asked about when the key is not sweepable, so
+    that its message shows the value written.
+    """
     drive_type = (base_raw.get("drive") or {}).get("type")
     if drive_type not in DRIVE_MODELS:
         validate_config(base_raw)  # raises the config's own message
@@ -156,10 +167,14 @@ def _check_key(base_raw: dict, key: str, option: str) -> tuple[str, Field]:
         if not name:
             raise ConfigError(f"{option} {key!r} is not admissible: the key must be section.key, "
                               "e.g. drive.plate_tilt")  # fmt: skip
+        if key == "drive.type" and (value in DRIVE_MODELS or not value):
+            raise ConfigError(f"{option} drive.type = {value or ''!r} is not admissible: a "
+                              f"sweep varies the keys of one drive type (here {drive_type!r}); "
+                              "run one sweep per drive type")  # fmt: skip
         probe = copy.deepcopy(base_raw)
         probe.setdefault(section, {})
         if isinstance(probe[section], dict):
-            probe[section][name] = 0
+            probe[section][name] = 0 if value is None else _as_written(value)
         try:
             validate_config(probe)
         except ConfigError as exc:
@@ -171,6 +186,14 @@ def _check_key(base_raw: dict, key: str, option: str) -> tuple[str, Field]:
             "be swept (not lists or names)"
         )
     return drive_type, field
+
+
+def _as_written(text: str):
+    """A value as TOML reads it (``2`` -> 2, ``true`` -> True), else the string itself."""
+    try:
+        return tomllib.loads(f"v = {text.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        return text.strip()
 
 
 def _raw_value(field: Field, text: str):
@@ -255,7 +278,8 @@ def parse_vary(item: str, base_raw: dict) -> Vary:
     """
     key, spec = parse_item(item)
     option = f"--vary {key}={spec}"
-    _, field = _check_key(base_raw, key, "--vary")
+    first = spec.split(",")[0].split(":")[0].strip()
+    _, field = _check_key(base_raw, key, "--vary", first or None)
     if not spec:
         raise ConfigError(f"{option} is not admissible: empty list of values")
     if ":" in spec:
@@ -269,6 +293,9 @@ def parse_vary(item: str, base_raw: dict) -> Vary:
                               "count of values") from None  # fmt: skip
         if count < 1:
             raise ConfigError(f"{option} is not admissible: empty range (N = {count}; N >= 1)")
+        if count > MAX_VALUES:
+            raise ConfigError(f"{option} is not admissible: N = {count}; N <= {MAX_VALUES:.0e} "
+                              "(and at most 1e+08 designs per sweep)")  # fmt: skip
         if field.kind == "choice":
             raise ConfigError(f"{option} is not admissible: {key} takes one of "
                               f"{', '.join(field.choices)}; list them: {key}=a,b")  # fmt: skip
