@@ -2,7 +2,7 @@
 
 At 1e3 ... 1e7 shaft angles, the library's kinematics -- both rotor angles with
 their three exact derivatives and the chamber angles of both kinds,
-:func:`rotorkin.drives.wobble_cam.kinematics` -- against
+:func:`rotorkin.drives.wobble_cam.kinematics.kinematics` -- against
 
 (a) ``per_point``: the paper's method ported point by point, as a MATLAB script
     usually is: a Python loop that builds ``A_theta``, ``A_phi``, ``A_varphi``
@@ -49,9 +49,9 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import interleaved, load, machine, peak_rss, write_json  # noqa: E402
 
-from rotorkin.drives import wobble_cam as wc  # noqa: E402
-from rotorkin.drives.wobble_kernel import rotor_kinematics  # noqa: E402
-from rotorkin.motion import compose  # noqa: E402
+from rotorkin.core.motion import compose  # noqa: E402
+from rotorkin.drives.wobble_cam import kinematics as wc  # noqa: E402
+from rotorkin.drives.wobble_cam.fast import rotor_kinematics  # noqa: E402
 
 #: Paper Table 1: phi = 45 deg, alpha = 90 deg, varphi = -2 theta, eps = 10, N = 4.
 TILT, ALPHA, SPIN, EPS, PISTONS = math.radians(45.0), math.radians(90.0), -2.0, 10.0, 4
@@ -357,7 +357,7 @@ def main(argv=None) -> int:
             "floor": "(b) sin, cos of 2 varphi and one arctan per rotor, preallocated outputs",
             "floor_atan2": "(b) with arctan2 instead of arctan (the issue's probe)",
             "floor_tan": "(b') the calls the library makes: tan varphi and one arctan per rotor",
-            "library": "rotorkin.drives.wobble_cam.kinematics, 1 thread",
+            "library": "rotorkin.drives.wobble_cam.kinematics.kinematics, 1 thread",
             "library_2threads": "the same on 2 threads",
             "library_out": "the library, 1 thread, writing into preallocated arrays (out=)",
             "rotor_angles_path": "rotor_angles then chamber_angles (the study's two calls)",

@@ -26,7 +26,7 @@ Time: all sizes in one process, interleaved (each size once per round, the
 best of ``--repeat`` rounds kept), so that a change of load hits them alike.
 
 Baseline, in the same rounds: 20 designs of the same ranges run one by one
-through the scalar study (:func:`rotorkin.studies.evaluate`, ``run.points =
+through the scalar study (:func:`rotorkin.drives.evaluate`, ``run.points =
 --angles``), as a loop over designs would; ``speedup_vs_one_by_one`` is its time
 per design over the sweep's.
 
@@ -68,7 +68,7 @@ def _vary(designs: int) -> dict:
 
 def metrics() -> list[str]:
     """Every metric of the wobble kernel: its defaults and the sampled extremes of every curve."""
-    from rotorkin.sweep.kernels_wobble import OPTIONAL_METRICS, metric_names
+    from rotorkin.drives.wobble_cam.sweep import OPTIONAL_METRICS, metric_names
 
     return [*metric_names({}), *OPTIONAL_METRICS]
 
@@ -111,13 +111,13 @@ def _one_by_one(raw: dict, angles: int, count: int):
     """The baseline: ``count`` designs of the grid, each through the scalar study.
 
     That is what a user without the sweep writes: a loop over designs calling
-    :func:`rotorkin.studies.evaluate` on each config (``run.points = angles``), the
+    :func:`rotorkin.drives.evaluate` on each config (``run.points = angles``), the
     same metrics a sweep gives. Returns a function that runs the loop once.
     """
     import copy
 
+    from rotorkin.drives import evaluate
     from rotorkin.io.config import validate_config
-    from rotorkin.studies import evaluate
 
     rng = np.random.default_rng(7)
     cfgs = []

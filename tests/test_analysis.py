@@ -19,8 +19,8 @@ from rotorkin.analysis.torque import (
     shaft_torque_from_members,
     torque_ripple,
 )
-from rotorkin.errors import ParameterError
-from rotorkin.motion import compose, time_derivatives
+from rotorkin.core.errors import ParameterError
+from rotorkin.core.motion import compose, time_derivatives
 
 
 def _members(theta, a=0.3, b=0.2):

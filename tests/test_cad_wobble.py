@@ -15,8 +15,8 @@ import time
 import numpy as np
 import pytest
 
-from rotorkin.errors import ParameterError, RotorkinError
-from rotorkin.io import cad_wobble as cw
+from rotorkin.core.errors import ParameterError, RotorkinError
+from rotorkin.drives.wobble_cam import cad as cw
 from rotorkin.io.config import load_config
 from test_cams_spherical import Explicit
 

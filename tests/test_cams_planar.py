@@ -7,10 +7,12 @@ positions, circumscribed circles of dense polygons, explicit rotations.
 import numpy as np
 import pytest
 
-from rotorkin.cams import eccentric, planar, rhomboid
-from rotorkin.drives import eccentric_cam as ec
-from rotorkin.drives import rhomboid_cam as rc
-from rotorkin.errors import ParameterError
+from rotorkin.cams import planar
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.eccentric_cam import cam as eccentric
+from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.drives.rhomboid_cam import cam as rhomboid
+from rotorkin.drives.rhomboid_cam import kinematics as rc
 
 L = 0.12
 LAWS = [

@@ -10,9 +10,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorkin.cams import spherical as sph
-from rotorkin.drives import wobble_cam as wc
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.wobble_cam import cam as sph
+from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.io.config import load_config
 
 PHI, ALPHA, R = np.radians(45.0), np.radians(90.0), 0.06
@@ -373,7 +373,7 @@ def test_argument_errors(example):
 def test_figure(example, tmp_path):
     import matplotlib.image as mpimg
 
-    from rotorkin.report.figures_spherical_cam import plot_spherical_cam
+    from rotorkin.drives.wobble_cam.figures_cam import plot_spherical_cam
 
     drive, cam = example
     (path,) = plot_spherical_cam(drive, tmp_path, cam=cam, points=361)

@@ -127,8 +127,8 @@ def test_a_rerun_into_the_same_folder_leaves_no_stale_files(tmp_path, capsys):
 def test_printed_summary_says_what_each_metric_is(name, tmp_path, capsys):
     """Every headline metric is in summary.json and printed with a line saying what it is
     (e.g. which torque model, which sign), so two work or torque keys cannot be confused."""
+    from rotorkin.drives import evaluate
     from rotorkin.io.config import example_path, read_toml, validate_config
-    from rotorkin.studies import evaluate
 
     assert main(["run", "--example", name, "--out", str(tmp_path / "o")]) == 0
     printed = capsys.readouterr().out

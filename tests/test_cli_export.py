@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from rotorkin.cli import main
-from rotorkin.drives import rhomboid_cam as rc
+from rotorkin.drives.rhomboid_cam import kinematics as rc
 
 PLANAR = ["rhomboid-engine", "eccentric-reactor", "guide-bar-pump"]
 EXPECTED = {  # files of each planar example (stems after "<name>_")
@@ -186,7 +186,7 @@ WOBBLE = ["-e", "wobble-cam-engine", "-s", "cam.roller_radius=4 mm"]
 
 @pytest.mark.parametrize("fmt", ["dxf", "csv"])
 def test_wobble_example(tmp_path, capsys, fmt):
-    pytest.importorskip("rotorkin.io.cad_wobble")
+    pytest.importorskip("rotorkin.drives.wobble_cam.cad")
     code, out, err = _run(capsys, *WOBBLE, "-f", fmt, "-o", str(tmp_path))
     assert code == 0, err
     names = _files(tmp_path)
@@ -196,7 +196,7 @@ def test_wobble_example(tmp_path, capsys, fmt):
 @pytest.mark.slow
 @pytest.mark.parametrize("fmt", ["stl", "step"])
 def test_wobble_example_solids(tmp_path, capsys, fmt):
-    pytest.importorskip("rotorkin.io.cad_wobble")
+    pytest.importorskip("rotorkin.drives.wobble_cam.cad")
     if fmt == "step":
         pytest.importorskip("build123d", reason="STEP export needs the [cad] extra (build123d)")
     code, out, err = _run(capsys, *WOBBLE, "-f", fmt, "-o", str(tmp_path))
@@ -206,7 +206,7 @@ def test_wobble_example_solids(tmp_path, capsys, fmt):
 
 def test_wobble_checks_table(tmp_path, capsys, monkeypatch):
     """Readable rows; the pressure angle away from the crossings, where, and the best roller."""
-    from rotorkin.cams import spherical as sph
+    from rotorkin.drives.wobble_cam import cam as sph
     from rotorkin.io.config import load_config
 
     monkeypatch.setenv("COLUMNS", "200")  # rich: one line per row

@@ -4,9 +4,10 @@ import math
 
 import pytest
 
-from rotorkin.errors import ConfigError
+from rotorkin.core.errors import ConfigError
+from rotorkin.core.units import to_si
+from rotorkin.drives import REGISTRY
 from rotorkin.io.config import (
-    DRIVE_MODELS,
     apply_sets,
     example_names,
     glossary,
@@ -15,7 +16,6 @@ from rotorkin.io.config import (
     validate_config,
 )
 from rotorkin.io.output import to_toml
-from rotorkin.io.units import to_si
 
 EXAMPLES = ["eccentric-reactor", "guide-bar-pump", "rhomboid-engine", "wobble-cam-engine"]
 
@@ -23,7 +23,7 @@ EXAMPLES = ["eccentric-reactor", "guide-bar-pump", "rhomboid-engine", "wobble-ca
 def test_examples_are_shipped_one_per_drive_type():
     assert example_names() == EXAMPLES
     kinds = {load_config(example=name)[0]["drive"]["type"] for name in EXAMPLES}
-    assert kinds == set(DRIVE_MODELS)
+    assert kinds == set(REGISTRY)
 
 
 @pytest.mark.parametrize(

@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, minimize_scalar
 
-from rotorkin.drives import eccentric_cam as ec
-from rotorkin.errors import ParameterError
-from rotorkin.motion import Motion
-from rotorkin.studies import evaluate
-from rotorkin.studies._common import build_params
+from rotorkin.core.errors import ParameterError
+from rotorkin.core.motion import Motion
+from rotorkin.drives import evaluate
+from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.studies.helpers import build_params
 
 
 # --------------------------------------------------------------------------------------------

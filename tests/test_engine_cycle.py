@@ -12,7 +12,7 @@ import pytest
 from scipy import integrate
 
 from rotorkin.analysis import engine_cycle as ec
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
 
 
 def random_cycle(rng):

@@ -12,8 +12,8 @@ import pytest
 from scipy.integrate import quad
 from scipy.spatial import cKDTree
 
-from rotorkin.drives import rhomboid_cam as rc
-from rotorkin.errors import ParameterError, RotorkinError
+from rotorkin.core.errors import ParameterError, RotorkinError
+from rotorkin.drives.rhomboid_cam import kinematics as rc
 from rotorkin.io.config import load_config
 from rotorkin.io.export import export
 
@@ -263,7 +263,7 @@ def test_tolerance_controls_the_vertex_count(tmp_path):
 
 
 def test_wobble_goes_to_cad_wobble(tmp_path):
-    pytest.importorskip("rotorkin.io.cad_wobble")
+    pytest.importorskip("rotorkin.drives.wobble_cam.cad")
     cfg, _, name = _cfg("wobble-cam-engine", "cam.roller_radius=4 mm")
     files = export(cfg, "csv", tmp_path, name)
     assert files and all(f.parent == tmp_path and f.suffix == ".csv" for f in files)

@@ -7,11 +7,11 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-from rotorkin.drives import guide_bar as gb
-from rotorkin.errors import ParameterError
-from rotorkin.motion import Motion
-from rotorkin.studies import evaluate
-from rotorkin.studies._common import build_params
+from rotorkin.core.errors import ParameterError
+from rotorkin.core.motion import Motion
+from rotorkin.drives import evaluate
+from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.studies.helpers import build_params
 
 
 # --------------------------------------------------------------------------------------------

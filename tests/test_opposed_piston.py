@@ -14,11 +14,11 @@ from numpy.polynomial.legendre import leggauss
 from scipy.optimize import brentq
 
 from rotorkin.analysis import torque as tq
-from rotorkin.drives import eccentric_cam as ec
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives import evaluate
+from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.drives.eccentric_cam.study import reactor_state
 from rotorkin.machines import opposed_piston as op
-from rotorkin.studies import evaluate
-from rotorkin.studies.eccentric_cam import reactor_state
 
 
 # --------------------------------------------------------------------------------------------

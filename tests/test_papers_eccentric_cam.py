@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorkin.drives import eccentric_cam as ec
-from rotorkin.studies import evaluate
+from rotorkin.drives import evaluate
+from rotorkin.drives.eccentric_cam import kinematics as ec
 
 R, LAM, L = 0.080, 0.5, 1.000  # paper: R = 80 mm, lambda = 0.5, device length 1000 mm
 E = LAM * R  # e = lambda R = 40 mm (paper)

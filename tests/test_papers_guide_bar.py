@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorkin.drives import guide_bar as gb
-from rotorkin.studies import evaluate
+from rotorkin.drives import evaluate
+from rotorkin.drives.guide_bar import kinematics as gb
 
 LAM, U, I12, SIGMA = 0.5, 2.0, 2.0, np.pi  # Fig. 3, 5, 10, 11: lambda 0.5, u 2, i12 2, 180 deg
 

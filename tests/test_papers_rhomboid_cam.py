@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from rotorkin.drives import rhomboid_cam as rc
+from rotorkin.drives.rhomboid_cam import kinematics as rc
 
 PSI_MIN = np.radians(40.0)
 L = 0.12  # 2l [m]
@@ -268,7 +268,7 @@ def test_eq31_eq34_through_the_engine(a3, b3):
     (M_1, -M_1) on the blade pairs (eq. 24), shaft torque by virtual work sum M_i phi_i',
     integrated over the half turn; the per-revolution work is twice the paper's A.
     Tol 1e-12 relative (Gauss-Legendre on the monotone pieces)."""
-    from rotorkin.studies import evaluate
+    from rotorkin.drives import evaluate
 
     cfg = {
         "drive": {"type": "rhomboid_cam", "link_length": L, "psi_min": PSI_MIN,

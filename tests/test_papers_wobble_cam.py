@@ -14,8 +14,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorkin.drives import wobble_cam as wc
-from rotorkin.studies import wobble_cam as study
+from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.drives.wobble_cam import study as study
 
 D = np.pi / 180.0
 HALF_LAST_DIGIT_DEG = 0.005

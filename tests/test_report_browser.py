@@ -23,9 +23,9 @@ from pathlib import Path
 import pytest
 
 from rotorkin import __version__
+from rotorkin.drives import evaluate
 from rotorkin.io.config import load_config
 from rotorkin.report.html import write_report
-from rotorkin.studies import evaluate
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 

@@ -22,9 +22,9 @@ import pytest
 
 from rotorkin import __version__
 from rotorkin.cli import main
+from rotorkin.drives import evaluate
 from rotorkin.io.config import load_config
 from rotorkin.report.html import FRAMES, write_report
-from rotorkin.studies import evaluate
 
 EXAMPLES = ["eccentric-reactor", "guide-bar-pump", "rhomboid-engine", "wobble-cam-engine"]
 PLOTS = {  # plot ids every report of the drive must have
@@ -354,7 +354,7 @@ def test_wobble_log_pv_ticks_are_full_numbers(reports):
 
 
 def test_log_ticks_and_merge_identical_helpers():
-    from rotorkin.report.html_scenes import log_ticks, merge_identical
+    from rotorkin.render.scenes import log_ticks, merge_identical
 
     assert log_ticks(1.0, 65.8) == [1, 2, 5, 10, 20, 50]
     assert log_ticks(0.9, 1000.0) == [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000]
@@ -525,11 +525,11 @@ def test_cli_report_out_is_a_file(tmp_path, capsys):
 def test_run_with_report(tmp_path, monkeypatch, capsys):
     import dataclasses
 
-    import rotorkin.studies
+    import rotorkin.drives
 
-    real = rotorkin.studies.evaluate  # skip the PNG figures: only the --report hook is tested here
+    real = rotorkin.drives.evaluate  # skip the PNG figures: only the --report hook is tested here
     monkeypatch.setattr(
-        rotorkin.studies,
+        rotorkin.drives,
         "evaluate",
         lambda cfg: dataclasses.replace(real(cfg), plot=lambda outdir: []),
     )

@@ -17,10 +17,10 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from rotorkin._angles import angle_near
-from rotorkin.drives import rhomboid_cam as rc
-from rotorkin.errors import ParameterError
-from rotorkin.studies import evaluate
+from rotorkin.core.angles import angle_near
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives import evaluate
+from rotorkin.drives.rhomboid_cam import kinematics as rc
 
 TWO_PI = 2.0 * np.pi
 

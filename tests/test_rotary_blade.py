@@ -17,11 +17,11 @@ import pytest
 from scipy.optimize import brentq
 
 from rotorkin.analysis import torque as at
-from rotorkin.drives import rhomboid_cam as rc
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives import evaluate
+from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam import study as study
 from rotorkin.machines import rotary_blade as rb
-from rotorkin.studies import evaluate
-from rotorkin.studies import rhomboid_cam as study
 
 TWO_PI = 2.0 * np.pi
 PSI_MIN = np.radians(40.0)

@@ -7,9 +7,9 @@ import pytest
 import xarray as xr
 
 from rotorkin.cli import main
-from rotorkin.errors import ConfigError, ParameterError, RotorkinError
+from rotorkin.core.errors import ConfigError, ParameterError, RotorkinError
+from rotorkin.drives import evaluate
 from rotorkin.io.config import load_config
-from rotorkin.studies import evaluate
 from rotorkin.sweep import SweepFallbackWarning, reason_text, run_sweep
 
 # Each case: example, base --set items, --vary items (lists, so that the test can rebuild every
@@ -426,7 +426,7 @@ _SAMPLED_VARY = {
 
 
 def test_sampled_extremes_of_every_curve_agree_with_the_closed_forms_to_the_sampling_error():
-    from rotorkin.sweep.kernels_wobble import SAMPLED_METRICS
+    from rotorkin.drives.wobble_cam.sweep import SAMPLED_METRICS
 
     assert set(SAMPLED_METRICS) == set(_SAMPLED_OF)
     _, raw, _ = load_config(None, "wobble-cam-engine")
@@ -459,7 +459,7 @@ def test_sampled_extremes_of_every_curve_agree_with_the_closed_forms_to_the_samp
 
 
 def test_sampled_extremes_equal_the_study_columns_on_the_same_grid():
-    from rotorkin.sweep.kernels_wobble import SAMPLED_METRICS
+    from rotorkin.drives.wobble_cam.sweep import SAMPLED_METRICS
 
     _, raw, _ = load_config(None, "wobble-cam-engine")
     points = int(load_config(None, "wobble-cam-engine")[0]["run"]["points"])
@@ -487,8 +487,8 @@ def test_sampled_extremes_equal_the_study_columns_on_the_same_grid():
 
 
 def test_sampled_extremes_of_a_corrected_spin_law_take_the_library_path():
-    from rotorkin.drives import wobble_cam as wc
-    from rotorkin.sweep.kernels_wobble import SAMPLED_METRICS
+    from rotorkin.drives.wobble_cam import kinematics as wc
+    from rotorkin.drives.wobble_cam.sweep import SAMPLED_METRICS
 
     sets = ["drive.spin_a=[0.05]", "drive.spin_b=[0.02]", "machine.compression_ratio=30"]
     try:

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from rotorkin.cli import main
+from rotorkin.drives import evaluate
 from rotorkin.io.config import load_config
-from rotorkin.studies import evaluate
 
 
 def _files(path):
@@ -239,6 +239,7 @@ def test_target_help_names_each_objective():
         "dwell_min_volume (wobble_cam): the dwell fraction",
         "vane_angle (guide_bar): the vane angle",
         "gap_change (eccentric_cam): the tolerated peak gap change",
-        "No target for sine_chamber",
+        "sine_chamber (wobble_cam): no target",
+        "min_accel (rhomboid_cam): no target",
     ):
         assert words in text

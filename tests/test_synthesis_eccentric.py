@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives import evaluate, synthesize
+from rotorkin.drives.eccentric_cam import synthesis as se
 from rotorkin.io.config import load_config, validate_config
-from rotorkin.studies import evaluate
-from rotorkin.synthesis import eccentric as se
-from rotorkin.synthesis import synthesize, synthesized_raw_config
+from rotorkin.synthesis import synthesized_raw_config
 
 
 def _gap(beta, R, e):

@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives import evaluate, synthesize
+from rotorkin.drives.guide_bar import synthesis as sg
 from rotorkin.io.config import load_config
-from rotorkin.studies import evaluate
-from rotorkin.synthesis import guide_bar as sg
-from rotorkin.synthesis import synthesize, synthesized_raw_config
+from rotorkin.synthesis import synthesized_raw_config
 
 
 # --- independent geometry of one mechanism (units of the crank length a) ---------------------

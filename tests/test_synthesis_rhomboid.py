@@ -10,12 +10,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorkin.drives import rhomboid_cam as rc
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives import evaluate, synthesize
+from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam import synthesis as sr
 from rotorkin.io.config import load_config, validate_config
-from rotorkin.studies import evaluate
-from rotorkin.synthesis import dwell_fraction, synthesize, synthesized_raw_config
-from rotorkin.synthesis import rhomboid as sr
+from rotorkin.synthesis import dwell_fraction, synthesized_raw_config
 
 L, PSI_MIN, ROLLER = 0.12, np.radians(40.0), 0.01
 N = 40_000  # samples per period for the independent checks
@@ -77,7 +77,7 @@ def test_batched_law_matches_drive():
 
 
 def test_batched_pressure_angle_matches_cams_module():
-    from rotorkin.cams import rhomboid as cam
+    from rotorkin.drives.rhomboid_cam import cam as cam
 
     alpha = np.arange(720) * np.pi / 720
     law = sr.Law(PSI_MIN, 2, alpha)

@@ -7,12 +7,12 @@ import dataclasses
 import numpy as np
 import pytest
 
-from rotorkin.drives import wobble_cam as wc
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives import evaluate, synthesize
+from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.drives.wobble_cam import synthesis as sw
 from rotorkin.io.config import load_config, validate_config
-from rotorkin.studies import evaluate
-from rotorkin.synthesis import synthesize, synthesized_raw_config
-from rotorkin.synthesis import wobble as sw
+from rotorkin.synthesis import synthesized_raw_config
 
 ONE_MICRODEG = 1e-6  # the issue's tolerance [deg]
 
@@ -180,8 +180,8 @@ def test_errors(objective, target, words):
 # --------------------------------------------------------------------------------------------
 def _export_check(raw, res, objective):
     """The synthesized config through ``rotorkin export``'s own setup (roller check included)."""
-    from rotorkin.cams import spherical as cs
-    from rotorkin.io import cad_wobble
+    from rotorkin.drives.wobble_cam import cad as cad_wobble
+    from rotorkin.drives.wobble_cam import cam as cs
 
     new = validate_config(synthesized_raw_config(raw, res.updates, objective))
     drive, cam, _ = cad_wobble.setup(new)  # raises ParameterError("cam.roller_radius") if not
@@ -234,7 +234,7 @@ def test_default_dwell_is_the_longest_admissible():
 
 def test_roller_limit_is_a_real_constraint():
     """With the pressure angle bound lifted, the roller ends the range: the next law undercuts."""
-    from rotorkin.cams import spherical as cs
+    from rotorkin.drives.wobble_cam import cam as cs
 
     cfg, _, _ = load_config(None, "wobble-cam-engine", [])
     base = sw._drive(cfg)

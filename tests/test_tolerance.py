@@ -9,7 +9,7 @@ import pytest
 import xarray as xr
 
 from rotorkin.cli import main
-from rotorkin.errors import ConfigError
+from rotorkin.core.errors import ConfigError
 from rotorkin.io.config import load_config
 from rotorkin.tolerance import run_tolerance, summarize
 

@@ -19,11 +19,11 @@ from rotorkin.analysis import engine_cycle as ec
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.analysis.torque import equivalent_inertia, inertia_torque, kinetic_energy
 from rotorkin.cli import main
-from rotorkin.drives import wobble_cam as wc
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.drives.wobble_cam import study as study
 from rotorkin.io.config import load_config
 from rotorkin.machines import twin_rotor as tr
-from rotorkin.studies import wobble_cam as study
 
 D = np.pi / 180.0
 
@@ -807,7 +807,7 @@ def test_every_config_key_reaches_a_dataclass_field():
     """No [machine] or [loads] key of a wobble_cam config is silently ignored by the study."""
     from dataclasses import fields
 
-    from rotorkin.io.config import WobbleConfig
+    from rotorkin.drives.wobble_cam.schema import WobbleConfig
 
     machine_keys = set(WobbleConfig.model_fields["machine"].annotation.model_fields)
     loads_keys = set(WobbleConfig.model_fields["loads"].annotation.model_fields)

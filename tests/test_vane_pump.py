@@ -15,11 +15,11 @@ from numpy.polynomial.legendre import leggauss
 from scipy.optimize import brentq, minimize_scalar
 
 from rotorkin.analysis import torque as tq
-from rotorkin.drives import guide_bar as gb
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives import evaluate
+from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.drives.guide_bar.study import pump_state
 from rotorkin.machines import vane_pump as vp
-from rotorkin.studies import evaluate
-from rotorkin.studies.guide_bar import pump_state
 
 PS, PD = 1.0e5, 6.0e5
 

@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 from scipy import optimize
 
-from rotorkin.drives import wobble_cam as wc
-from rotorkin.errors import ParameterError
-from rotorkin.studies import wobble_cam as study
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.drives.wobble_cam import study as study
 
 D = np.pi / 180.0
 GAMMA = np.pi / 8.0

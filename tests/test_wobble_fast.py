@@ -2,7 +2,7 @@
 
 The reference is written out here, independently of the fast kernel: the
 projected angle ``E(u) = u + atan2`` of the plate radius rotated by ``-u``
-(``rotorkin._angles.angle_near``), its derivatives from
+(``rotorkin.core.angles.angle_near``), its derivatives from
 ``D = (1 + c^2)/2 - (1 - c^2)/2 cos 2u`` as in the paper note, and the chain
 rule (Faa di Bruno) through the spin law, on whole arrays with broadcasting.
 """
@@ -12,9 +12,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorkin.drives import wobble_cam as wc
-from rotorkin.drives import wobble_chambers, wobble_kernel
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.wobble_cam import chambers as wobble_chambers
+from rotorkin.drives.wobble_cam import fast as wobble_kernel
+from rotorkin.drives.wobble_cam import kinematics as wc
 
 TOL = 1e-12
 

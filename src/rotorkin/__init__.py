@@ -5,8 +5,8 @@ angle) of the four drives of the source papers, the chambers they breathe, the
 torque they carry and the cams that make them.
 """
 
-from rotorkin.errors import ConfigError, ParameterError, RotorkinError
-from rotorkin.motion import Motion
+from rotorkin.core.errors import ConfigError, ParameterError, RotorkinError
+from rotorkin.core.motion import Motion
 
 __version__ = "0.1.0"
 

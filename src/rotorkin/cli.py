@@ -17,7 +17,7 @@ import typer
 
 from rotorkin import __version__
 from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
-from rotorkin.errors import RotorkinError
+from rotorkin.core.errors import RotorkinError
 
 app = typer.Typer(
     name="rotorkin",
@@ -58,9 +58,9 @@ def run(
     ] = False,
 ):
     """Evaluate a drive over one period; write summary.json, motion.csv and figures."""
+    from rotorkin.drives import evaluate
     from rotorkin.io.config import load_config
     from rotorkin.io.output import write_outputs
-    from rotorkin.studies import evaluate
 
     cfg, raw, name = load_config(config, example, set_ or [])
     result = evaluate(cfg)
@@ -92,10 +92,11 @@ def keys(
     ] = None,
 ):
     """List every config key with its default and meaning (the glossary)."""
-    from rotorkin.io.config import DRIVE_MODELS, glossary
+    from rotorkin.drives import REGISTRY
+    from rotorkin.io.config import glossary
 
-    if drive_type is not None and drive_type not in DRIVE_MODELS:
-        choices = ", ".join(DRIVE_MODELS)
+    if drive_type is not None and drive_type not in REGISTRY:
+        choices = ", ".join(REGISTRY)
         raise RotorkinError(
             f"DRIVE_TYPE = {drive_type!r} is not admissible: choose one of {choices}"
         )

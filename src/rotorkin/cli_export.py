@@ -13,7 +13,7 @@ from typing import Annotated
 import typer
 
 from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
-from rotorkin.errors import RotorkinError
+from rotorkin.core.errors import RotorkinError
 
 
 def _size(n: int) -> str:
@@ -30,11 +30,12 @@ def _check_rows(cfg: dict) -> list[tuple[str, str]]:
     """(metric, value) rows of the profile checks, units in the metric names."""
     import numpy as np
 
+    from rotorkin.drives import get
     from rotorkin.io.export import profile_checks
 
-    kind = cfg["drive"]["type"]
-    if kind == "wobble_cam":
-        return _wobble_rows(cfg)
+    spec = get(cfg["drive"]["type"])
+    if spec.check_rows is not None:
+        return spec.check_rows(cfg)
     rows = []
     for label, c in profile_checks(cfg):
         deg = np.degrees
@@ -54,55 +55,6 @@ def _check_rows(cfg: dict) -> list[tuple[str, str]]:
             (f"{label}: actual profile nearest the axis mm", _fmt(c.profile_min_radius * 1e3)),
             (f"{label}: undercut", "yes" if c.undercut else "no"),
         ]  # fmt: skip
-    return rows
-
-
-def _wobble_rows(cfg: dict) -> list[tuple[str, str]]:
-    """(check, value) rows of the spherical cam's grooves (:mod:`rotorkin.cams.spherical`)."""
-    import numpy as np
-
-    from rotorkin.cams import spherical as sph
-
-    drive, cam = sph.from_config(cfg)
-    crossings = sph.groove_crossings(drive)
-    s = sph.summary(drive, cam)
-    peaks = sph.pressure_angle_peaks(drive, cam, crossings=crossings)
-
-    def at(key):
-        mu, theta, roller = (float(x) for x in peaks[key])
-        who = f"roller {sph.ROLLER_NAMES[int(roller)]}" if roller >= 0 else "no roller guided"
-        return f"{_fmt(np.degrees(mu))} at theta = {_fmt(np.degrees(theta))} deg ({who})"
-
-    kmax, th_k, roller_k = sph.sharpest_bend(drive)
-    label = "wobble cam"
-    rows = [
-        (f"{label}: roller radius mm", _fmt(cam.roller_radius * 1e3)),
-        (
-            f"{label}: groove min radius of curvature (tangent plane) mm",
-            f"{_fmt(1e3 / kmax)} at theta = {_fmt(float(np.degrees(th_k)))} deg "
-            f"(roller {sph.ROLLER_NAMES[roller_k]})",
-        ),
-        (f"{label}: largest roller radius free of undercut mm",
-         _fmt(float(s["cam_roller_radius_limit_mm"]))),
-        (f"{label}: max pressure angle, one roller away from the crossings deg", at("guided")),
-        (f"{label}: max pressure angle, best-placed roller deg", at("best")),
-        (f"{label}: max pressure angle, best-placed roller between both walls deg",
-         at("best_guided")),
-        (f"{label}: max pressure angle in the fixed frame, away from the crossings deg",
-         at("fixed_guided")),
-    ]  # fmt: skip
-    if crossings:
-        worst = min(crossings, key=lambda c: c.angle)
-        rows.append(
-            (
-                f"{label}: groove crossings (cut through)",
-                f"{s['cam_self_crossings']} self, {s['cam_crossings_between_grooves']} between "
-                f"grooves; min angle {_fmt(float(np.degrees(worst.angle)))} deg, unguided "
-                f"{_fmt(float(s['cam_unguided_length_max_mm']))} mm",
-            )
-        )
-    rows.append((f"{label}: closest approach of two grooves mm",
-                 _fmt(float(s["cam_groove_separation_mm"]))))  # fmt: skip
     return rows
 
 

@@ -29,10 +29,10 @@ def register(app) -> None:
     ):
         """Write report.html: summary vs the paper, checks, animated mechanism, plots (offline)."""
         from rotorkin import __version__
-        from rotorkin.errors import ConfigError
+        from rotorkin.core.errors import ConfigError
+        from rotorkin.drives import evaluate
         from rotorkin.io.config import load_config
         from rotorkin.report.html import write_report
-        from rotorkin.studies import evaluate
 
         cfg, raw, name = load_config(config, example, set_ or [])
         outdir = out if out is not None else Path("rotorkin-out") / name

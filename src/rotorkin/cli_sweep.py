@@ -11,7 +11,6 @@ command computes only the missing ones.
 from __future__ import annotations
 
 import contextlib
-import importlib
 import json
 import math
 import sys
@@ -22,22 +21,15 @@ from typing import Annotated
 import typer
 
 from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
-from rotorkin.errors import ConfigError
+from rotorkin.core.errors import ConfigError
+from rotorkin.drives import REGISTRY, get
 from rotorkin.io.output import staged_output
 
 __all__ = ["register"]
 
-#: Metrics drawn first in the tolerance histograms (then the study's headline keys).
-_TOL_FIRST = {
-    "wobble_cam": ("compression_ratio", "compression_ratio_a", "compression_ratio_b",
-                   "chamber_swing_deg", "slider_angle_max_deg", "slider_angle_min_deg"),
-}  # fmt: skip
-
 
 def _headline(kind: str) -> tuple:
-    from rotorkin.studies import DRIVE_TYPES
-
-    return importlib.import_module(f"rotorkin.studies.{DRIVE_TYPES[kind]}").HEADLINE
+    return tuple(get(kind).headline)
 
 
 def _note(message: str, quiet: bool) -> None:
@@ -144,12 +136,13 @@ def register(app) -> None:
                 )
             )
         if paper_figures:
-            recipes = fs.paper_recipes(cfg)
+            recipes = fs.paper_recipes(cfg, get(cfg["drive"]["type"]))
             if not recipes:
                 raise ConfigError(
                     f"--paper-figures: the {cfg['drive']['type']} paper has no "
-                    "sweep figures (only the wobble-cam, eccentric-cam and "
-                    "guide-bar papers do)"
+                    "sweep figures (those of "
+                    + ", ".join(k for k, s in REGISTRY.items() if s.sweep_recipes)
+                    + " do)"
                 )
             for r in recipes:
                 base = apply_sets(raw, list(r.sets))
@@ -247,7 +240,7 @@ def register(app) -> None:
         if metrics:
             drawn = [m for m in stats][:9]
         else:
-            order = [*_TOL_FIRST.get(kind, ()), *_headline(kind), *stats]
+            order = [*get(kind).tolerance_first, *_headline(kind), *stats]
             drawn = [
                 m
                 for m in dict.fromkeys(order)

@@ -19,15 +19,32 @@ import numpy as np
 import typer
 
 from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
-from rotorkin.errors import RotorkinError
+from rotorkin.core.errors import RotorkinError
+from rotorkin.drives import REGISTRY
 
 __all__ = ["register", "write_synthesis"]
 
 
 def _objective_help() -> str:
-    from rotorkin.synthesis import OBJECTIVES
+    """``--objective`` help: the objectives of every registered drive."""
+    rows = [f"{k}: {', '.join(s.objectives)}" for k, s in REGISTRY.items() if s.objectives]
+    return "What to synthesize, by drive type: " + "; ".join(rows) + "."
 
-    return "; ".join(f"{kind}: {', '.join(names)}" for kind, (_, names) in OBJECTIVES.items())
+
+def _target_help() -> str:
+    """``--target`` help: what each objective's target is."""
+    rows = [
+        f"{objective} ({kind}): {what}"
+        for kind, spec in REGISTRY.items()
+        for objective, what in spec.objectives.items()
+    ]
+    return "What the objective aims at, by objective: " + "; ".join(rows) + "."
+
+
+def _option_help(option: str, what: str) -> str:
+    """Help of an option that only some drives take."""
+    takers = [k for k, s in REGISTRY.items() if option in s.synthesis_options]
+    return f"{what} (drive.type {', '.join(takers)})."
 
 
 def register(app) -> None:
@@ -42,41 +59,36 @@ def register(app) -> None:
             str | None,
             typer.Option(
                 "--objective",
-                help="What to synthesize, by drive type: rhomboid_cam: min_accel, dwell_min, "
-                "dwell_max, min_pressure_angle; wobble_cam: sine_chamber, dwell_min_volume; "
-                "guide_bar: vane_angle; eccentric_cam: gap_change.",
+                help=_objective_help(),
             ),
         ] = None,
         target: Annotated[
             str | None,
             typer.Option(
                 "--target",
-                help="What the objective aims at, by objective: dwell_min_volume (wobble_cam): "
-                'the dwell fraction at minimum volume ("0.12" or "12 %"; default: the longest '
-                "dwell whose grooves the roller can follow, the range is checked); vane_angle "
-                '(guide_bar): the vane angle gamma_0 ("60 deg"; default 60 deg, or the middle of '
-                "the reachable range if 60 deg is not reachable); gap_change (eccentric_cam): the "
-                'tolerated peak gap change ("1 %" or "0.01" of L, or "5 mm"; default: half the '
-                "config's own). No target for sine_chamber (a fixed law) nor for the "
-                "rhomboid_cam objectives min_accel, dwell_min, dwell_max, min_pressure_angle "
-                "(optimised).",
+                help=_target_help(),
             ),
         ] = None,
         harmonics: Annotated[
             int | None,
             typer.Option(
                 "--harmonics",
-                help="Rhomboid cam: higher odd harmonics to optimise (default 2: 3rd and 5th). "
-                "Wobble cam: highest harmonic of the spin correction (default: as needed).",
+                help=_option_help(
+                    "harmonics",
+                    "Harmonics of the synthesized law: higher odd harmonics to optimise, or the "
+                    "highest harmonic of a correction (default: as the drive's synthesis needs)",
+                ),
             ),
         ] = None,
         max_pressure_angle: Annotated[
             str | None,
             typer.Option(
                 "--max-pressure-angle",
-                help="Rhomboid and wobble cams: bound on the peak pressure angle, 0 < angle < "
-                '90 deg (e.g. "55 deg"; default: 45 deg or the baseline law\'s peak, whichever '
-                "is larger; wobble cam: that of the best-placed roller).",
+                help=_option_help(
+                    "max_pressure_angle",
+                    'Bound on the peak pressure angle, 0 < angle < 90 deg (e.g. "55 deg"; '
+                    "default: 45 deg or the baseline law's peak, whichever is larger)",
+                ),
             ),
         ] = None,
         out: Annotated[
@@ -89,15 +101,15 @@ def register(app) -> None:
     ):
         """Synthesize a design for an objective; compare it with the config's (the paper's)."""
         from rotorkin import __version__
+        from rotorkin.drives import synthesize as run_synthesis
         from rotorkin.io.config import load_config
-        from rotorkin.synthesis import OBJECTIVES, parse_quantity_arg, synthesized_raw_config
-        from rotorkin.synthesis import synthesize as run_synthesis
+        from rotorkin.synthesis import parse_quantity_arg, synthesized_raw_config
 
         cfg, raw, name = load_config(config, example, set_ or [])
         kind = cfg["drive"]["type"]
         if objective is None:
             raise RotorkinError(
-                f"--objective is missing: choose one of {', '.join(OBJECTIVES[kind][1])} "
+                f"--objective is missing: choose one of {', '.join(REGISTRY[kind].objectives)} "
                 f"for drive.type = {kind}"
             )
         limit = (

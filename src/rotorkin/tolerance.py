@@ -32,11 +32,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorkin.errors import ConfigError, ParameterError, RotorkinError
-from rotorkin.io.units import parse_quantity
+from rotorkin.core.batch import DEFAULT_SAMPLES
+from rotorkin.core.errors import ConfigError, ParameterError, RotorkinError
+from rotorkin.core.units import parse_quantity
 from rotorkin.sweep import Designs, evaluate_designs, resolve_metrics
-from rotorkin.sweep._common import DEFAULT_SAMPLES, reason_keys
-from rotorkin.sweep.engine import SweepFallbackWarning, coverage, warn_fallback
+from rotorkin.sweep.engine import SweepFallbackWarning, coverage, reason_keys, warn_fallback
 from rotorkin.sweep.spec import DISPLAY_UNITS, Field, _check_key, parse_item
 
 __all__ = ["Tolerance", "parse_tol", "draw", "run_tolerance", "summarize", "PERCENTILES"]
@@ -112,20 +112,10 @@ def draw(tols, samples: int, seed: int) -> dict:
 
 def _held(cfg: dict) -> tuple[dict, dict]:
     """The config and extras that keep the manufactured parts at their nominal size."""
-    kind = cfg["drive"]["type"]
-    cfg = copy.deepcopy(cfg)
-    extra = {}
-    if kind == "wobble_cam":
-        from rotorkin.sweep import kernels_wobble as kw
+    from rotorkin.drives import get
 
-        beta = kw.metrics(Designs(cfg, {}, 1), ["piston_width_deg"], 3)["piston_width_deg"][0]
-        extra["piston_width"] = float(np.radians(beta))
-    elif kind == "guide_bar" and cfg["machine"].get("vane_angle") is None:
-        from rotorkin.sweep import kernels_guide_bar as kg
-
-        g0 = kg.metrics(Designs(cfg, {}, 1), ["vane_angle_deg"], 3)["vane_angle_deg"][0]
-        cfg["machine"]["vane_angle"] = float(np.radians(g0))
-    return cfg, extra
+    hold = get(cfg["drive"]["type"]).tolerance_hold
+    return hold(copy.deepcopy(cfg)) if hold else (copy.deepcopy(cfg), {})
 
 
 def run_tolerance(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int = 0,
@@ -155,8 +145,8 @@ def run_tolerance(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int 
     """
     import xarray as xr
 
+    from rotorkin.drives import evaluate
     from rotorkin.io.config import validate_config
-    from rotorkin.studies import evaluate
     from rotorkin.sweep.engine import metric_units
 
     cfg = validate_config(base_cfg_raw)

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
 
 __all__ = [
     "INTAKE",

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
 
 __all__ = [
     "energy_fluctuation",

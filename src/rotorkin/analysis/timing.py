@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
 
 __all__ = ["shaft_speed"]
 

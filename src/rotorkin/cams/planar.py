@@ -23,7 +23,7 @@ array shape. Conventions used throughout:
   relative to the member that guides it, in ``(-pi/2, pi/2]``.
 
 The frozen dataclasses :class:`Curve`, :class:`Part` and :class:`ProfileCheck`
-carry finished geometry to the CAD writers (:mod:`rotorkin.io.cad_planar`) and
+carry finished geometry to the CAD writers (:mod:`rotorkin.render.cad`) and
 the checks to the command line.
 """
 

@@ -1,1 +1,154 @@
-"""Drives: one module per drive family, from the input-shaft angle to two members."""
+"""Drives: the registry, the only list of drives rotorkin knows.
+
+Each drive is a package ``rotorkin/drives/<name>/`` (kinematics, cam, config
+schema, study, batch evaluation, synthesis, figures, report scene, CAD, published
+numbers) whose ``spec.py`` builds a :class:`~rotorkin.drives._spec.DriveSpec`.
+Everything else (config validation, ``run``, ``sweep``, ``tolerance``,
+``synthesize``, ``export``, ``report``, the command-line help) iterates
+:data:`REGISTRY`. Adding a drive is one package and one line below; a drive
+defined elsewhere (a test, a plug-in) joins with :func:`register`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorkin.core.errors import ConfigError, ParameterError
+from rotorkin.drives import eccentric_cam, guide_bar, rhomboid_cam, wobble_cam
+from rotorkin.drives._spec import DriveSpec
+from rotorkin.synthesis import SynthesisResult
+
+__all__ = [
+    "REGISTRY",
+    "DEFAULT_EXAMPLE",
+    "DriveSpec",
+    "get",
+    "names",
+    "register",
+    "evaluate",
+    "synthesize",
+]
+
+#: drive.type -> its spec, in the order of the command-line help.
+REGISTRY: dict[str, DriveSpec] = {}
+
+#: The example ``rotorkin run`` evaluates without a config.
+DEFAULT_EXAMPLE = "wobble-cam-engine"
+
+
+def register(spec: DriveSpec, *, replace: bool = False) -> DriveSpec:
+    """Add a drive to :data:`REGISTRY`; refuse a second drive of the same name."""
+    if not isinstance(spec, DriveSpec):
+        raise TypeError(f"register() takes a DriveSpec, not {type(spec).__name__}")
+    if spec.name in REGISTRY and not replace:
+        raise ValueError(f"a drive named {spec.name!r} is registered already")
+    REGISTRY[spec.name] = spec
+    return spec
+
+
+def unregister(name: str) -> None:
+    """Remove a drive registered with :func:`register` (tests, plug-ins)."""
+    REGISTRY.pop(name, None)
+
+
+def names() -> list[str]:
+    """The registered drive types."""
+    return list(REGISTRY)
+
+
+def get(name) -> DriveSpec:
+    """The spec of ``drive.type = name``; :class:`ConfigError` naming the choices if unknown."""
+    spec = REGISTRY.get(name) if isinstance(name, str) else None
+    if spec is None:
+        shown = "missing" if name is None else f"= {name!r}"
+        raise ConfigError(
+            f"drive.type {shown} is not admissible: choose one of "
+            + ", ".join(repr(k) for k in REGISTRY)
+        )
+    return spec
+
+
+def evaluate(cfg: dict):
+    """Run the study of ``cfg["drive"]["type"]`` on a validated config (SI).
+
+    Returns
+    -------
+    rotorkin.studies.StudyResult
+    """
+    return get(cfg["drive"]["type"]).study(cfg)
+
+
+def synthesize(
+    cfg: dict,
+    raw: dict,
+    objective: str,
+    target: str | None = None,
+    harmonics: int | None = None,
+    max_pressure_angle: float | None = None,
+) -> SynthesisResult:
+    """Synthesize a design for ``cfg``'s drive type.
+
+    Parameters
+    ----------
+    cfg : dict
+        Validated SI config (:func:`rotorkin.io.config.load_config`): the baseline.
+    raw : dict
+        The same config as written; the synthesized config is a copy with
+        :attr:`SynthesisResult.updates` applied.
+    objective : str
+        One of the drive's ``DriveSpec.objectives``.
+    target : str, optional
+        Target value as people write it (``"60 deg"``, ``"1 %"``, ``"0.3"``,
+        ``"5 mm"``), where the objective takes one.
+    harmonics : int, optional
+        Number of harmonics of a synthesized law, for drives that synthesize
+        one (see the drive's synthesis module).
+    max_pressure_angle : float, optional
+        Bound on the peak pressure angle [rad], ``0 < value < pi/2``, for drives
+        whose ``synthesis_options`` name it.
+
+    Raises
+    ------
+    ParameterError
+        Named ``--objective``, ``--target``, ``--harmonics`` or ``--max-pressure-angle``
+        when not admissible.
+    """
+    kind = cfg["drive"]["type"]
+    spec = get(kind)
+    names = tuple(spec.objectives)
+    if spec.synthesize is None or not names:
+        raise ParameterError(
+            "drive.type",
+            kind,
+            "a drive with synthesis objectives: "
+            + ", ".join(k for k, s in REGISTRY.items() if s.objectives),
+        )
+    if objective not in names:
+        raise ParameterError(
+            "--objective",
+            repr(objective),
+            f"one of {', '.join(names)} for drive.type = {kind}",
+        )
+    if harmonics is not None and (isinstance(harmonics, bool) or int(harmonics) < 1):
+        raise ParameterError("--harmonics", repr(harmonics), "an integer >= 1")
+    if max_pressure_angle is not None:
+        if "max_pressure_angle" not in spec.synthesis_options:
+            takers = [k for k, s in REGISTRY.items() if "max_pressure_angle" in s.synthesis_options]
+            raise ParameterError(
+                "--max-pressure-angle",
+                "given",
+                f"only for drive.type = {' or '.join(takers)}, not {kind}",
+            )
+        value = float(max_pressure_angle)
+        if not (np.isfinite(value) and 0.0 < value < 0.5 * np.pi):
+            raise ParameterError(
+                "--max-pressure-angle", f"{np.degrees(value):.6g} deg", "0 deg < angle < 90 deg"
+            )
+        return spec.synthesize(
+            cfg, raw, objective, target, harmonics, {"max_pressure_angle": max_pressure_angle}
+        )
+    return spec.synthesize(cfg, raw, objective, target, harmonics, None)
+
+
+for _module in (wobble_cam, eccentric_cam, guide_bar, rhomboid_cam):
+    register(_module.SPEC)

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorkin.errors import ConfigError
+from rotorkin.core.errors import ConfigError
 
 __all__ = ["write_outputs", "staged_output", "to_toml"]
 

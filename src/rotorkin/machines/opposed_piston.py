@@ -2,7 +2,7 @@
 
 Source of the drive: Zhu Ruilin, Zhu Guolin, "Analysis of the motions of the
 double eccentric cams used in a process intensification equipment", Engineering
-Sciences (China) 14(10), 2012 (:mod:`rotorkin.drives.eccentric_cam`). The paper
+Sciences (China) 14(10), 2012 (:mod:`rotorkin.drives.eccentric_cam.kinematics`). The paper
 stops at the gap change ``Delta``; it states that ``Delta <= 0``, "the inner
 faces move apart, the pressure can only drop", and gives no bore and no fluid.
 The volume, pressure, force and torque models below are derived here.
@@ -44,9 +44,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorkin._angles import fmt_mm
-from rotorkin.drives import eccentric_cam as ec
-from rotorkin.errors import ParameterError
+from rotorkin.core.angles import fmt_mm
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.eccentric_cam import kinematics as ec
 
 __all__ = [
     "FLUIDS",
@@ -69,7 +69,7 @@ class OpposedPiston:
 
     Parameters
     ----------
-    drive : rotorkin.drives.eccentric_cam.EccentricCam
+    drive : rotorkin.drives.eccentric_cam.kinematics.EccentricCam
         The drive (already validated).
     device_length : float, optional
         ``L``, distance between the inner faces at ``beta = 0`` [m], ``L > 0``
@@ -200,7 +200,7 @@ def volume_extremes(reactor: OpposedPiston) -> tuple[float, float]:
     """Smallest and largest enclosed volume over a turn [m^3] (closed form).
 
     ``V_min = A L`` at ``beta = 0`` (``Delta = 0``); ``V_max = A (L - Delta_min)`` at
-    90 deg, ``Delta_min`` from :func:`rotorkin.drives.eccentric_cam.gap_change_extreme`.
+    90 deg, ``Delta_min`` from :func:`rotorkin.drives.eccentric_cam.kinematics.gap_change_extreme`.
     """
     A, L = reactor.area, float(reactor.device_length)
     dmin = ec.gap_change_extreme(reactor.drive)[0]

@@ -3,7 +3,7 @@
 The machine of Zhuravlev, Donchenko, Sherstyukov (2012, ``papers/rhomboid_cam.md``):
 a Stirling-type engine with external heat supply whose two blade pairs turn about
 one axis at the angles ``phi_1`` and ``phi_2`` given by a drive (the rhomboid
-lever-cam converter, :mod:`rotorkin.drives.rhomboid_cam`). The paper gives no
+lever-cam converter, :mod:`rotorkin.drives.rhomboid_cam.kinematics`). The paper gives no
 geometry of the working space; the model here is ours.
 
 Geometry (not in the paper):
@@ -49,9 +49,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorkin._angles import fmt_deg, fmt_mm
 from rotorkin.analysis.torque import member_torques
-from rotorkin.errors import ParameterError
+from rotorkin.core.angles import fmt_deg, fmt_mm
+from rotorkin.core.errors import ParameterError
 
 __all__ = [
     "IsothermalGas",
@@ -345,7 +345,7 @@ def chamber_strokes(machine: RotaryBlade, psi_stroke) -> np.ndarray:
     """Stroke of each chamber: +1 expanding, -1 compressed, 0 at rest; shape ``(2B, ...)``.
 
     ``psi_stroke`` is +1 while ``psi`` rises (see
-    :func:`rotorkin.drives.rhomboid_cam.stroke_direction`); even chambers expand
+    :func:`rotorkin.drives.rhomboid_cam.kinematics.stroke_direction`); even chambers expand
     with ``psi``, odd ones against it.
     """
     s = np.asarray(psi_stroke, dtype=float)
@@ -416,7 +416,7 @@ def linear_member_torques(blade_torque) -> np.ndarray:
     """Member torques of the paper's linear model: ``(M_1, -M_1)`` [N m] (eq. 24).
 
     ``blade_torque`` is ``M_1`` of eq. 29
-    (:func:`rotorkin.drives.rhomboid_cam.blade_torque`), shape ``(...)``.
+    (:func:`rotorkin.drives.rhomboid_cam.kinematics.blade_torque`), shape ``(...)``.
     """
     m = np.asarray(blade_torque, dtype=float)
     return np.stack([m, -m])

@@ -2,7 +2,7 @@
 
 The machine of Chen Hu et al. (2015, ``papers/wobble_cam.md``): two coaxial
 rotors in one annular cylinder, each with N vane pistons and 2 slider rails;
-the rails are driven by :mod:`rotorkin.drives.wobble_cam`. The paper gives the
+the rails are driven by :mod:`rotorkin.drives.wobble_cam.kinematics`. The paper gives the
 angles only (eq. 18-23); the cylinder section, the clearance volume, the
 four-stroke timing, pressures, torques and inertias are ours.
 
@@ -11,7 +11,7 @@ Geometry and conventions:
 * Rotor k's rail is at ``Phi_k`` (drive); rotor 1's pistons are centred at
   ``Phi_1 + gamma + 2 pi m/N``, rotor 2's at ``Phi_2 - gamma + 2 pi m/N``,
   ``m = 0 .. N-1``, ``gamma = pi/4 - pi/(2N)``; each piston is ``beta`` wide
-  (:func:`rotorkin.drives.wobble_cam.piston_layout`).
+  (:func:`rotorkin.drives.wobble_cam.kinematics.piston_layout`).
 * Chambers ``j = 0 .. 2N-1`` in the sense of increasing ``Phi``, starting at
   rotor 1's piston ``m = 0``: chamber ``2m`` (kind A) lies between rotor-1 piston m
   and rotor-2 piston m, chamber ``2m+1`` (kind B) between rotor-2 piston m and
@@ -45,12 +45,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorkin._angles import fmt_mm
 from rotorkin.analysis import engine_cycle as ec
 from rotorkin.analysis.torque import member_torques, shaft_torque_from_members
-from rotorkin.drives import wobble_cam as wc
-from rotorkin.errors import ParameterError
-from rotorkin.motion import Motion
+from rotorkin.core.angles import fmt_mm
+from rotorkin.core.errors import ParameterError
+from rotorkin.core.motion import Motion
+from rotorkin.drives.wobble_cam import kinematics as wc
 
 __all__ = [
     "TwinRotor",
@@ -274,7 +274,7 @@ def _check(drive: wc.WobbleCam, machine: TwinRotor):
 def piston_layout(drive: wc.WobbleCam, machine: TwinRotor) -> wc.PistonLayout:
     """Piston width and chamber angle extremes for the machine's compression ratio.
 
-    :func:`rotorkin.drives.wobble_cam.piston_layout` (eq. 21-22 generalised to N);
+    :func:`rotorkin.drives.wobble_cam.kinematics.piston_layout` (eq. 21-22 generalised to N);
     raises ParameterError named ``compression_ratio`` if eps is too small.
     """
     _check(drive, machine)

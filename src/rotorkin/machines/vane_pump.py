@@ -2,7 +2,7 @@
 
 Source of the drive: "Kinematic and mechanical characteristics of the drive
 system of a differential vane pump", J. Harbin Institute of Technology 44(9),
-2012 (:mod:`rotorkin.drives.guide_bar`). The paper gives no pump geometry and no
+2012 (:mod:`rotorkin.drives.guide_bar.kinematics`). The paper gives no pump geometry and no
 chamber model: everything in this module is derived here.
 
 Geometry (a cross-section normal to the common axis of the impellers):
@@ -32,7 +32,7 @@ Geometry (a cross-section normal to the common axis of the impellers):
   equal, all B chambers are equal; ``phi_A + phi_B = 2 pi/Z - 2 gamma``.
 * The relative angle is stationary at the two equal-speed points of the drive
   and swings by ``s = 2 pi/u - 2 gamma_0`` between them
-  (:func:`rotorkin.drives.guide_bar.relative_angle_swing`), so a chamber angle
+  (:func:`rotorkin.drives.guide_bar.kinematics.relative_angle_swing`), so a chamber angle
   runs between ``phi_min = pi/Z - s/2 - gamma`` and ``phi_min + s``, once per
   period ``2 pi i12`` of the input angle. The vanes fit (no chamber angle ever
   negative) iff ``gamma <= pi/Z - s/2`` (:func:`vane_angle_max`), i.e.
@@ -51,9 +51,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorkin._angles import fmt_deg, fmt_mm
-from rotorkin.drives import guide_bar as gb
-from rotorkin.errors import ParameterError
+from rotorkin.core.angles import fmt_deg, fmt_mm
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.guide_bar import kinematics as gb
 
 __all__ = [
     "VanePump",
@@ -76,7 +76,7 @@ def relative_angle_extremes(drive: gb.GuideBar) -> tuple[float, float]:
 
     ``r`` is stationary exactly at the two equal-speed points of the drive
     (driving angles ``-Sigma/2`` and ``pi - Sigma/2`` of mechanism 1,
-    :func:`rotorkin.drives.guide_bar.equal_speed_angles`), so its extremes are
+    :func:`rotorkin.drives.guide_bar.kinematics.equal_speed_angles`), so its extremes are
     its values there (closed form, no sampling).
 
     Returns
@@ -106,7 +106,7 @@ class VanePump:
 
     Parameters
     ----------
-    drive : rotorkin.drives.guide_bar.GuideBar
+    drive : rotorkin.drives.guide_bar.kinematics.GuideBar
         The drive (already validated).
     vanes_per_impeller : int, optional
         ``Z >= 1`` vanes on each impeller (default 2).

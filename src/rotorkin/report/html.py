@@ -5,7 +5,7 @@ with every figure and the frames of the mechanism. A small script draws the
 plots with ``Plotly.newPlot`` and animates the mechanism: a slider scrubs the
 input angle, a button plays and pauses, and each frame's coordinates (computed
 in Python from the drive's and machine's own functions, see
-:mod:`rotorkin.report.html_scenes`) are swapped in with ``Plotly.restyle``. Plots
+:mod:`rotorkin.render.scenes`) are swapped in with ``Plotly.restyle``. Plots
 whose x axis is the input angle show a cursor at the slider's angle.
 
 For tests and curious users the page exposes ``window.ROTORKIN``: ``ready``
@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorkin.errors import ConfigError
+from rotorkin.core.errors import ConfigError
 
 __all__ = ["write_report", "render_report", "FRAMES"]
 
@@ -41,7 +41,7 @@ def write_report(result, cfg, raw, meta, path) -> Path:
     Parameters
     ----------
     result : rotorkin.studies.StudyResult
-        From :func:`rotorkin.studies.evaluate` on ``cfg``.
+        From :func:`rotorkin.drives.evaluate` on ``cfg``.
     cfg : dict
         The validated config (SI values) the result was computed from.
     raw : dict
@@ -84,15 +84,16 @@ def render_report(result, cfg, raw, meta, frames: int = FRAMES) -> str:
     """The report as one HTML string (see :func:`write_report`)."""
     import plotly.offline
 
+    from rotorkin.drives import get
     from rotorkin.io.output import to_toml
-    from rotorkin.report import html_scenes as hs
-    from rotorkin.report.published import paper_rows
+    from rotorkin.studies.published import paper_rows
 
-    mod = hs.drive_module(result.drive_type)
+    spec = get(result.drive_type)
+    mod = spec.scene
     scene = mod.scene(result, cfg, frames)
     plots = mod.plots(result, cfg)
     checks = mod.checks(result, cfg)
-    papers = paper_rows(result.drive_type, cfg, result.summary)
+    papers = paper_rows(spec.published, spec.paper, cfg, result.summary)
     data = {
         "plots": [_plot_json(p) for p in plots],
         "scene": {
@@ -180,7 +181,7 @@ def _nav(plots) -> str:
 
 
 def _value(v) -> str:
-    from rotorkin.report.html_scenes import fmt
+    from rotorkin.render.scenes import fmt
 
     return _html.escape(fmt(v, 6 if isinstance(v, float) else 4))
 

@@ -1,29 +1,22 @@
-"""Studies: one per drive type, turning a validated config into results.
+"""Studies: what every drive's study returns, and the helpers they share.
 
-A study reads the config (SI values, see :mod:`rotorkin.io.config`), builds
-the drive's parameter dataclass, evaluates the drive over one period and
-returns a :class:`StudyResult`: the flat summary, the per-angle columns of
-``motion.csv`` and a function that draws the figures.
+A drive's study (``rotorkin/drives/<name>/study.py``, reached through the
+registry's :func:`rotorkin.drives.evaluate`) reads the config (SI values, see
+:mod:`rotorkin.io.config`), builds the drive's parameter dataclass, evaluates
+the drive over one period and returns a :class:`StudyResult`: the flat
+summary, the per-angle columns of ``motion.csv`` and a function that draws the
+figures.
 """
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["StudyResult", "DRIVE_TYPES", "evaluate"]
-
-#: drive.type -> module name under rotorkin.studies
-DRIVE_TYPES = {
-    "wobble_cam": "wobble_cam",
-    "eccentric_cam": "eccentric_cam",
-    "guide_bar": "guide_bar",
-    "rhomboid_cam": "rhomboid_cam",
-}
+__all__ = ["StudyResult"]
 
 
 @dataclass
@@ -67,9 +60,3 @@ class StudyResult:
         missing = set(self.columns) - set(self.column_docs)
         if missing:
             raise ValueError(f"undocumented columns: {sorted(missing)}")
-
-
-def evaluate(cfg: dict) -> StudyResult:
-    """Run the study for ``cfg['drive']['type']`` on a validated config."""
-    module = importlib.import_module(f"rotorkin.studies.{DRIVE_TYPES[cfg['drive']['type']]}")
-    return module.evaluate(cfg)

@@ -25,8 +25,8 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from rotorkin.errors import ConfigError
-from rotorkin.sweep._common import DEFAULT_SAMPLES, Designs, block_progress, reason_keys
+from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, block_progress
+from rotorkin.core.errors import ConfigError
 from rotorkin.sweep.engine import (
     SweepFallbackWarning,
     SweepSpec,
@@ -36,6 +36,7 @@ from rotorkin.sweep.engine import (
     coverage,
     evaluate_designs,
     kernel_of,
+    reason_keys,
     to_dataset,
     warn_fallback,
 )
@@ -82,7 +83,7 @@ def resolve_metrics(cfg: dict, metrics=None) -> tuple[str, ...]:
     ``None``: those the drive's kernel computes by default (the fast path);
     ``"all"``: those, the kernel's optional ones (e.g. the wobble cam's
     ``sampled_*`` extremes of every curve) and every numeric summary key of
-    :func:`rotorkin.studies.evaluate` (the others through the scalar study); or a
+    :func:`rotorkin.drives.evaluate` (the others through the scalar study); or a
     list of names (or one comma-separated string).
     """
     kern = kernel_of(cfg["drive"]["type"])
@@ -102,8 +103,8 @@ def resolve_metrics(cfg: dict, metrics=None) -> tuple[str, ...]:
 
 def _all_metrics(cfg: dict) -> tuple[str, ...]:
     """Numeric summary keys of the study (from the kernel list and one scalar run)."""
-    from rotorkin.errors import ParameterError
-    from rotorkin.studies import evaluate
+    from rotorkin.core.errors import ParameterError
+    from rotorkin.drives import evaluate
 
     kern = kernel_of(cfg["drive"]["type"])
     names = [*kern.metric_names(cfg), *getattr(kern, "OPTIONAL_METRICS", ())]
@@ -380,7 +381,7 @@ class _Progress:
         """Advance block by block while a chunk of ``designs`` is computed (local runs).
 
         The kernels report their finished blocks
-        (:func:`rotorkin.sweep._common.block_progress`); the bar is moved at most
+        (:func:`rotorkin.core.batch.block_progress`); the bar is moved at most
         every :data:`_PROGRESS_EVERY` seconds, and by at most ``designs`` before
         :meth:`finish_chunk` adds the rest.
         """

@@ -15,7 +15,7 @@ from __future__ import annotations
 import contextlib
 import logging
 
-from rotorkin.errors import ConfigError
+from rotorkin.core.errors import ConfigError
 
 __all__ = ["local_client", "connect", "run_chunks"]
 

@@ -9,21 +9,22 @@ work of the local loop, of a dask task and of a committed file), and
 
 from __future__ import annotations
 
-import importlib
 import json
 import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from rotorkin.errors import ParameterError, RotorkinError
-from rotorkin.sweep._common import DEFAULT_SAMPLES, Designs, reason_keys, sample_grid
+from rotorkin import drives
+from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, sample_grid
+from rotorkin.core.errors import ParameterError, RotorkinError
+from rotorkin.io.config import glossary
 
 __all__ = [
-    "KERNELS",
     "SweepSpec",
     "SweepFallbackWarning",
     "kernel_of",
+    "reason_keys",
     "evaluate_designs",
     "compute_chunk",
     "chunk_bounds",
@@ -31,22 +32,44 @@ __all__ = [
     "metric_units",
 ]
 
-#: drive.type -> kernel module under rotorkin.sweep
-KERNELS = {
-    "wobble_cam": "kernels_wobble",
-    "eccentric_cam": "kernels_eccentric",
-    "guide_bar": "kernels_guide_bar",
-    "rhomboid_cam": "kernels_rhomboid",
-}
-
 
 class SweepFallbackWarning(UserWarning):
     """Some metrics or keys are not vectorized: evaluated design by design by the scalar study."""
 
 
+class _NoBatch:
+    """Stands for the batch module of a drive that has none: every design goes through its study."""
+
+    KEYS = frozenset()
+    CURVES = ()
+    ANGLE = ("theta_deg", "input angle")
+
+    @staticmethod
+    def unsupported(cfg):
+        return "the drive has no batch evaluation"
+
+    @staticmethod
+    def metric_names(cfg):
+        return ()
+
+    @staticmethod
+    def period(p):
+        return 2.0 * np.pi
+
+
 def kernel_of(drive_type: str):
-    """The kernel module of a drive type."""
-    return importlib.import_module(f"rotorkin.sweep.{KERNELS[drive_type]}")
+    """The batch module of a drive type (``DriveSpec.batch``; a stand-in when it has none)."""
+    return drives.get(drive_type).batch or _NoBatch
+
+
+def reason_keys(drive_type: str) -> list[str]:
+    """The reason table of a drive: ``"ok"``, every config key of the drive, ``"other"``.
+
+    The ``reason`` variable of a sweep holds indices into this list: the config
+    key whose admissible range the design violates (the one the scalar study
+    would name in its error).
+    """
+    return ["ok", *(key for kind, key, _, _ in glossary() if kind == drive_type), "other"]
 
 
 @dataclass(frozen=True)
@@ -162,7 +185,7 @@ def warn_fallback(why: str | None, designs: int) -> None:
     """Warn once per sweep that the scalar study runs design by design."""
     if why:
         warnings.warn(
-            f"{why}: those are evaluated design by design with rotorkin.studies.evaluate "
+            f"{why}: those are evaluated design by design with rotorkin.drives.evaluate "
             f"({designs} designs; slow, about 30-100 ms each)",
             SweepFallbackWarning,
             stacklevel=3,
@@ -189,7 +212,7 @@ def evaluate_designs(p: Designs, metrics, samples: int = DEFAULT_SAMPLES, thread
     -------
     dict
         ``"metrics"``: name -> (n,) float64, NaN where inadmissible; ``"reason"``:
-        (n,) int16 codes into :func:`rotorkin.sweep._common.reason_keys`;
+        (n,) int16 codes into :func:`rotorkin.core.batch.reason_keys`;
         with ``curves``: ``"curves"`` name -> (n, curves) and ``"angle"`` [rad].
     """
     drive_type = p.cfg["drive"]["type"]
@@ -230,11 +253,10 @@ def evaluate_designs(p: Designs, metrics, samples: int = DEFAULT_SAMPLES, thread
 
 
 def _fallback(p, i, names, out, reason, code, curve_out) -> None:
-    """One design through :func:`rotorkin.studies.evaluate` (the scalar study)."""
-    from rotorkin.studies import evaluate
+    """One design through :func:`rotorkin.drives.evaluate` (the scalar study)."""
 
     try:
-        res = evaluate(p.config(i))
+        res = drives.evaluate(p.config(i))
     except ParameterError as exc:
         reason[i] = code.get(exc.name, code["other"])
         for m in out:
@@ -397,7 +419,6 @@ def check_spec_values(spec: SweepSpec) -> None:
     RotorkinError
         One line naming the ``--vary`` item, the value and the study's message.
     """
-    from rotorkin.studies import evaluate
 
     if not spec.varies:
         return
@@ -410,20 +431,19 @@ def check_spec_values(spec: SweepSpec) -> None:
         admissible = _check_scalar(spec)
     if admissible is not None:
         try:
-            evaluate(designs_at(spec, [admissible]).config(0))
+            drives.evaluate(designs_at(spec, [admissible]).config(0))
         except ParameterError as exc:
             raise RotorkinError(f"the base config is not admissible: {exc}") from None
 
 
 def _refuse(spec: SweepSpec, axis: int, j: int, flat: int):
     """Raise the one-line error of value ``j`` of swept key ``axis`` (design ``flat``)."""
-    from rotorkin.studies import evaluate
     from rotorkin.sweep.spec import display
 
     v = spec.varies[axis]
     where = f"--vary {v.key}={v.text} at {display(v.field, v.values[j])}"
     try:
-        evaluate(designs_at(spec, [flat]).config(0))
+        drives.evaluate(designs_at(spec, [flat]).config(0))
     except ParameterError as exc:
         raise RotorkinError(f"{where} crosses an admissible limit: {exc}") from None
     raise RotorkinError(f"{where} crosses an admissible limit of {v.key}")
@@ -476,7 +496,6 @@ def _check_scalar(spec: SweepSpec) -> None:
     The designs tried went through the whole study, so there is no separate
     base check afterwards (returns None).
     """
-    from rotorkin.studies import evaluate
 
     shape = spec.shape
     for k, v in enumerate(spec.varies):
@@ -487,7 +506,7 @@ def _check_scalar(spec: SweepSpec) -> None:
             own_only = True
             for flat in flats:
                 try:
-                    evaluate(designs_at(spec, [flat]).config(0))
+                    drives.evaluate(designs_at(spec, [flat]).config(0))
                 except ParameterError as exc:
                     if exc.name == v.key:
                         continue

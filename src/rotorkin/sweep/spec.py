@@ -16,9 +16,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorkin.errors import ConfigError
-from rotorkin.io.config import DRIVE_MODELS, validate_config
-from rotorkin.io.units import parse_quantity
+from rotorkin import drives
+from rotorkin.core.errors import ConfigError
+from rotorkin.core.units import parse_quantity
+from rotorkin.io.config import validate_config
 
 __all__ = ["Vary", "Field", "DISPLAY_UNITS", "parse_vary", "parse_item", "field_of",
            "display"]  # fmt: skip
@@ -124,7 +125,7 @@ def _kind_of(annotation) -> str | None:
 def field_of(drive_type: str, key: str) -> Field | None:
     """The :class:`Field` of ``key`` (``section.name``) for a drive type, None if unknown."""
     section, _, name = key.partition(".")
-    model = DRIVE_MODELS[drive_type]
+    model = drives.get(drive_type).config_model
     sfield = model.model_fields.get(section)
     if sfield is None or not name or "." in name:
         return None
@@ -159,7 +160,7 @@ def _check_key(base_raw: dict, key: str, option: str, value: str | None = None
     that its message shows the value written.
     """
     drive_type = (base_raw.get("drive") or {}).get("type")
-    if drive_type not in DRIVE_MODELS:
+    if drive_type not in drives.REGISTRY:
         validate_config(base_raw)  # raises the config's own message
     field = field_of(drive_type, key)
     if field is None:
@@ -167,7 +168,7 @@ def _check_key(base_raw: dict, key: str, option: str, value: str | None = None
         if not name:
             raise ConfigError(f"{option} {key!r} is not admissible: the key must be section.key, "
                               "e.g. drive.plate_tilt")  # fmt: skip
-        if key == "drive.type" and (value in DRIVE_MODELS or not value):
+        if key == "drive.type" and (value in drives.REGISTRY or not value):
             raise ConfigError(f"{option} drive.type = {value or ''!r} is not admissible: a "
                               f"sweep varies the keys of one drive type (here {drive_type!r}); "
                               "run one sweep per drive type")  # fmt: skip
@@ -210,7 +211,7 @@ def _raw_value(field: Field, text: str):
 def _validated(base_raw: dict, field: Field, text: str, option: str):
     """The SI value of ``text`` for ``field``, with the config schema's messages.
 
-    Quantities are parsed by :func:`rotorkin.io.units.parse_quantity` (the
+    Quantities are parsed by :func:`rotorkin.core.units.parse_quantity` (the
     schema's own parser), choices and numbers checked as the schema does; a key
     with bounds in the schema (``run.points``) goes through the whole schema.
     """

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorkin.errors import ConfigError
+from rotorkin.core.errors import ConfigError
 
 __all__ = ["ChunkStore", "spec_hash", "write_dataset"]
 

@@ -4,16 +4,16 @@ One module per drive family, each a set of plain functions on arrays plus a
 ``synthesize(cfg, raw, objective, target, harmonics)`` entry point that returns a
 :class:`SynthesisResult`:
 
-* :mod:`~rotorkin.synthesis.rhomboid` - harmonics ``a3, b3, a5, b5, ...`` of the
+* :mod:`~rotorkin.drives.rhomboid_cam.synthesis` - harmonics ``a3, b3, a5, b5, ...`` of the
   rhomboid cam's law ``psi(alpha)`` optimising an objective (``min_accel``,
   ``dwell_min``, ``dwell_max``, ``min_pressure_angle``) under eq. 15 and the
   profile checks;
-* :mod:`~rotorkin.synthesis.wobble` - a periodic spin-law correction giving a
+* :mod:`~rotorkin.drives.wobble_cam.synthesis` - a periodic spin-law correction giving a
   target chamber-angle law (``sine_chamber``, ``dwell_min_volume``) whose grooves
   the configured roller can follow;
-* :mod:`~rotorkin.synthesis.guide_bar` - lambda for a target vane angle at any
+* :mod:`~rotorkin.drives.guide_bar.synthesis` - lambda for a target vane angle at any
   phase (``vane_angle``);
-* :mod:`~rotorkin.synthesis.eccentric` - lambda or the follower for a tolerated
+* :mod:`~rotorkin.drives.eccentric_cam.synthesis` - lambda or the follower for a tolerated
   gap change (``gap_change``).
 
 The result carries the baseline (the config as given: the paper's design in
@@ -25,34 +25,23 @@ writes them (:mod:`rotorkin.cli_synthesize`).
 from __future__ import annotations
 
 import copy
-import importlib
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from rotorkin.errors import ParameterError
+from rotorkin.core.errors import ParameterError
 
 __all__ = [
-    "OBJECTIVES",
     "DWELL_TOLERANCE",
     "SynthesisResult",
-    "synthesize",
     "synthesized_raw_config",
     "dwell_fraction",
     "parse_fraction",
     "parse_quantity_arg",
     "fmt",
 ]
-
-#: drive.type -> (module under rotorkin.synthesis, admissible objectives)
-OBJECTIVES = {
-    "rhomboid_cam": ("rhomboid", ("min_accel", "dwell_min", "dwell_max", "min_pressure_angle")),
-    "wobble_cam": ("wobble", ("sine_chamber", "dwell_min_volume")),
-    "guide_bar": ("guide_bar", ("vane_angle",)),
-    "eccentric_cam": ("eccentric", ("gap_change",)),
-}
 
 #: Dwell tolerance as a fraction of the swing of the chamber angle (psi or delta):
 #: a law "dwells" where it is within this fraction of the swing from its extreme
@@ -101,76 +90,6 @@ class SynthesisResult:
     notes: tuple = ()
     plot: Callable[[Path], list[Path]] = field(default=lambda outdir: [], repr=False)
     tables: dict = field(default_factory=dict, repr=False)
-
-
-def _module(drive_type: str):
-    name, _ = OBJECTIVES[drive_type]
-    return importlib.import_module(f"rotorkin.synthesis.{name}")
-
-
-def synthesize(
-    cfg: dict,
-    raw: dict,
-    objective: str,
-    target: str | None = None,
-    harmonics: int | None = None,
-    max_pressure_angle: float | None = None,
-) -> SynthesisResult:
-    """Synthesize a design for ``cfg``'s drive type.
-
-    Parameters
-    ----------
-    cfg : dict
-        Validated SI config (:func:`rotorkin.io.config.load_config`): the baseline.
-    raw : dict
-        The same config as written; the synthesized config is a copy with
-        :attr:`SynthesisResult.updates` applied.
-    objective : str
-        One of ``OBJECTIVES[cfg["drive"]["type"]][1]``.
-    target : str, optional
-        Target value as people write it (``"60 deg"``, ``"1 %"``, ``"0.3"``,
-        ``"5 mm"``), where the objective takes one.
-    harmonics : int, optional
-        Rhomboid cam: number of higher odd harmonics (default 2: 3rd and 5th);
-        wobble cam: highest harmonic of the spin correction (default: as many
-        as the law needs).
-    max_pressure_angle : float, optional
-        Rhomboid and wobble cams: bound on the peak pressure angle [rad],
-        ``0 < value < pi/2`` (default ``max(45 deg, the baseline law's peak)``; the
-        wobble cam: of its best-placed roller).
-
-    Raises
-    ------
-    ParameterError
-        Named ``--objective``, ``--target``, ``--harmonics`` or ``--max-pressure-angle``
-        when not admissible.
-    """
-    kind = cfg["drive"]["type"]
-    _, names = OBJECTIVES[kind]
-    if objective not in names:
-        raise ParameterError(
-            "--objective",
-            repr(objective),
-            f"one of {', '.join(names)} for drive.type = {kind}",
-        )
-    if harmonics is not None and (isinstance(harmonics, bool) or int(harmonics) < 1):
-        raise ParameterError("--harmonics", repr(harmonics), "an integer >= 1")
-    if max_pressure_angle is not None:
-        if kind not in ("rhomboid_cam", "wobble_cam"):
-            raise ParameterError(
-                "--max-pressure-angle",
-                "given",
-                f"only for drive.type = rhomboid_cam or wobble_cam, not {kind}",
-            )
-        value = float(max_pressure_angle)
-        if not (np.isfinite(value) and 0.0 < value < 0.5 * np.pi):
-            raise ParameterError(
-                "--max-pressure-angle", f"{np.degrees(value):.6g} deg", "0 deg < angle < 90 deg"
-            )
-        return _module(kind).synthesize(
-            cfg, raw, objective, target, harmonics, {"max_pressure_angle": max_pressure_angle}
-        )
-    return _module(kind).synthesize(cfg, raw, objective, target, harmonics)
 
 
 def synthesized_raw_config(raw: dict, updates: dict, objective: str = "") -> dict:
@@ -262,7 +181,7 @@ def parse_fraction(text, name: str = "--target") -> float:
 
 def parse_quantity_arg(text, kind: str, name: str = "--target") -> float:
     """A value with a unit (``"60 deg"``, ``"5 mm"``) -> SI float; ParameterError if not."""
-    from rotorkin.io.units import parse_quantity
+    from rotorkin.core.units import parse_quantity
 
     value, reason = parse_quantity(str(text), kind)
     if reason:

@@ -1,0 +1,176 @@
+"""The config schema's building blocks: sections, quantities with units, the shared sections.
+
+A drive's schema (``rotorkin/drives/<name>/schema.py``) is a pydantic model made
+of these: every dimensional key is a quantity type (:data:`Angle`, :data:`Length`,
+...) that reads a string with a unit (``"45 deg"``, ``"80 mm"``) and stores the SI
+value; every section forbids unknown keys. The field descriptions are the glossary
+(``rotorkin keys``), and the field defaults are the one source of defaults: a
+drive's parameter classes take theirs from here (a test compares them).
+"""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError
+from pydantic_core import PydanticCustomError
+
+from rotorkin.core.errors import ConfigError
+from rotorkin.core.units import describe_kind, parse_quantity
+
+__all__ = [
+    "Angle",
+    "Length",
+    "Torque",
+    "Pressure",
+    "Inertia",
+    "Mass",
+    "Volume",
+    "Energy",
+    "Temperature",
+    "Modulus",
+    "Speed",
+    "Section",
+    "RunSection",
+    "EmptySection",
+    "ExportSection",
+    "InertialSection",
+    "validate_model",
+]
+
+
+def _unit(kind: str):
+    def parse(value):
+        number, reason = parse_quantity(value, kind)
+        if reason:
+            raise PydanticCustomError("rotorkin_unit", reason)
+        return number
+
+    parse.kind = kind
+    return BeforeValidator(parse)
+
+
+Angle = Annotated[float, _unit("angle")]
+Length = Annotated[float, _unit("length")]
+Torque = Annotated[float, _unit("torque")]
+Pressure = Annotated[float, _unit("pressure")]
+Inertia = Annotated[float, _unit("inertia")]
+Mass = Annotated[float, _unit("mass")]
+Volume = Annotated[float, _unit("volume")]
+Energy = Annotated[float, _unit("energy")]
+Temperature = Annotated[float, _unit("temperature")]
+Modulus = Annotated[float, _unit("modulus")]
+
+
+def _speeds(value):
+    values = value if isinstance(value, list) else [value]
+    out = []
+    for item in values:
+        number, reason = parse_quantity(item, "speed")
+        if reason:
+            raise PydanticCustomError("rotorkin_unit", reason)
+        out.append(number)
+    return out[0] if not isinstance(value, list) else out
+
+
+_speeds_validator = BeforeValidator(_speeds)
+_speeds_validator.func.kind = "speed"
+Speed = Annotated[float | list[float], _speeds_validator]
+
+
+class Section(BaseModel):
+    """A config section: strict types, unknown keys refused, frozen, SI after validation."""
+
+    model_config = ConfigDict(
+        extra="forbid",
+        strict=True,
+        validate_default=True,
+        frozen=True,
+        populate_by_name=True,
+        allow_inf_nan=False,
+    )
+
+
+class RunSection(Section):
+    points: int = Field(
+        721, ge=3, le=10_000_000, description="input angles sampled over one period, ends included"
+    )
+    speed: Speed = Field(
+        "3000 rpm",
+        description="input shaft speed: one value, or a list sampled evenly over one period",
+    )
+
+
+class EmptySection(Section):
+    pass
+
+
+class ExportSection(Section):
+    tolerance: Length = Field(
+        "0.01 mm",
+        description="chordal tolerance of exported curves and meshes (DXF, STL, STEP)",
+    )
+
+
+class InertialSection(Section):
+    inertia_shaft: Inertia = Field("0 kg*m^2", description="inertia of the input shaft")
+    speed_fluctuation: float = Field(
+        0.02, description="wanted coefficient of speed fluctuation, for the flywheel"
+    )
+
+
+def validate_model(model: type[BaseModel], raw: dict) -> dict:
+    """Validate a raw config mapping against a whole-config model; a nested dict of SI values.
+
+    Raises
+    ------
+    ConfigError
+        One line naming the key, the value and what is admissible.
+    """
+    try:
+        validated = model.model_validate(raw)
+    except ValidationError as exc:
+        raise ConfigError(_one_line(exc, model)) from None
+    return validated.model_dump(by_alias=True)
+
+
+def _one_line(exc: ValidationError, model: type[BaseModel]) -> str:
+    err = exc.errors(include_url=False)[0]
+    loc = ".".join(str(p) for p in err["loc"])
+    kind = err["type"]
+    value = err.get("input")
+    if kind == "missing":
+        return f"missing required key {loc}: {_describe(model, err['loc'])}"
+    if kind == "extra_forbidden":
+        parent = _submodel(model, err["loc"][:-1])
+        known = ", ".join((f.alias or n) for n, f in parent.model_fields.items() if n != "type")
+        where = f"[{'.'.join(map(str, err['loc'][:-1]))}]" if len(err["loc"]) > 1 else "top level"
+        return f"unknown key {loc}; known keys at {where}: {known}"
+    if kind == "rotorkin_unit":
+        return f"{loc} = {value!r} {err['msg']}"
+    msg = err["msg"]
+    if isinstance(value, dict):
+        value = "{...}"
+    return f"{loc} = {value!r} is not admissible: {msg[0].lower()}{msg[1:]}"
+
+
+def _submodel(model, loc):
+    for part in loc:
+        field = model.model_fields.get(part) or next(
+            (f for f in model.model_fields.values() if f.alias == part), None
+        )
+        if field is None or not isinstance(field.annotation, type):
+            return model
+        if issubclass(field.annotation, BaseModel):
+            model = field.annotation
+    return model
+
+
+def _describe(model, loc) -> str:
+    parent = _submodel(model, loc[:-1])
+    for name, field in parent.model_fields.items():
+        if loc[-1] in (name, field.alias):
+            kinds = [getattr(m.func, "kind", None) for m in field.metadata if hasattr(m, "func")]
+            unit = f" ({describe_kind(kinds[0])})" if kinds and kinds[0] else ""
+            return (field.description or "required") + unit
+    return "required"

@@ -1,0 +1,102 @@
+"""What a drive provides: :class:`DriveSpec`, the one record every consumer reads.
+
+A drive is one package under ``rotorkin/drives/<name>/`` whose ``spec.py`` builds a
+:class:`DriveSpec`; :data:`rotorkin.drives.REGISTRY` lists them. Config
+validation, ``run``, ``sweep``, ``tolerance``, ``synthesize``, ``export``,
+``report``, the published-numbers table and the command-line help all iterate
+the registry and call what the spec holds; none of them names a drive. Only
+``name``, ``title``, ``config_model`` and ``study`` are required: a drive
+without a cam simply has no CAD entries, one without a batch module is swept
+design by design through its study.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from types import ModuleType
+
+__all__ = ["DriveSpec"]
+
+
+@dataclass(frozen=True)
+class DriveSpec:
+    """Everything rotorkin knows how to do with one drive.
+
+    Attributes
+    ----------
+    name : str
+        ``drive.type`` in configs (``"wobble_cam"``).
+    title : str
+        One line for people: the mechanism and the machine it drives.
+    config_model : type
+        The pydantic model of a whole config of this drive
+        (:mod:`rotorkin.core.schema` building blocks); its defaults are the defaults.
+    study : callable
+        ``study(cfg) -> StudyResult`` on a validated SI config.
+    headline : mapping of str -> str
+        Summary keys printed by ``run``, in order, each with what it means.
+    paper : str
+        Short reference of the source paper ("" when none).
+    published : tuple of Published
+        The paper's numbers per summary key (:mod:`rotorkin.studies.published`).
+    examples : tuple of str
+        Built-in examples on this drive (``rotorkin run --example NAME``).
+    batch : module, optional
+        Vectorised evaluation of many designs for ``sweep`` and ``tolerance``:
+        ``KEYS``, ``CURVES``, ``ANGLE``, ``unsupported(cfg)``, ``metric_names(cfg)``,
+        ``reasons(designs, code)``, ``metrics(designs, names, samples, threads)``,
+        ``curves(designs, points)``, ``period(designs)``, optionally
+        ``OPTIONAL_METRICS``. Without it every design goes through ``study``.
+    sweep_recipes : callable, optional
+        ``sweep_recipes(cfg) -> list[Recipe]``: the sweeps behind the paper's
+        parameter-study figures (``rotorkin sweep --paper-figures``).
+    tolerance_hold : callable, optional
+        ``tolerance_hold(cfg) -> (cfg, extra)``: the config and extra values that
+        keep the manufactured parts at their nominal size in a tolerance analysis.
+    tolerance_first : tuple of str
+        Metrics drawn first in the tolerance histograms.
+    synthesize : callable, optional
+        ``synthesize(cfg, raw, objective, target, harmonics, options) -> SynthesisResult``.
+    objectives : mapping of str -> str
+        Synthesis objectives and what each one's ``--target`` is.
+    synthesis_options : tuple of str
+        Options of :attr:`synthesize` beyond the common ones
+        (``"max_pressure_angle"``).
+    scene : module, optional
+        Report builder: ``scene(result, cfg)``, ``plots(result, cfg)``,
+        ``checks(result, cfg)`` (:mod:`rotorkin.render.scenes`).
+    cad_parts : callable, optional
+        ``cad_parts(cfg, with_parts) -> (parts, checks)``: planar parts
+        (:class:`rotorkin.cams.planar.Part`) and their profile checks.
+    cad_write : callable, optional
+        ``cad_write(cfg, fmt, folder, name) -> list[Path]`` for parts that are not
+        planar (writes its own files).
+    check_rows : callable, optional
+        ``check_rows(cfg) -> [(check, value)]``: the cam checks printed by ``export``;
+        default: the rows of the planar profile checks.
+    """
+
+    name: str
+    title: str
+    config_model: type
+    study: Callable
+    headline: Mapping[str, str] = field(default_factory=dict)
+    paper: str = ""
+    published: tuple = ()
+    examples: tuple[str, ...] = ()
+    batch: ModuleType | None = None
+    sweep_recipes: Callable | None = None
+    tolerance_hold: Callable | None = None
+    tolerance_first: tuple[str, ...] = ()
+    synthesize: Callable | None = None
+    objectives: Mapping[str, str] = field(default_factory=dict)
+    synthesis_options: tuple[str, ...] = ()
+    scene: ModuleType | None = None
+    cad_parts: Callable | None = None
+    cad_write: Callable | None = None
+    check_rows: Callable | None = None
+
+    def __post_init__(self):
+        if not self.name.isidentifier():
+            raise ValueError(f"drive name {self.name!r} is not an identifier")

@@ -1,0 +1,25 @@
+"""CAD of the drive's planar parts, with their profile checks (``rotorkin export``)."""
+
+from __future__ import annotations
+
+from rotorkin.render.cad import check_thickness, check_tolerance
+
+__all__ = ["cad_parts"]
+
+
+def cad_parts(cfg: dict, with_parts: bool = True):
+    """Planar parts (``Part``) and profile checks ``[(label, ProfileCheck)]`` of a config.
+
+    ``parts`` is empty when ``with_parts`` is false (checks only). Raises
+    :class:`ParameterError` named by config key (``cam.roller_radius``,
+    ``cam.thickness``, ``export.tolerance``, drive and machine keys).
+    """
+    from rotorkin.drives.eccentric_cam import cam as eccentric
+    from rotorkin.drives.eccentric_cam.study import drive_params
+
+    params = drive_params(cfg)
+    thickness = check_thickness(cfg, 2.0 * float(params.disc_radius), "the disc's diameter")
+    tol = check_tolerance(cfg, float(params.disc_radius))
+    check = eccentric.profile_check(params)
+    parts = eccentric.cam_parts(params, thickness, tol) if with_parts else []
+    return parts, [("eccentric discs", check)]

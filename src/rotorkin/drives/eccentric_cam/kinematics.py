@@ -1,0 +1,342 @@
+"""Double eccentric discs on one shaft driving two opposed pistons.
+
+Source: Zhu Ruilin, Zhu Guolin, "Analysis of the motions of the double eccentric
+cams used in a process intensification equipment", Engineering Sciences (China)
+14(10), 2012 (in Chinese). Equation and figure numbers below are the paper's.
+
+Two circular discs of radius ``R`` sit on one shaft with eccentricity ``e``
+(``lambda = e/R < 1``); each pushes one piston of an opposed-piston reactor of
+length ``L``. The shaft angle is ``beta`` (``beta = omega t``); the two discs are
+mounted half a turn apart, so at ``beta = 0`` the left piston is at its top
+(``+e``) and the right piston at its bottom (``-e``).
+
+Conventions (the paper's, made explicit):
+
+* ``z`` (left) and ``z'`` (right) [m] are the travels of the pistons' inner
+  faces from their mid (balanced, ``o-o``) positions, **positive towards the
+  reactor centre** (eq. 1, 3). For the left piston this is "up" in the
+  paper's Fig. 2; at ``beta = 0``: ``z = +e``, ``z' = -e``.
+* Each follower axis passes through the shaft axis. In the frame of a
+  follower (x along its axis, towards the reactor centre, origin on the shaft
+  axis), the left disc centre is at ``e (cos beta, sin beta)`` and the right
+  disc centre at ``-e (cos beta, sin beta)``.
+* The paper's "gap change" is ``Delta = z + z'`` (eq. 5): the sum of the
+  inward travels. The distance between the inner faces is ``L0 - Delta``;
+  ``Delta <= 0`` means the faces stand farther apart than in the balanced
+  position (the reactor volume can only grow, the pressure only drop).
+  ``delta = Delta / e`` (eq. 6).
+
+Followers:
+
+* ``knife_edge``: point contact on the follower axis (eq. 1-6).
+* ``flat``: a contact plate normal to the piston axis, tangent to the disc:
+  harmonic travel ``+-e cos beta``, ``Delta = 0`` (eq. 7, 8).
+* ``roller``: a roller of radius ``r`` whose centre stays on the follower axis
+  at ``R + r`` from the disc centre (derived here, the paper leaves it open):
+  the knife-edge formulas with the *contact radius* ``R + r`` in place of
+  ``R`` (also in the ``-R`` term, so that ``z(0) = e``). It lies between the
+  two: ``|Delta_flat| = 0 < |Delta_roller| < |Delta_knife_edge|``.
+
+Misprints of the paper (OCR): the additional term is printed
+``sqrt((1 - lambda)^2 - sin^2 beta) - 1/lambda``; read ``(1/lambda)^2``. The
+definition ``lambda - lambda = e/R`` reads ``lambda = e/R``. The example
+``Delta/L = 21.4/2000 = 2.14 %`` reads ``21.4/1000``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorkin.core.angles import fmt_mm
+from rotorkin.core.errors import ParameterError
+from rotorkin.core.motion import Motion, compose
+
+__all__ = [
+    "FOLLOWERS",
+    "EccentricCam",
+    "harmonic_travel",
+    "additional_travel",
+    "piston_travels",
+    "gap_change",
+    "gap_change_ratio_eq6",
+    "decomposition",
+    "gap_change_extreme",
+    "piston_stroke",
+    "pressure_angle",
+    "pressure_angle_max",
+    "motion",
+    "period",
+]
+
+#: Admissible follower kinds.
+FOLLOWERS = ("knife_edge", "flat", "roller")
+
+
+@dataclass(frozen=True)
+class EccentricCam:
+    """Parameters of the double eccentric-disc drive (SI).
+
+    Parameters
+    ----------
+    disc_radius : float
+        Disc radius R [m], ``R > 0``. Paper: 80 mm.
+    eccentricity : float
+        Eccentricity e of the disc centre from the shaft axis [m],
+        ``0 < e < R``. Paper: 40 mm (``lambda = 0.5``).
+    follower : {"knife_edge", "flat", "roller"}, optional
+        Piston follower (default ``"knife_edge"``, the paper's Fig. 2).
+    roller_radius : float, optional
+        Roller radius r [m] of a roller follower, ``r > 0`` for
+        ``follower = "roller"``; ignored by the other followers (default 0).
+    """
+
+    disc_radius: float
+    eccentricity: float
+    follower: str = "knife_edge"
+    roller_radius: float = 0.0
+
+    def __post_init__(self):
+        R = float(self.disc_radius)
+        if not (np.isfinite(R) and R > 0.0):
+            raise ParameterError("disc_radius", fmt_mm(R), "disc_radius > 0 mm")
+        e = float(self.eccentricity)
+        if not (np.isfinite(e) and 0.0 < e < R):
+            raise ParameterError(
+                "eccentricity",
+                fmt_mm(e),
+                f"0 mm < eccentricity < {fmt_mm(R)}: the eccentricity must be below "
+                "disc_radius (lambda = e/R < 1), or the disc would not contain the shaft axis",
+            )
+        if self.follower not in FOLLOWERS:
+            raise ParameterError(
+                "follower", repr(self.follower), "one of " + ", ".join(map(repr, FOLLOWERS))
+            )
+        r = float(self.roller_radius)
+        if not (np.isfinite(r) and r >= 0.0):
+            raise ParameterError("roller_radius", fmt_mm(r), "roller_radius >= 0 mm")
+        if self.follower == "roller" and not r > 0.0:
+            raise ParameterError(
+                "roller_radius", fmt_mm(r), "roller_radius > 0 mm for follower = 'roller'"
+            )
+
+    @property
+    def lam(self) -> float:
+        """Eccentricity ratio ``lambda = e/R`` [-] (paper, section 2)."""
+        return float(self.eccentricity) / float(self.disc_radius)
+
+    @property
+    def contact_radius(self) -> float:
+        """Radius of the circle the follower point runs on [m].
+
+        ``R`` for a knife edge, ``R + r`` for a roller (the roller centre),
+        ``inf`` for a flat face (a straight line: the harmonic limit).
+        """
+        if self.follower == "knife_edge":
+            return float(self.disc_radius)
+        if self.follower == "roller":
+            return float(self.disc_radius) + float(self.roller_radius)
+        return float("inf")
+
+
+# --------------------------------------------------------------------------------------------
+# the two parts of a piston's travel
+# --------------------------------------------------------------------------------------------
+def harmonic_travel(eccentricity, beta):
+    """Harmonic part ``e cos beta`` of the left piston's travel and its derivatives.
+
+    Paper: the vertical travel of the disc centre (Fig. 3), ``xi = cos beta``
+    in units of e (Fig. 6); also the whole travel of a flat follower (eq. 7).
+
+    Parameters
+    ----------
+    eccentricity : array_like
+        e [m].
+    beta : array_like
+        Shaft angle [rad].
+
+    Returns
+    -------
+    tuple of 4 ndarray
+        ``e cos beta`` [m] and its 1st-3rd derivatives [m/rad^n].
+    """
+    e = np.asarray(eccentricity, dtype=float)
+    b = np.asarray(beta, dtype=float)
+    c, s = np.cos(b), np.sin(b)
+    return e * c, -e * s, -e * c, e * s
+
+
+def additional_travel(contact_radius, eccentricity, beta):
+    """Additional (non-harmonic) part ``sqrt(Rc^2 - e^2 sin^2 beta) - Rc`` and derivatives.
+
+    Paper: ``e mu`` with ``mu = sqrt((1/lambda)^2 - sin^2 beta) - 1/lambda``
+    (eq. 2, Fig. 6) for ``Rc = R``; also ``Delta/2`` (section 3, Fig. 11). It is
+    the same for both pistons and never positive. ``Rc = R + r`` for a roller
+    (derived here); ``Rc = inf`` gives 0 (flat face).
+
+    Parameters
+    ----------
+    contact_radius : array_like
+        Rc [m], ``Rc > e``.
+    eccentricity : array_like
+        e [m].
+    beta : array_like
+        Shaft angle [rad].
+
+    Returns
+    -------
+    tuple of 4 ndarray
+        The term [m] and its 1st-3rd derivatives [m/rad^n]. With
+        ``w = e^2 sin^2 beta`` and ``S = sqrt(Rc^2 - w)``: ``f = S - Rc``,
+        ``f' = -w'/(2S)``, chain rule to order 3 (``w' = e^2 sin 2beta``,
+        ``w'' = 2 e^2 cos 2beta``, ``w''' = -4 e^2 sin 2beta``).
+    """
+    Rc = np.asarray(contact_radius, dtype=float)
+    e = np.asarray(eccentricity, dtype=float)
+    b = np.asarray(beta, dtype=float)
+    e2 = e * e
+    s2, c2 = np.sin(2.0 * b), np.cos(2.0 * b)
+    w = (0.5 * e2) * (1.0 - c2)  # e^2 sin^2 beta, without cancellation near 0
+    w_d = (e2 * s2, 2.0 * e2 * c2, -4.0 * e2 * s2)
+    finite = np.isfinite(Rc)
+    Rf = np.where(finite, Rc, 2.0 * np.abs(e) + 1.0)  # any Rc > e: masked out below
+    S = np.sqrt(Rf * Rf - w)
+    # S - Rc = -w / (S + Rc): accurate for small e/Rc
+    f0 = -w / (S + Rf)
+    f = (f0, -0.5 / S, -0.25 / S**3, -0.375 / S**5)
+    out = compose(f, (w, *w_d))
+    return tuple(np.where(finite, v, 0.0) for v in out)
+
+
+def piston_travels(params: EccentricCam, beta):
+    """Travels ``(z, z')`` of the left and right pistons and their derivatives.
+
+    Knife edge (eq. 1, 3): ``z = sqrt(R^2 - e^2 sin^2 beta) + e cos beta - R``,
+    ``z' = sqrt(R^2 - e^2 sin^2 beta) - R - e cos beta``; roller: ``R -> R + r``;
+    flat (eq. 7, 8): ``z = e cos beta``, ``z' = -e cos beta``.
+
+    Parameters
+    ----------
+    params : EccentricCam
+    beta : array_like
+        Shaft angle [rad].
+
+    Returns
+    -------
+    tuple of 4 ndarray, shape (2, ...)
+        ``(z, z')`` [m], positive towards the reactor centre, and their
+        1st-3rd derivatives with respect to beta [m/rad^n].
+    """
+    beta = np.asarray(beta, dtype=float)
+    h = harmonic_travel(params.eccentricity, beta)
+    a = additional_travel(params.contact_radius, params.eccentricity, beta)
+    return tuple(np.stack([ai + hi, ai - hi]) for ai, hi in zip(a, h, strict=True))
+
+
+def gap_change(params: EccentricCam, beta):
+    """Gap change ``Delta = z + z'`` (eq. 5) and its derivatives [m, m/rad^n].
+
+    ``Delta = 2 (sqrt(R^2 - e^2 sin^2 beta) - R) <= 0`` for a knife edge,
+    ``R -> R + r`` for a roller, 0 for a flat face (eq. 7, 8). Period pi,
+    symmetric about 90 deg, zero at ``k pi``, most negative at 90 deg.
+    """
+    a = additional_travel(params.contact_radius, params.eccentricity, beta)
+    return tuple(2.0 * v for v in a)
+
+
+def gap_change_ratio_eq6(lam, beta):
+    """``delta = Delta/e = (2/lambda)(sqrt(1 - lambda^2 sin^2 beta) - 1)`` as printed (eq. 6).
+
+    Parameters
+    ----------
+    lam : array_like
+        ``lambda = e/R`` (use ``e/(R + r)`` for a roller), ``0 < lambda < 1``.
+    beta : array_like
+        Shaft angle [rad].
+
+    Returns
+    -------
+    ndarray
+        delta [-].
+    """
+    lam = np.asarray(lam, dtype=float)
+    b = np.asarray(beta, dtype=float)
+    return (2.0 / lam) * (np.sqrt(1.0 - lam**2 * np.sin(b) ** 2) - 1.0)
+
+
+def decomposition(params: EccentricCam, beta):
+    """Dimensionless travels of Fig. 6 and 8: ``xi``, ``mu``, ``x``, ``x'``, ``delta``.
+
+    ``x = z/e = xi + mu`` (eq. 2), ``x' = z'/e = mu - xi`` (eq. 4, ``xi' = -xi``),
+    ``delta = x + x' = 2 mu`` (eq. 6).
+
+    Returns
+    -------
+    dict of str -> ndarray
+        Keys ``"xi"``, ``"mu"``, ``"x"``, ``"x_right"``, ``"delta"`` [-].
+    """
+    beta = np.asarray(beta, dtype=float)
+    e = float(params.eccentricity)
+    xi = np.cos(beta)
+    mu = additional_travel(params.contact_radius, e, beta)[0] / e
+    return {"xi": xi, "mu": mu, "x": xi + mu, "x_right": mu - xi, "delta": 2.0 * mu}
+
+
+def gap_change_extreme(params: EccentricCam) -> tuple[float, float]:
+    """Most negative gap change over a turn and where it occurs.
+
+    ``Delta_min = 2 (sqrt(Rc^2 - e^2) - Rc)`` at ``beta = 90 deg`` (and 270 deg),
+    eq. 5; 0 for a flat face (where 90 deg is reported for uniformity).
+
+    Returns
+    -------
+    (Delta_min, beta) : tuple of float
+        [m], [rad].
+    """
+    return float(gap_change(params, np.pi / 2.0)[0]), np.pi / 2.0
+
+
+def piston_stroke(params: EccentricCam) -> float:
+    """Stroke of each piston, ``z(0) - z(pi) = 2 e`` [m], for every follower.
+
+    ``z`` falls monotonically from ``+e`` to ``-e`` on ``[0, pi]``: ``dz/dbeta =
+    -e sin beta (1 + e cos beta / S)`` and ``S > e |cos beta|`` since ``Rc > e``.
+    """
+    return 2.0 * float(params.eccentricity)
+
+
+def pressure_angle(params: EccentricCam, beta):
+    """Pressure angle of the left piston: between the contact normal and the piston axis [rad].
+
+    Derived here: the contact normal passes through the disc centre, so
+    ``sin(alpha_p) = e sin(beta) / Rc`` (knife edge ``Rc = R``, roller
+    ``Rc = R + r``); 0 for a flat face. Positive when the normal leans towards
+    ``+sin beta``. The right piston's is the negative of this.
+    """
+    b = np.asarray(beta, dtype=float)
+    Rc = params.contact_radius
+    return np.arcsin(float(params.eccentricity) * np.sin(b) / Rc)
+
+
+def pressure_angle_max(params: EccentricCam) -> float:
+    """Largest pressure angle over a turn, ``arcsin(e / Rc)`` at 90 deg [rad]."""
+    return float(np.arcsin(float(params.eccentricity) / params.contact_radius))
+
+
+# --------------------------------------------------------------------------------------------
+# the drive interface
+# --------------------------------------------------------------------------------------------
+def motion(params: EccentricCam, beta) -> Motion:
+    """Motion of the left and right pistons, ``q = (z, z')`` [m], over shaft angle beta [rad]."""
+    beta = np.asarray(beta, dtype=float)
+    q, dq, d2q, d3q = piston_travels(params, beta)
+    return Motion(beta, q, dq, d2q, d3q, members=("left piston", "right piston"), unit="m")
+
+
+def period(params: EccentricCam) -> float:
+    """Shaft angle after which the pistons' motion repeats: 2 pi [rad].
+
+    (The gap change alone repeats every pi.)
+    """
+    return 2.0 * np.pi

@@ -1,0 +1,364 @@
+"""Study of the opposed-piston reactor driven by double eccentric discs (Zhu & Zhu 2012).
+
+Config keys (SI, defaults filled by :mod:`rotorkin.io.config`; a key missing from
+``cfg`` takes the schema's default):
+``drive.disc_radius``, ``drive.eccentricity``, ``drive.follower``,
+``drive.roller_radius``; ``machine.device_length``, ``machine.bore``,
+``machine.fluid``, ``machine.initial_pressure``, ``machine.polytropic_exponent``,
+``machine.bulk_modulus``, ``machine.piston_mass``, ``machine.inertia_shaft``,
+``machine.speed_fluctuation`` (the reactor, :mod:`rotorkin.machines.opposed_piston`);
+``run.points``, ``run.speed``.
+
+Torque sign (``shaft_torque_*``, ``mean_torque_Nm``): positive when the machine
+drives the shaft. Piston forces are positive towards the reactor centre (the
+sense of the travels ``z``, ``z'``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from rotorkin.analysis import flywheel as fw
+from rotorkin.analysis import torque as tq
+from rotorkin.analysis.timing import shaft_speed
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.machines import opposed_piston as op
+from rotorkin.studies import StudyResult
+from rotorkin.studies.helpers import angle_grid, build_params, time_domain
+
+__all__ = ["evaluate", "drive_params", "HEADLINE"]
+
+#: Summary keys printed by the command line, in order, with what each means (one line).
+HEADLINE = {
+    "follower": "piston follower: knife_edge, flat or roller",
+    "lambda": "eccentricity over disc radius, e/R",
+    "gap_change_min_mm": "most negative change Delta of the piston gap (Fig. 8)",
+    "gap_change_min_ratio": "Delta / e there (Fig. 7)",
+    "gap_change_to_length_percent": "|Delta| / device length there",
+    "piston_stroke_mm": "travel of one piston over a turn",
+    "pressure_angle_max_deg": "largest pressure angle between disc and piston",
+    "fluid": "working fluid model: gas (polytropic) or liquid (bulk modulus)",
+    "chamber_volume_max_cm3": "largest volume enclosed between the pistons",
+    "pressure_min_bar": "lowest pressure of the enclosed fluid",
+    "pressure_ripple_bar": "max - min of the enclosed fluid's pressure",
+    "cavitation": "true if the liquid's pressure would fall to zero (it would boil)",
+    "piston_left_accel_peak_m_per_s2": "peak acceleration of the left piston",
+    "shaft_torque_peak_Nm": "peak torque of the fluid on the shaft, without inertia",
+    "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+}
+
+#: Samples per shaft turn used for the peaks of the piston derivatives (independent of run.points).
+_PEAK_SAMPLES = 20_001
+
+
+def _summary(params: ec.EccentricCam, device_length: float) -> dict:
+    e = float(params.eccentricity)
+    dmin, bmin = ec.gap_change_extreme(params)
+    knife = ec.EccentricCam(params.disc_radius, e, "knife_edge")
+    fine = np.linspace(0.0, ec.period(params), _PEAK_SAMPLES)
+    _, d1, d2, d3 = ec.piston_travels(params, fine)
+    rc = params.contact_radius
+    return {
+        "follower": params.follower,
+        "lambda": params.lam,
+        "lambda_contact": e / rc,
+        "gap_change_min_mm": dmin * 1e3,
+        "gap_change_min_ratio": dmin / e,
+        "gap_change_min_angle_deg": float(np.degrees(bmin)),
+        "gap_change_to_length": abs(dmin) / device_length,
+        "gap_change_to_length_percent": 100.0 * abs(dmin) / device_length,
+        "gap_change_min_knife_edge_mm": ec.gap_change_extreme(knife)[0] * 1e3,
+        "piston_stroke_mm": ec.piston_stroke(params) * 1e3,
+        "piston_velocity_peak_mm_per_rad": float(np.max(np.abs(d1))) * 1e3,
+        "piston_accel_peak_mm_per_rad2": float(np.max(np.abs(d2))) * 1e3,
+        "piston_jerk_peak_mm_per_rad3": float(np.max(np.abs(d3))) * 1e3,
+        "pressure_angle_max_deg": float(np.degrees(ec.pressure_angle_max(params))),
+        "device_length_mm": device_length * 1e3,
+    }
+
+
+_DOCS = {
+    "beta_deg": "Shaft angle beta; 0 puts the left piston at its top (+e), the right at its "
+    "bottom.",
+    "z_left_mm": "Left piston travel z from mid position, positive towards the reactor centre "
+    "(eq. 1).",
+    "z_right_mm": "Right piston travel z' from mid position, positive towards the reactor centre "
+    "(eq. 3).",
+    "gap_change_mm": "Gap change Delta = z + z' (eq. 5); negative: the inner faces stand apart.",
+    "x_left": "Dimensionless left travel x = z/e = xi + mu (eq. 2).",
+    "x_right": "Dimensionless right travel x' = z'/e = mu - xi (eq. 4).",
+    "xi": "Harmonic part xi = cos beta of x (Fig. 6).",
+    "mu": "Additional part mu of x, the same for both pistons (Fig. 6).",
+    "delta": "Dimensionless gap change delta = Delta/e = x + x' (eq. 6).",
+    "z_left_velocity_mm_per_rad": "dz/dbeta, left piston velocity over shaft speed.",
+    "z_right_velocity_mm_per_rad": "dz'/dbeta, right piston velocity over shaft speed.",
+    "z_left_accel_mm_per_rad2": "d2z/dbeta2, left piston acceleration over shaft speed squared.",
+    "z_right_accel_mm_per_rad2": "d2z'/dbeta2, right piston acceleration over shaft speed squared.",
+    "z_left_jerk_mm_per_rad3": "d3z/dbeta3, left piston jerk over shaft speed cubed.",
+    "z_right_jerk_mm_per_rad3": "d3z'/dbeta3, right piston jerk over shaft speed cubed.",
+    "pressure_angle_left_deg": "Angle between the left contact normal and the piston axis "
+    "(0 for a flat face).",
+}
+
+
+def _columns(params: ec.EccentricCam, points: int) -> dict:
+    beta = angle_grid(ec.period(params), points)
+    q, d1, d2, d3 = ec.piston_travels(params, beta)
+    dec = ec.decomposition(params, beta)
+    cols = {
+        "beta_deg": np.degrees(beta),
+        "z_left_mm": q[0] * 1e3,
+        "z_right_mm": q[1] * 1e3,
+        "gap_change_mm": (q[0] + q[1]) * 1e3,
+        "x_left": dec["x"],
+        "x_right": dec["x_right"],
+        "xi": dec["xi"],
+        "mu": dec["mu"],
+        "delta": dec["delta"],
+    }
+    for name, arr in (("velocity", d1), ("accel", d2), ("jerk", d3)):
+        suffix = {"velocity": "mm_per_rad", "accel": "mm_per_rad2", "jerk": "mm_per_rad3"}[name]
+        cols[f"z_left_{name}_{suffix}"] = arr[0] * 1e3
+        cols[f"z_right_{name}_{suffix}"] = arr[1] * 1e3
+    cols["pressure_angle_left_deg"] = np.degrees(ec.pressure_angle(params, beta))
+    return cols
+
+
+# --------------------------------------------------------------------------------------------
+# the reactor
+# --------------------------------------------------------------------------------------------
+_SLUGS = ("piston_left", "piston_right")
+
+_REACTOR_DOCS = {
+    "volume_cm3": "Enclosed volume V = A (L - Delta) between the inner faces of the pistons.",
+    "dvolume_cm3_per_rad": "dV/dbeta, exact (-A dDelta/dbeta).",
+    "pressure_bar": "Absolute pressure of the enclosed fluid (gas: p0 (V0/V)^n; liquid: "
+    "p0 - K ln(V/V0)); below 0: the liquid would cavitate.",
+    "piston_left_force_N": "Force of the fluid on the left piston, -p A, positive towards the "
+    "reactor centre.",
+    "piston_right_force_N": "Force of the fluid on the right piston, -p A, positive towards the "
+    "reactor centre.",
+    "shaft_torque_Nm": "Torque of the fluid on the shaft by virtual work, sum F_i dq_i/dbeta = "
+    "p dV/dbeta; positive when it drives the shaft.",
+    "inertia_torque_Nm": "Torque the shaft spends on the inertia of shaft and pistons, "
+    "d(KE)/dbeta.",
+    "shaft_torque_with_inertia_Nm": "shaft_torque_Nm minus inertia_torque_Nm: the net torque of "
+    "the machine on the shaft (the motor supplies its opposite).",
+    "equivalent_inertia_kgm2": "Inertia seen at the shaft, J_shaft + m (z'^2 + z''^2) with "
+    "z' = dz/dbeta [m/rad].",
+}
+
+
+def _defaults(cfg: dict):
+    """Machine and run sections with the schema's defaults for missing keys."""
+    from rotorkin.core.schema import RunSection
+    from rotorkin.drives.eccentric_cam.schema import EccentricMachine
+
+    machine = {**EccentricMachine().model_dump(), **(cfg.get("machine") or {})}
+    run = {**RunSection().model_dump(), **(cfg.get("run") or {})}
+    return machine, run
+
+
+def _inertias(machine: dict) -> tuple[float, tuple[float, float]]:
+    js = float(machine["inertia_shaft"])
+    if not (np.isfinite(js) and js >= 0.0):
+        raise ParameterError("machine.inertia_shaft", f"{js:g} kg*m^2", "inertia_shaft >= 0")
+    m = float(machine["piston_mass"])
+    if not (np.isfinite(m) and m >= 0.0):
+        raise ParameterError("machine.piston_mass", f"{m:g} kg", "piston_mass >= 0 kg")
+    return js, (m, m)
+
+
+def reactor_state(reactor: op.OpposedPiston, inertia, speed, beta) -> dict:
+    """Volume, pressure, piston forces and shaft torques at the shaft angles ``beta``.
+
+    Parameters
+    ----------
+    reactor : OpposedPiston
+    inertia : (float, (float, float))
+        ``J_shaft`` [kg*m^2] and the piston masses [kg].
+    speed : float or sequence of float
+        ``run.speed`` [rad/s].
+    beta : ndarray, shape (n,)
+        Shaft angles [rad].
+
+    Returns
+    -------
+    dict of ndarray
+        ``V``, ``dV``, ``p`` (1, n); ``F`` (2, n); ``shaft``, ``inertia``, ``net``,
+        ``J_eq``, ``omega``, ``omega_dot`` (n,).
+    """
+    _, dq, d2q, _ = ec.piston_travels(reactor.drive, beta)
+    V, dV, _, _ = op.enclosed_volume(reactor, beta)
+    p, _ = op.pressure(reactor, beta)
+    F = tq.member_torques(p, op.volume_derivatives_dq(reactor, beta))
+    shaft = tq.shaft_torque_from_members(F, dq)
+    omega, omega_dot, _ = shaft_speed(beta, speed, ec.period(reactor.drive))
+    js, masses = inertia
+    t_in = tq.inertia_torque(js, masses, dq, d2q, omega, omega_dot)
+    return {
+        "V": V,
+        "dV": dV,
+        "p": p,
+        "F": F,
+        "shaft": shaft,
+        "inertia": t_in,
+        "net": shaft - t_in,
+        "J_eq": tq.equivalent_inertia(js, masses, dq),
+        "omega": omega,
+        "omega_dot": omega_dot,
+    }
+
+
+def _reactor_summary(reactor: op.OpposedPiston, inertia, speed, coefficient) -> dict:
+    drive = reactor.drive
+    period = ec.period(drive)
+    fine = np.linspace(0.0, period, _PEAK_SAMPLES)
+    st = reactor_state(reactor, inertia, speed, fine)
+    vmin, vmax = op.volume_extremes(reactor)
+    p0 = float(reactor.initial_pressure)
+    p_at_vmax = float(op.pressure_from_volume(reactor, vmax))
+    omega_mean = float(np.mean(st["omega"][:-1]))
+    _, dq, d2q, _ = ec.piston_travels(drive, fine)
+    js, masses = inertia
+    net_const = st["shaft"] - tq.inertia_torque(js, masses, dq, d2q, omega_mean, 0.0)
+    delta_e = float(fw.energy_fluctuation(net_const, fine))
+    j_mean = float(np.trapezoid(st["J_eq"], fine) / period)
+    cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
+    work = float(tq.cycle_integral(st["shaft"], fine))
+    out = {
+        "fluid": reactor.fluid,
+        "bore_mm": float(reactor.bore) * 1e3,
+        "piston_area_cm2": reactor.area * 1e4,
+        "enclosed_volume_min_cm3": vmin * 1e6,
+        "enclosed_volume_max_cm3": vmax * 1e6,
+        "chamber_volume_min_cm3": vmin * 1e6,
+        "chamber_volume_max_cm3": vmax * 1e6,
+        "volume_change_cm3": (vmax - vmin) * 1e6,
+        "volume_change_relative": (vmax - vmin) / vmin,
+        "compression_ratio_geometric": vmax / vmin,
+        "initial_pressure_bar": p0 / 1e5,
+        "pressure_max_bar": p0 / 1e5,
+        "pressure_min_bar": p_at_vmax / 1e5,
+        "pressure_ripple_bar": (p0 - p_at_vmax) / 1e5,
+        "pressure_ripple_relative": (p0 - p_at_vmax) / p0,
+        "cavitation": bool(p_at_vmax <= 0.0),
+        "piston_force_peak_N": float(np.max(np.abs(st["F"]))),
+        "indicated_work_J": work,
+        "mean_torque_Nm": work / period,
+        "shaft_torque_min_Nm": float(np.min(st["shaft"])),
+        "shaft_torque_max_Nm": float(np.max(st["shaft"])),
+        "shaft_torque_peak_Nm": float(np.max(np.abs(st["shaft"]))),
+        "shaft_torque_with_inertia_peak_Nm": float(np.max(np.abs(st["net"]))),
+        "inertia_torque_peak_Nm": float(np.max(np.abs(st["inertia"]))),
+        "equivalent_inertia_mean_kgm2": j_mean,
+        "energy_fluctuation_J": delta_e,
+        "speed_fluctuation_without_flywheel": cs,
+        "speed_fluctuation": float(coefficient),
+        "flywheel_inertia_kgm2": float(
+            fw.flywheel_inertia(delta_e, omega_mean, coefficient, j_mean)
+        ),
+    }
+    out.update(time_domain(ec.motion(drive, fine), speed, _SLUGS, period)[2])
+    return out
+
+
+def _reactor_columns(reactor, inertia, speed, beta) -> tuple[dict, dict]:
+    st = reactor_state(reactor, inertia, speed, beta)
+    cols = {
+        "volume_cm3": st["V"][0] * 1e6,
+        "dvolume_cm3_per_rad": st["dV"][0] * 1e6,
+        "pressure_bar": st["p"][0] / 1e5,
+        "piston_left_force_N": st["F"][0],
+        "piston_right_force_N": st["F"][1],
+        "shaft_torque_Nm": st["shaft"],
+        "inertia_torque_Nm": st["inertia"],
+        "shaft_torque_with_inertia_Nm": st["net"],
+        "equivalent_inertia_kgm2": st["J_eq"],
+    }
+    tcols, tdocs, _, _ = time_domain(ec.motion(reactor.drive, beta), speed, _SLUGS,
+                                     ec.period(reactor.drive))  # fmt: skip
+    cols.update(tcols)
+    return cols, {**_REACTOR_DOCS, **tdocs}
+
+
+def drive_params(cfg: dict) -> ec.EccentricCam:
+    """The drive's parameters from a validated config (SI); errors name the config keys."""
+    d = cfg["drive"]
+    params = build_params(
+        ec.EccentricCam,
+        "drive",
+        {
+            "disc_radius": d["disc_radius"],
+            "eccentricity": d["eccentricity"],
+            "follower": d.get("follower", "knife_edge"),
+            "roller_radius": d.get("roller_radius", 0.0),
+        },
+    )
+    return params
+
+
+def evaluate(cfg: dict) -> StudyResult:
+    """Run the eccentric-cam reactor study on a validated config (SI values).
+
+    Parameters
+    ----------
+    cfg : dict
+        ``cfg["drive"]``: ``disc_radius`` [m], ``eccentricity`` [m], ``follower``,
+        ``roller_radius`` [m]; ``cfg["machine"]``: ``device_length``, ``bore`` [m],
+        ``fluid``, ``initial_pressure`` [Pa], ``polytropic_exponent``,
+        ``bulk_modulus`` [Pa], ``piston_mass`` [kg], ``inertia_shaft`` [kg*m^2],
+        ``speed_fluctuation``; ``cfg["run"]``: ``points``, ``speed`` [rad/s].
+        Missing machine and run keys take the schema's defaults.
+
+    Returns
+    -------
+    StudyResult
+        Summary keys: see :data:`HEADLINE`, ``docs/drives/eccentric_cam.md`` and
+        ``docs/machines/opposed_piston.md``.
+    """
+    params = drive_params(cfg)
+    machine, run = _defaults(cfg)
+    reactor = build_params(
+        op.OpposedPiston,
+        "machine",
+        {
+            "drive": params,
+            "device_length": machine["device_length"],
+            "bore": machine["bore"],
+            "fluid": machine["fluid"],
+            "initial_pressure": machine["initial_pressure"],
+            "polytropic_exponent": machine["polytropic_exponent"],
+            "bulk_modulus": machine["bulk_modulus"],
+        },
+    )
+    inertia = _inertias(machine)
+    speed = run["speed"]
+    summary = _summary(params, float(reactor.device_length))
+    summary.update(_reactor_summary(reactor, inertia, speed, float(machine["speed_fluctuation"])))
+    columns = _columns(params, run["points"])
+    beta = angle_grid(ec.period(params), run["points"])
+    more, more_docs = _reactor_columns(reactor, inertia, speed, beta)
+    columns.update(more)
+
+    def plot(outdir: Path) -> list[Path]:
+        from rotorkin.drives.eccentric_cam import figures as figures_eccentric_cam
+
+        grid = angle_grid(ec.period(params), 1441)
+        state = reactor_state(reactor, inertia, speed, grid)
+        return figures_eccentric_cam.plot_all(
+            params, Path(outdir), reactor=reactor, beta=grid, state=state, summary=summary
+        )
+
+    return StudyResult(
+        drive_type="eccentric_cam",
+        title="Opposed-piston reactor, double eccentric cams",
+        summary=summary,
+        columns=columns,
+        column_docs={**_DOCS, **more_docs},
+        headline=HEADLINE,
+        plot=plot,
+    )

@@ -1,0 +1,430 @@
+"""Study of the differential vane pump driven by two rotating guide bars + gears (JHIT 2012).
+
+Config keys (SI, defaults filled by :mod:`rotorkin.io.config`; a key missing from
+``cfg`` takes the schema's default):
+``drive.lambda``, ``drive.gear_ratio``, ``drive.input_gear_ratio``,
+``drive.phase``, ``drive.driver``; ``machine.vanes_per_impeller``,
+``machine.vane_angle``, ``machine.hub_radius``, ``machine.casing_radius``,
+``machine.axial_width``, ``machine.inertia_shaft``, ``machine.inertia_impeller_1``,
+``machine.inertia_impeller_2``, ``machine.speed_fluctuation``;
+``loads.impeller_torque_1``, ``loads.impeller_torque_2`` (the paper's constant
+torques, ``input_torque_*`` keys), ``loads.suction_pressure``,
+``loads.discharge_pressure`` (the pump, :mod:`rotorkin.machines.vane_pump`);
+``run.points``, ``run.speed``.
+
+Torque sign of the pump keys (``shaft_torque_*``, ``mean_torque_Nm``,
+``indicated_work_J``): positive when the machine drives the input shaft, so a
+pump's are negative (the motor supplies their opposite). The paper's
+``input_torque_*`` keys keep the paper's sense: the torque input gear 1 needs
+against the resisting torques M7, M8.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from rotorkin.analysis import flywheel as fw
+from rotorkin.analysis import torque as tq
+from rotorkin.analysis.timing import shaft_speed
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.machines import vane_pump as vp
+from rotorkin.studies import StudyResult
+from rotorkin.studies.helpers import angle_grid, build_params, time_domain
+
+__all__ = ["evaluate", "drive_params", "HEADLINE"]
+
+#: Summary keys printed by the command line, in order, with what each means (one line).
+HEADLINE = {
+    "driver": "which member of gear 1 drives: crank or guide bar",
+    "vane_angle_deg": "vane angle gamma_0 of an impeller (section 3)",
+    "relative_angle_swing_deg": "swing of the angle between the two impellers",
+    "impeller_speed_ratio_min": "slowest impeller speed over the driving member's",
+    "impeller_speed_ratio_max": "fastest impeller speed over the driving member's",
+    "input_torque_min_Nm": "paper eq. 7, constant M7, M8: least torque gear 1 needs",
+    "input_torque_max_Nm": "paper eq. 7, constant M7, M8: most torque gear 1 needs",
+    "input_torque_mean_Nm": "paper eq. 7, constant M7, M8: mean torque gear 1 needs",
+    "displacement_cm3_per_rev": "volume delivered per input-shaft turn",
+    "flow_mean_l_per_min": "mean delivered flow at the run speed",
+    "flow_ripple": "(max - min) / mean of the delivered flow",
+    "mean_torque_Nm": "ideal ports: mean torque on the shaft (- : the motor drives)",
+    "torque_ripple": "ideal ports: (max - min) / |mean| of the shaft torque",
+    "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+}
+
+#: Samples per period used for extremes and peaks (independent of run.points).
+_PEAK_SAMPLES = 20_001
+
+
+def _deg(x) -> float:
+    return float(np.degrees(x))
+
+
+def _summary(params: gb.GuideBar, m7: float, m8: float) -> dict:
+    lam, u, i12, phase = (
+        float(params.lam),
+        float(params.gear_ratio),
+        float(params.input_gear_ratio),
+        float(params.phase),
+    )
+    other = "guide" if params.driver == "crank" else "crank"
+    rmin, rmax = (float(v) for v in gb.speed_ratio_range(lam, u, params.driver))
+    # the two equal-speed points, as driving angles of mechanism 1 in [0, 2 pi), ascending
+    t_a, t_b = sorted(float(np.mod(t, 2.0 * np.pi)) for t in gb.equal_speed_angles(phase))
+    ratio_a = float(gb.driven_angle(lam, t_a, params.driver)[1]) / u
+    ratio_b = float(gb.driven_angle(lam, t_b, params.driver)[1]) / u
+    fine = np.linspace(0.0, gb.period(params), _PEAK_SAMPLES)
+    _, d1, d2, d3 = gb.impeller_angles(params, fine)
+    torque = m7 * d1[0] + m8 * d1[1]
+    mean = (m7 + m8) / (u * i12)  # each impeller's speed ratio averages 1/(u i12)
+    tmin, tmax = float(np.min(torque)), float(np.max(torque))
+    return {
+        "driver": params.driver,
+        "lambda": lam,
+        "gear_ratio": u,
+        "input_gear_ratio": i12,
+        "phase_deg": _deg(phase),
+        "vane_angle_deg": _deg(gb.vane_angle(lam, u, phase, params.driver)),
+        "vane_angle_crank_driven_deg": _deg(gb.vane_angle(lam, u, phase, "crank")),
+        "vane_angle_guide_driven_deg": _deg(gb.vane_angle(lam, u, phase, "guide")),
+        "vane_angle_other_driver_deg": _deg(gb.vane_angle(lam, u, phase, other)),
+        "relative_angle_swing_deg": _deg(gb.relative_angle_swing(params)),
+        "impeller_speed_ratio_min": rmin,
+        "impeller_speed_ratio_max": rmax,
+        "impeller_speed_ratio_mean": 1.0 / u,
+        "equal_speed_driving_angle_1_deg": _deg(t_a),
+        "equal_speed_driving_angle_2_deg": _deg(t_b),
+        "equal_speed_input_angle_1_deg": _deg(t_a * i12),
+        "equal_speed_input_angle_2_deg": _deg(t_b * i12),
+        "equal_speed_ratio_1": ratio_a,
+        "equal_speed_ratio_2": ratio_b,
+        "input_torque_min_Nm": tmin,
+        "input_torque_max_Nm": tmax,
+        "input_torque_mean_Nm": mean,
+        "input_torque_fluctuation_Nm": tmax - tmin,
+        "input_torque_fluctuation_ratio": (tmax - tmin) / abs(mean) if mean != 0.0 else np.nan,
+        "impeller_speed_ratio_input_min": rmin / i12,
+        "impeller_speed_ratio_input_max": rmax / i12,
+        "impeller_accel_peak_per_rad": float(np.max(np.abs(d2))),
+        "impeller_jerk_peak_per_rad2": float(np.max(np.abs(d3))),
+    }
+
+
+_DOCS = {
+    "theta_deg": "Input gear 1 angle theta; the driving members turn at theta / i12.",
+    "driving_angle_1_deg": "Driving angle x_1 = theta / i12 of mechanism 1 (crank or guide bar), "
+    "from the line guide pivot -> crank pivot.",
+    "driving_angle_2_deg": "Driving angle x_2 = Sigma + theta / i12 of mechanism 2.",
+    "impeller1_angle_deg": "Impeller 1 angle q_1 = f(x_1)/u, positive in its mean sense of "
+    "turning.",
+    "impeller2_angle_deg": "Impeller 2 angle q_2 = f(x_2)/u, positive in its mean sense of "
+    "turning.",
+    "relative_angle_deg": "Angle between the impellers q_2 - q_1; a chamber angle is this plus a "
+    "constant of the vane layout.",
+    "impeller1_speed_ratio": "dq_1/dtheta, impeller 1 speed over input gear speed (eq. 1 or 3 "
+    "over i12).",
+    "impeller2_speed_ratio": "dq_2/dtheta, impeller 2 speed over input gear speed.",
+    "impeller1_accel_per_rad": "d2q_1/dtheta2, impeller 1 acceleration over input speed squared.",
+    "impeller2_accel_per_rad": "d2q_2/dtheta2, impeller 2 acceleration over input speed squared.",
+    "impeller1_jerk_per_rad2": "d3q_1/dtheta3, impeller 1 jerk over input speed cubed.",
+    "impeller2_jerk_per_rad2": "d3q_2/dtheta3, impeller 2 jerk over input speed cubed.",
+    "input_torque_Nm": "Torque M1 on input gear 1 by virtual work, M7 dq_1/dtheta + "
+    "M8 dq_2/dtheta (eq. 7, 8).",
+}
+
+
+def _columns(params: gb.GuideBar, m7: float, m8: float, points: int) -> dict:
+    theta = angle_grid(gb.period(params), points)
+    x = gb.driving_angles(params, theta)
+    q, d1, d2, d3 = gb.impeller_angles(params, theta)
+    cols = {"theta_deg": np.degrees(theta)}
+    for k in (0, 1):
+        cols[f"driving_angle_{k + 1}_deg"] = np.degrees(x[k])
+    for k in (0, 1):
+        cols[f"impeller{k + 1}_angle_deg"] = np.degrees(q[k])
+    cols["relative_angle_deg"] = np.degrees(q[1] - q[0])
+    for name, arr in (("speed_ratio", d1), ("accel_per_rad", d2), ("jerk_per_rad2", d3)):
+        for k in (0, 1):
+            cols[f"impeller{k + 1}_{name}"] = arr[k]
+    cols["input_torque_Nm"] = m7 * d1[0] + m8 * d1[1]
+    return cols
+
+
+# --------------------------------------------------------------------------------------------
+# the pump
+# --------------------------------------------------------------------------------------------
+_M3_TO_L_PER_MIN = 60.0e3
+
+_PUMP_DOCS = {
+    "chamber_a_volume_cm3": "Volume of each chamber A (from a vane of impeller 1 to the next "
+    "vane of impeller 2; chambers 1, 3, ...).",
+    "chamber_b_volume_cm3": "Volume of each chamber B (from a vane of impeller 2 to the next "
+    "vane of impeller 1; chambers 2, 4, ...).",
+    "chamber_a_dvolume_cm3_per_rad": "dV/dtheta of a chamber A; negative while it discharges.",
+    "chamber_b_dvolume_cm3_per_rad": "dV/dtheta of a chamber B; negative while it discharges.",
+    "chamber_a_pressure_bar": "Pressure in a chamber A, ideal ports: discharge while it "
+    "shrinks, suction while it grows.",
+    "chamber_b_pressure_bar": "Pressure in a chamber B, ideal ports.",
+    "flow_l_per_min": "Delivered flow, sum over the shrinking chambers of -dV/dt at the shaft "
+    "speed.",
+    "impeller1_torque_Nm": "Torque of the chamber pressures on impeller 1, sum p_j dV_j/dq_1, "
+    "positive in its sense of rotation.",
+    "impeller2_torque_Nm": "Torque of the chamber pressures on impeller 2, sum p_j dV_j/dq_2.",
+    "shaft_torque_Nm": "Torque of the fluid on input gear 1 by virtual work, sum M_i dq_i/dtheta; "
+    "positive when it drives the shaft (a pump's is negative).",
+    "inertia_torque_Nm": "Torque the input shaft spends on the inertia of shaft and impellers, "
+    "d(KE)/dtheta.",
+    "shaft_torque_with_inertia_Nm": "shaft_torque_Nm minus inertia_torque_Nm: the net torque the "
+    "machine puts on the input shaft (the motor supplies its opposite).",
+    "equivalent_inertia_kgm2": "Inertia seen at the input shaft, "
+    "J_shaft + sum J_i (dq_i/dtheta)^2.",
+}
+
+
+def _nonnegative(key: str, value: float, unit: str) -> float:
+    v = float(value)
+    if not (np.isfinite(v) and v >= 0.0):
+        raise ParameterError(key, f"{v:g} {unit}", f"{key.split('.')[-1]} >= 0 {unit}")
+    return v
+
+
+def _defaults(cfg: dict):
+    """Machine, loads and run sections with the schema's defaults for missing keys."""
+    from rotorkin.core.schema import RunSection
+    from rotorkin.drives.guide_bar.schema import GuideBarLoads, VanePumpMachine
+
+    machine = {**VanePumpMachine().model_dump(), **(cfg.get("machine") or {})}
+    loads = {**GuideBarLoads().model_dump(), **(cfg.get("loads") or {})}
+    run = {**RunSection().model_dump(), **(cfg.get("run") or {})}
+    return machine, loads, run
+
+
+def _inertias(machine: dict) -> tuple[float, tuple[float, float]]:
+    js = _nonnegative("machine.inertia_shaft", machine["inertia_shaft"], "kg*m^2")
+    j1 = _nonnegative("machine.inertia_impeller_1", machine["inertia_impeller_1"], "kg*m^2")
+    j2 = _nonnegative("machine.inertia_impeller_2", machine["inertia_impeller_2"], "kg*m^2")
+    return js, (j1, j2)
+
+
+def pump_state(pump: vp.VanePump, ports: vp.PortPressures, inertia, speed, theta) -> dict:
+    """Chambers, pressures, flow and torques of the pump at the input angles ``theta``.
+
+    Parameters
+    ----------
+    pump : VanePump
+    ports : PortPressures
+    inertia : (float, (float, float))
+        ``J_shaft`` and the impeller inertias [kg*m^2].
+    speed : float or sequence of float
+        ``run.speed`` [rad/s] (constant or a profile over one period).
+    theta : ndarray, shape (n,)
+        Input angles [rad].
+
+    Returns
+    -------
+    dict of ndarray
+        ``V``, ``dV``, ``p`` (2 Z, n); ``M`` (2, n); ``shaft``, ``inertia``,
+        ``net``, ``J_eq``, ``flow``, ``omega``, ``omega_dot`` (n,).
+    """
+    period = gb.period(pump.drive)
+    _, dq, d2q, _ = gb.impeller_angles(pump.drive, theta)
+    V, dV = vp.chamber_volumes(pump, theta)
+    p = vp.chamber_pressures(dV, ports)
+    M = tq.member_torques(p, vp.volume_derivatives_dq(pump, theta))
+    shaft = tq.shaft_torque_from_members(M, dq)
+    omega, omega_dot, _ = shaft_speed(theta, speed, period)
+    js, jm = inertia
+    t_in = tq.inertia_torque(js, jm, dq, d2q, omega, omega_dot)
+    return {
+        "V": V,
+        "dV": dV,
+        "p": p,
+        "M": M,
+        "shaft": shaft,
+        "inertia": t_in,
+        "net": shaft - t_in,
+        "J_eq": tq.equivalent_inertia(js, jm, dq),
+        "flow": vp.flow_rate(pump, theta, omega),
+        "omega": omega,
+        "omega_dot": omega_dot,
+    }
+
+
+def _pump_summary(pump, ports, inertia, speed, coefficient) -> dict:
+    drive = pump.drive
+    period = gb.period(drive)
+    i12 = float(drive.input_gear_ratio)
+    fine = np.linspace(0.0, period, _PEAK_SAMPLES)
+    st = pump_state(pump, ports, inertia, speed, fine)
+    disp = vp.displacement(pump)
+    k = pump.volume_per_angle
+    phi_min, phi_max = pump.chamber_angle_range
+    dp = float(ports.discharge_pressure) - float(ports.suction_pressure)
+    # every chamber takes in Delta V at p_s and delivers it at p_d once per period (exact)
+    work_period = -dp * disp["per_period"]
+    mean_torque = work_period / period
+    omega_mean = float(np.mean(st["omega"][:-1]))
+    # time-averaged flow: volume per period over the time of a period
+    dt = 1.0 / st["omega"]
+    t_period = float(np.trapezoid(dt, fine))
+    flow_mean = disp["per_period"] / t_period
+    # flywheel: net torque at the mean speed (member inertia included), J_eq already present
+    _, dq, d2q, _ = gb.impeller_angles(drive, fine)
+    js, jm = inertia
+    net_const = st["shaft"] - tq.inertia_torque(js, jm, dq, d2q, omega_mean, 0.0)
+    delta_e = float(fw.energy_fluctuation(net_const, fine))
+    j_mean = float(np.trapezoid(st["J_eq"], fine) / period)
+    cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
+    out = {
+        "vanes_per_impeller": int(pump.vanes_per_impeller),
+        "chambers": pump.n_chambers,
+        "pump_vane_angle_deg": float(np.degrees(pump.vane_angle)),
+        "pump_vane_angle_max_deg": float(
+            np.degrees(vp.vane_angle_max(drive, pump.vanes_per_impeller))
+        ),
+        "chamber_angle_min_deg": float(np.degrees(phi_min)),
+        "chamber_angle_max_deg": float(np.degrees(phi_max)),
+        "chamber_volume_min_cm3": k * phi_min * 1e6,
+        "chamber_volume_max_cm3": k * phi_max * 1e6,
+        "displacement_cm3_per_rev": disp["per_input_turn"] * 1e6,
+        "displacement_per_period_cm3": disp["per_period"] * 1e6,
+        "displacement_per_impeller_rev_cm3": disp["per_impeller_rev"] * 1e6,
+        "flow_mean_l_per_min": flow_mean * _M3_TO_L_PER_MIN,
+        "flow_max_l_per_min": float(np.max(st["flow"])) * _M3_TO_L_PER_MIN,
+        "flow_min_l_per_min": float(np.min(st["flow"])) * _M3_TO_L_PER_MIN,
+        "flow_ripple": vp.flow_ripple(st["flow"], dt),
+        "pressure_rise_bar": dp / 1e5,
+        "hydraulic_power_W": dp * flow_mean,
+        "indicated_work_J": work_period / i12,
+        "indicated_work_per_period_J": work_period,
+        "mean_torque_Nm": mean_torque,
+        "shaft_torque_min_Nm": float(np.min(st["shaft"])),
+        "shaft_torque_max_Nm": float(np.max(st["shaft"])),
+        "torque_ripple": float(tq.torque_ripple(st["shaft"])),
+        "shaft_torque_with_inertia_min_Nm": float(np.min(st["net"])),
+        "shaft_torque_with_inertia_max_Nm": float(np.max(st["net"])),
+        "torque_ripple_with_inertia": float(tq.torque_ripple(st["net"])),
+        "equivalent_inertia_mean_kgm2": j_mean,
+        "energy_fluctuation_J": delta_e,
+        "speed_fluctuation_without_flywheel": cs,
+        "speed_fluctuation": float(coefficient),
+        "flywheel_inertia_kgm2": float(
+            fw.flywheel_inertia(delta_e, omega_mean, coefficient, j_mean)
+        ),
+    }
+    motion = gb.motion(drive, fine)
+    out.update(time_domain(motion, speed, ("impeller1", "impeller2"), period)[2])
+    return out
+
+
+def _pump_columns(pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
+    st = pump_state(pump, ports, inertia, speed, theta)
+    cols = {}
+    for j, tag in ((0, "a"), (1, "b")):
+        cols[f"chamber_{tag}_volume_cm3"] = st["V"][j] * 1e6
+        cols[f"chamber_{tag}_dvolume_cm3_per_rad"] = st["dV"][j] * 1e6
+        cols[f"chamber_{tag}_pressure_bar"] = st["p"][j] / 1e5
+    cols["flow_l_per_min"] = st["flow"] * _M3_TO_L_PER_MIN
+    cols["impeller1_torque_Nm"] = st["M"][0]
+    cols["impeller2_torque_Nm"] = st["M"][1]
+    cols["shaft_torque_Nm"] = st["shaft"]
+    cols["inertia_torque_Nm"] = st["inertia"]
+    cols["shaft_torque_with_inertia_Nm"] = st["net"]
+    cols["equivalent_inertia_kgm2"] = st["J_eq"]
+    tcols, tdocs, _, _ = time_domain(gb.motion(pump.drive, theta), speed,
+                                     ("impeller1", "impeller2"), gb.period(pump.drive))  # fmt: skip
+    cols.update(tcols)
+    return cols, {**_PUMP_DOCS, **tdocs}
+
+
+def drive_params(cfg: dict) -> gb.GuideBar:
+    """The drive's parameters from a validated config (SI); errors name the config keys."""
+    d = cfg["drive"]
+    params = build_params(
+        gb.GuideBar,
+        "drive",
+        {
+            "lam": d["lambda"],
+            "gear_ratio": d["gear_ratio"],
+            "input_gear_ratio": d.get("input_gear_ratio", 1.0),
+            "phase": d.get("phase", np.pi),
+            "driver": d.get("driver", "crank"),
+        },
+        aliases={"lam": "lambda"},
+    )
+    return params
+
+
+def evaluate(cfg: dict) -> StudyResult:
+    """Run the guide-bar pump study on a validated config (SI values).
+
+    Parameters
+    ----------
+    cfg : dict
+        ``cfg["drive"]``: ``lambda``, ``gear_ratio``, ``input_gear_ratio``,
+        ``phase`` [rad], ``driver``; ``cfg["machine"]``: the pump geometry and
+        inertias; ``cfg["loads"]``: ``impeller_torque_1``, ``impeller_torque_2``
+        [N*m], ``suction_pressure``, ``discharge_pressure`` [Pa];
+        ``cfg["run"]``: ``points``, ``speed`` [rad/s]. Missing machine, loads
+        and run keys take the schema's defaults.
+
+    Returns
+    -------
+    StudyResult
+        Summary keys: see :data:`HEADLINE`, ``docs/drives/guide_bar.md`` and
+        ``docs/machines/vane_pump.md``.
+    """
+    params = drive_params(cfg)
+    machine, loads, run = _defaults(cfg)
+    m7 = float(loads["impeller_torque_1"])
+    m8 = float(loads["impeller_torque_2"])
+    pump = build_params(
+        vp.VanePump,
+        "machine",
+        {
+            "drive": params,
+            "vanes_per_impeller": machine["vanes_per_impeller"],
+            "vane_angle": machine["vane_angle"],
+            "hub_radius": machine["hub_radius"],
+            "casing_radius": machine["casing_radius"],
+            "axial_width": machine["axial_width"],
+        },
+    )
+    ports = build_params(
+        vp.PortPressures,
+        "loads",
+        {
+            "suction_pressure": loads["suction_pressure"],
+            "discharge_pressure": loads["discharge_pressure"],
+        },
+    )
+    inertia = _inertias(machine)
+    speed = run["speed"]
+    summary = _summary(params, m7, m8)
+    summary.update(_pump_summary(pump, ports, inertia, speed, float(machine["speed_fluctuation"])))
+    columns = _columns(params, m7, m8, run["points"])
+    theta = angle_grid(gb.period(params), run["points"])
+    pump_cols, pump_docs = _pump_columns(pump, ports, inertia, speed, theta)
+    columns.update(pump_cols)
+
+    def plot(outdir: Path) -> list[Path]:
+        from rotorkin.drives.guide_bar import figures as figures_guide_bar
+
+        grid = angle_grid(gb.period(params), 1441)
+        state = pump_state(pump, ports, inertia, speed, grid)
+        return figures_guide_bar.plot_all(
+            params, m7, m8, Path(outdir), pump=pump, ports=ports, theta=grid, state=state,
+            summary=summary,
+        )  # fmt: skip
+
+    return StudyResult(
+        drive_type="guide_bar",
+        title="Differential vane pump, rotating guide-bar + gear drive",
+        summary=summary,
+        columns=columns,
+        column_docs={**_DOCS, **pump_docs},
+        headline=HEADLINE,
+        plot=plot,
+    )

@@ -1,0 +1,583 @@
+"""Rhomboid lever-cam converter of a rotary-blade engine.
+
+Zhuravlev, Donchenko, Sherstyukov, "Synthesis of the cam profile of the
+lever-cam motion converter of a rotary-blade engine with external heat supply",
+Izvestiya TulGU, 2012 (``papers/rhomboid_cam.md``).
+
+Two blade pairs turn about the shaft axis O at angles ``phi_1`` and ``phi_2``;
+the chambers follow the angle between them, ``psi = phi_1 - phi_2``. A rhombus
+ABCD of side ``2l`` (``link_length``), centred on O, joins the blade arms
+(the blade axes pass through the midpoints of opposite sides); rollers at its
+vertices roll on a fixed cam whose pitch curve, in polar coordinates about O,
+is ``rho(alpha)``. The diagonal OA turns uniformly with the output shaft at
+the angle ``alpha`` (the input angle of every function here).
+
+Conventions (the paper is silent or garbled):
+
+* Plane x, y; angles positive counter-clockwise from +x.
+* OA lies at ``alpha``, OB at ``alpha + pi/2``, OC at ``alpha + pi``,
+  OD at ``alpha + 3 pi/2``; ``rho = OA = 2l cos(psi/2)`` (eq. 3) and
+  ``OB = 2l sin(psi/2)`` (eq. 4; the OCR prints cos again, eq. 7 needs sin).
+* Blade pair 1 lies through the midpoints of AB and CD, at
+  ``phi_1 = alpha + psi/2``; pair 2 through the midpoints of DA and BC, at
+  ``phi_2 = alpha - psi/2`` (eq. 21 with its constants taken as zero).
+* The law ``psi(alpha)`` is the odd-harmonic series of eq. 13 whose first
+  harmonic is fixed by eq. 15, so ``psi(0) = psi_max = pi - psi_min`` and
+  ``psi(+-pi/2) = psi_min``. Eq. 19 writes the profile as ``2l sin(psi/2)``:
+  by eq. 10 that is the same cam turned by a quarter turn (see
+  :func:`profile_radius_eq19`).
+* Torques: ``M_1`` acts on blade pair 1 and ``M_2 = -M_1`` on pair 2 (eq. 24);
+  positive work is done *by* the blades on the output shaft.
+
+All functions broadcast over the input angle; the harmonic coefficients
+``a = (a3, a5, ...)`` and ``b = (b3, b5, ...)`` are 1-d sequences [rad].
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorkin.core.angles import fmt_deg, fmt_mm
+from rotorkin.core.errors import ParameterError
+from rotorkin.core.motion import Motion, compose
+
+__all__ = [
+    "MAX_HARMONICS",
+    "RhomboidCam",
+    "blade_angles",
+    "blade_arm_points",
+    "blade_torque",
+    "check_law",
+    "first_harmonic",
+    "indicator_work",
+    "indicator_work_closed_form",
+    "mean_shaft_torque",
+    "motion",
+    "period",
+    "profile_curvature",
+    "profile_point",
+    "profile_radius",
+    "profile_radius_eq19",
+    "psi_extremes",
+    "psi_is_monotone",
+    "psi_law",
+    "psi_stationary_points",
+    "psi_total_variation",
+    "rhombus_vertices",
+    "shaft_torque",
+    "stroke_direction",
+]
+
+#: Largest number of higher harmonics accepted in ``a`` and in ``b`` each.
+MAX_HARMONICS = 20
+
+_HALF_PI = 0.5 * np.pi
+
+
+# --- the law psi(alpha) -------------------------------------------------------------------
+def _higher(a, b):
+    """Orders k = 3, 5, ... and the padded coefficient vectors a_k, b_k (k >= 3)."""
+    a = np.asarray(a, dtype=float).reshape(-1)
+    b = np.asarray(b, dtype=float).reshape(-1)
+    n = max(a.size, b.size)
+    a = np.pad(a, (0, n - a.size))
+    b = np.pad(b, (0, n - b.size))
+    k = 2.0 * np.arange(1, n + 1) + 1.0
+    return k, a, b
+
+
+def first_harmonic(psi_min, a=(), b=()):
+    """First-harmonic coefficients fixed by the end conditions (eq. 15).
+
+    ``a_1 + a_3 + a_5 + ... = pi/2 - psi_min`` and ``b_1 + 3 b_3 + 5 b_5 + ... = 0``.
+
+    Parameters
+    ----------
+    psi_min : array_like
+        Smallest angle between the blade axes [rad] (``psi(+-pi/2)``).
+    a, b : sequence of float
+        Higher cosine and sine coefficients ``a3, a5, ...`` and ``b3, b5, ...`` [rad].
+
+    Returns
+    -------
+    (a_1, b_1) : ndarray, float
+        [rad]; ``a_1`` has the shape of ``psi_min``.
+    """
+    k, ak, bk = _higher(a, b)
+    a1 = _HALF_PI - np.asarray(psi_min, dtype=float) - ak.sum()
+    b1 = -float(np.dot(k, bk))
+    return a1, b1
+
+
+def psi_law(alpha, psi_min, a=(), b=()):
+    """Angle between the blade axes and its derivatives (eq. 13, 14, 15).
+
+    ``psi = pi/2 + sum_{k odd} (a_k cos 2k alpha + b_k sin 2k alpha)`` with
+    ``a_1``, ``b_1`` from :func:`first_harmonic`. With ``a = b = ()`` this is
+    the patented law of eq. 16, ``psi = pi/2 + (pi/2 - psi_min) cos 2 alpha``;
+    ``psi_min = pi/2`` gives the constant law ``psi = pi/2``.
+
+    Parameters
+    ----------
+    alpha : array_like
+        Output-shaft angle (angle of OA) [rad].
+    psi_min : array_like
+        [rad], broadcast with ``alpha``.
+    a, b : sequence of float
+        Higher harmonics ``a3, a5, ...``, ``b3, b5, ...`` [rad].
+
+    Returns
+    -------
+    (psi, dpsi, d2psi, d3psi) : tuple of ndarray
+        ``psi`` [rad] and its derivatives with respect to ``alpha`` [rad/rad^n].
+    """
+    alpha = np.asarray(alpha, dtype=float)
+    k, ak, bk = _higher(a, b)
+    a1, b1 = first_harmonic(psi_min, a, b)
+    w = 2.0 * k  # angular frequencies of the higher harmonics
+    arg = alpha[..., None] * w  # the harmonic matrix, shape (..., K)
+    c, s = np.cos(arg), np.sin(arg)
+    hc = c @ ak + s @ bk  # sum (a_k cos + b_k sin)
+    hs = c @ (w * bk) - s @ (w * ak)  # first derivative
+    hc2 = c @ (w**2 * ak) + s @ (w**2 * bk)
+    hs3 = c @ (w**3 * bk) - s @ (w**3 * ak)
+    c1, s1 = np.cos(2.0 * alpha), np.sin(2.0 * alpha)
+    f0 = a1 * c1 + b1 * s1
+    f1 = b1 * c1 - a1 * s1
+    psi = _HALF_PI + f0 + hc
+    return psi, 2.0 * f1 + hs, -4.0 * f0 - hc2, -8.0 * f1 - hs3
+
+
+def _scale(psi_min, a, b, order):
+    """Upper bound of ``|d^n psi / d alpha^n|`` (sum of |coefficients| times (2k)^n)."""
+    k, ak, bk = _higher(a, b)
+    a1, b1 = first_harmonic(psi_min, a, b)
+    w = np.concatenate(([2.0], 2.0 * k))
+    amp = np.concatenate(([np.max(np.abs(a1)) + abs(b1)], np.abs(ak) + np.abs(bk)))
+    return float(np.sum(w**order * amp))
+
+
+def period(params) -> float:
+    """Period of the motion in the output-shaft angle [rad]: pi.
+
+    ``psi`` has period pi (eq. 9); the blade angles ``alpha +- psi/2`` repeat
+    after pi up to the uniform advance of pi (one half turn of the shaft
+    carries each blade pair half a turn and through one full chamber cycle).
+    """
+    return float(np.pi)
+
+
+def blade_angles(alpha, psi_min, a=(), b=()):
+    """Angles of the two blade pairs and their derivatives (eq. 21, 22).
+
+    ``phi_1 = alpha + psi/2``, ``phi_2 = alpha - psi/2`` (eq. 21 with zero
+    constants), so ``phi_1' = 1 + psi'/2``, ``phi_2' = 1 - psi'/2`` (eq. 22).
+
+    Returns
+    -------
+    (phi, dphi, d2phi, d3phi) : tuple of ndarray, shape (2, ...)
+        Pair 1 then pair 2 [rad, rad/rad^n].
+    """
+    p = psi_law(alpha, psi_min, a, b)
+    alpha = np.asarray(alpha, dtype=float)
+    base = (alpha + 0.0 * p[0], np.ones_like(p[0]), np.zeros_like(p[0]), np.zeros_like(p[0]))
+    return tuple(np.stack([u + 0.5 * v, u - 0.5 * v]) for u, v in zip(base, p, strict=True))
+
+
+def motion(params, theta) -> Motion:
+    """Motion of blade pairs 1 and 2 against the output-shaft angle ``theta = alpha``.
+
+    ``Motion.relative`` is ``phi_2 - phi_1 = -psi``.
+    """
+    theta = np.asarray(theta, dtype=float)
+    q, d1, d2, d3 = blade_angles(theta, params.psi_min, params.a, params.b)
+    return Motion(theta, q, d1, d2, d3, members=("blade pair 1", "blade pair 2"), unit="rad")
+
+
+# --- the cam and the rhombus --------------------------------------------------------------
+def profile_radius(alpha, link_length, psi_min, a=(), b=()):
+    """Polar radius of the cam pitch curve and its derivatives (eq. 3).
+
+    ``rho(alpha) = 2l cos(psi(alpha)/2)``: the distance of roller A from O when
+    OA lies at ``alpha``. Derivatives by the chain rule (exact).
+
+    Parameters
+    ----------
+    alpha : array_like
+        Polar angle [rad].
+    link_length : array_like
+        Side ``2l`` of the rhombus [m].
+    psi_min, a, b
+        The law, see :func:`psi_law`.
+
+    Returns
+    -------
+    (rho, drho, d2rho, d3rho) : tuple of ndarray
+        [m, m/rad^n].
+    """
+    L = np.asarray(link_length, dtype=float)
+    p = psi_law(alpha, psi_min, a, b)
+    h = 0.5 * p[0]
+    c, s = np.cos(h), np.sin(h)
+    return compose((L * c, -0.5 * L * s, -0.25 * L * c, 0.125 * L * s), p)
+
+
+def profile_radius_eq19(alpha, link_length, psi_min, a=(), b=()):
+    """Pitch-curve radius in the form printed as eq. 19: ``2l sin(psi(alpha)/2)`` [m].
+
+    This is ``OB`` of :func:`rhombus_vertices` as a function of the angle of
+    OA, and by eq. 10 it equals ``profile_radius(alpha + pi/2)``: the curve of
+    eq. 19 is the cam of eq. 3 turned by a quarter turn (clockwise; for the
+    first-harmonic law, of period pi in alpha, either way). We use eq. 3.
+    """
+    L = np.asarray(link_length, dtype=float)
+    return L * np.sin(0.5 * psi_law(alpha, psi_min, a, b)[0])
+
+
+def profile_point(alpha, link_length, psi_min, a=(), b=()):
+    """Cartesian point of the pitch curve and its first two derivatives.
+
+    ``x = rho cos alpha``, ``y = rho sin alpha`` with ``rho`` of eq. 3.
+
+    Returns
+    -------
+    (p, dp, d2p) : tuple of ndarray, shape (2, ...)
+        ``(x, y)`` [m] and derivatives with respect to ``alpha`` [m/rad^n].
+    """
+    alpha = np.asarray(alpha, dtype=float)
+    r0, r1, r2, _ = profile_radius(alpha, link_length, psi_min, a, b)
+    c, s = np.cos(alpha), np.sin(alpha)
+    p = np.stack([r0 * c, r0 * s])
+    dp = np.stack([r1 * c - r0 * s, r1 * s + r0 * c])
+    d2p = np.stack([(r2 - r0) * c - 2.0 * r1 * s, (r2 - r0) * s + 2.0 * r1 * c])
+    return p, dp, d2p
+
+
+def profile_curvature(alpha, link_length, psi_min, a=(), b=()):
+    """Signed curvature of the cam pitch curve [1/m] (not in the paper).
+
+    ``kappa = (rho^2 + 2 rho'^2 - rho rho'') / (rho^2 + rho'^2)^(3/2)``:
+    positive where the curve is convex (centre of curvature on the side of O),
+    negative where concave; ``1/|kappa|`` is the radius of curvature, to be
+    compared with the roller radius for undercut.
+    """
+    r0, r1, r2, _ = profile_radius(alpha, link_length, psi_min, a, b)
+    return (r0**2 + 2.0 * r1**2 - r0 * r2) / (r0**2 + r1**2) ** 1.5
+
+
+def _unit(angle):
+    return np.stack([np.cos(angle), np.sin(angle)])
+
+
+def rhombus_vertices(alpha, link_length, psi_min, a=(), b=()):
+    """Roller centres A, B, C, D of the rhombus (eq. 3, 4).
+
+    ``A = 2l cos(psi/2) e(alpha)``, ``B = 2l sin(psi/2) e(alpha + pi/2)``,
+    ``C = -A``, ``D = -B`` with ``e(t) = (cos t, sin t)``. All four lie on the
+    pitch curve: ``B(alpha) = rho(alpha + pi/2) e(alpha + pi/2)`` by eq. 10.
+
+    Returns
+    -------
+    ndarray, shape (4, 2, ...)
+        Vertices A, B, C, D, each ``(x, y)`` [m].
+    """
+    alpha = np.asarray(alpha, dtype=float)
+    L = np.asarray(link_length, dtype=float)
+    psi = psi_law(alpha, psi_min, a, b)[0]
+    va = L * np.cos(0.5 * psi) * _unit(alpha)
+    vb = L * np.sin(0.5 * psi) * _unit(alpha + _HALF_PI)
+    return np.stack([va, vb, -va, -vb])
+
+
+def blade_arm_points(alpha, link_length, psi_min, a=(), b=()):
+    """Midpoints of the sides AB, BC, CD, DA: where the blade arms hold the rhombus.
+
+    They lie at distance ``l`` from O, at ``phi_1``, ``phi_2 + pi``,
+    ``phi_1 + pi`` and ``phi_2`` (pair 1, pair 2, pair 1, pair 2).
+
+    Returns
+    -------
+    ndarray, shape (4, 2, ...)
+        [m].
+    """
+    v = rhombus_vertices(alpha, link_length, psi_min, a, b)
+    return 0.5 * (v + np.roll(v, -1, axis=0))
+
+
+# --- stationary points and extremes of psi ------------------------------------------------
+def _grid(a, b):
+    n = max(len(np.atleast_1d(a)), len(np.atleast_1d(b)))
+    return np.linspace(0.0, np.pi, 4097 + 256 * n)
+
+
+def psi_stationary_points(psi_min, a=(), b=()):
+    """Angles in [0, pi] splitting ``psi`` into monotone pieces [rad].
+
+    The sign changes of ``psi'`` found on a dense grid and refined by
+    vectorised bisection to machine precision, together with 0, pi/2 and pi
+    (where eq. 6 makes ``psi' = 0``). Two sign changes closer than the grid
+    step (~ pi / (4096 + 256 K)) would be missed. ``psi_min`` must be scalar.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        Sorted, first 0, last pi.
+    """
+    psi_min = float(psi_min)
+    fixed = np.array([0.0, _HALF_PI, np.pi])
+    tol = 1e-13 * _scale(psi_min, a, b, 1)
+    if tol == 0.0:
+        return fixed
+    g = _grid(a, b)
+    d1 = psi_law(g, psi_min, a, b)[1]
+    sg = np.where(np.abs(d1) <= tol, 0.0, np.sign(d1))
+    i = np.flatnonzero(sg[:-1] * sg[1:] < 0.0)
+    lo, hi, flo = g[i], g[i + 1], sg[i]
+    for _ in range(64):
+        mid = 0.5 * (lo + hi)
+        same = np.sign(psi_law(mid, psi_min, a, b)[1]) == flo
+        lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
+    roots = np.concatenate([fixed, 0.5 * (lo + hi), g[sg == 0.0]])
+    roots = np.sort(roots[(roots >= 0.0) & (roots <= np.pi)])
+    keep = np.concatenate(([True], np.diff(roots) > 1e-10))
+    out = roots[keep]
+    out[-1] = np.pi
+    return out
+
+
+def psi_extremes(psi_min, a=(), b=()):
+    """Lowest and highest ``psi`` over a period, with where they occur.
+
+    From the stationary points (exact) and the dense grid.
+
+    Returns
+    -------
+    (psi_lo, alpha_lo, psi_hi, alpha_hi) : float
+        [rad]. For monotone laws ``psi_lo = psi_min`` at pi/2 and
+        ``psi_hi = pi - psi_min`` at 0.
+    """
+    x = np.concatenate([psi_stationary_points(psi_min, a, b), _grid(a, b)])
+    psi = psi_law(x, float(psi_min), a, b)[0]
+    i, j = int(np.argmin(psi)), int(np.argmax(psi))
+    return float(psi[i]), float(x[i]), float(psi[j]), float(x[j])
+
+
+def psi_total_variation(psi_min, a=(), b=()):
+    """Total travel ``integral_0^pi |psi'| d alpha`` of the chamber angle [rad].
+
+    Sum of ``|Delta psi|`` between consecutive stationary points; equals
+    ``2 (pi - 2 psi_min)`` for a law monotone between its extremes.
+    """
+    z = psi_stationary_points(psi_min, a, b)
+    return float(np.sum(np.abs(np.diff(psi_law(z, float(psi_min), a, b)[0]))))
+
+
+def psi_is_monotone(psi_min, a=(), b=(), rtol=1e-9):
+    """Whether ``psi`` falls monotonically from ``psi(0)`` to ``psi(pi/2)`` (and rises back).
+
+    True when the total travel over a period is ``2 (psi(0) - psi(pi/2))``.
+    Only then does the paper's eq. 34 (work independent of the profile) hold.
+    """
+    swing = np.pi - 2.0 * float(psi_min)
+    return bool(psi_total_variation(psi_min, a, b) <= 2.0 * swing * (1.0 + rtol) + 1e-15)
+
+
+def check_law(psi_min, a=(), b=()):
+    """Raise :class:`ParameterError` unless ``0 < psi(alpha) < pi`` for all alpha (eq. 10 needs it).
+
+    The error names ``a`` (or ``b`` when ``a`` is empty) and the extreme reached.
+    """
+    lo, alo, hi, ahi = psi_extremes(psi_min, a, b)
+    if lo > 0.0 and hi < np.pi:
+        return
+    name, coeffs = ("a", a) if len(a) else ("b", b)
+    value, where = (lo, alo) if lo <= 0.0 else (hi, ahi)
+    raise ParameterError(
+        name,
+        "[" + ", ".join(f"{float(c):.6g}" for c in coeffs) + "] rad",
+        f"harmonics a, b keeping 0 deg < psi(alpha) < 180 deg for every alpha (eq. 10, 13, 15); "
+        f"this law reaches psi = {fmt_deg(value)} at alpha = {fmt_deg(where)}",
+    )
+
+
+# --- torques and work ---------------------------------------------------------------------
+def stroke_direction(alpha, psi_min, a=(), b=()):
+    """+1 in expansion (``psi`` rising), -1 in compression (falling).
+
+    The sign of ``psi'``; where ``psi'`` vanishes, the stroke that begins
+    there: the sign of ``psi''``, and where that vanishes too (a flat
+    extreme, e.g. a dwell law) the sign of ``psi'`` a little later
+    (``1e-3 / (2 k_max)`` rad); 0 for the constant law.
+    """
+    alpha = np.asarray(alpha, dtype=float)
+    d1, d2 = psi_law(alpha, psi_min, a, b)[1:3]
+    k = _higher(a, b)[0]
+    later = psi_law(alpha + 1e-3 / (2.0 * (k[-1] if k.size else 1.0)), psi_min, a, b)[1]
+    out = np.sign(later)
+    out = np.where(np.abs(d2) > 1e-10 * _scale(psi_min, a, b, 2), np.sign(d2), out)
+    return np.where(np.abs(d1) > 1e-10 * _scale(psi_min, a, b, 1), np.sign(d1), out)
+
+
+def blade_torque(psi, stroke, torque_high, torque_low, psi_min):
+    """Torque on blade pair 1, linear in ``psi`` (eq. 29, as read from the OCR).
+
+    ``M_p = a - b (psi - pi/2)/(pi/2 - psi_min)`` in expansion (``stroke = +1``),
+    ``M_c = -a - b (psi - pi/2)/(pi/2 - psi_min)`` in compression (-1), with
+    ``a = (M1 - M2)/2``, ``b = (M1 + M2)/2``; ``stroke = 0`` gives their mean.
+    Thus ``M_p(psi_min) = M1``, ``M_p(psi_max) = -M2``, ``M_c(psi_max) = -M1``,
+    ``M_c(psi_min) = M2``: two parallel lines ``2a = M1 - M2`` apart. Pair 2
+    carries ``M_2 = -M_1`` (eq. 24). For ``psi_min = pi/2`` the ``b`` term is
+    taken as zero.
+
+    Parameters
+    ----------
+    psi : array_like
+        [rad].
+    stroke : array_like
+        +1, -1 or 0, see :func:`stroke_direction`.
+    torque_high, torque_low : array_like
+        ``M1``, ``M2`` [N m].
+    psi_min : array_like
+        [rad].
+
+    Returns
+    -------
+    ndarray
+        ``M_1`` [N m], all inputs broadcast.
+    """
+    h = _HALF_PI - np.asarray(psi_min, dtype=float)
+    x = np.where(h == 0.0, 0.0, (np.asarray(psi) - _HALF_PI) / np.where(h == 0.0, 1.0, h))
+    m1, m2 = np.asarray(torque_high, dtype=float), np.asarray(torque_low, dtype=float)
+    return np.asarray(stroke) * 0.5 * (m1 - m2) - 0.5 * (m1 + m2) * x
+
+
+def shaft_torque(alpha, psi_min, a, b, torque_high, torque_low):
+    """Torque the blades drive the output shaft with, ``dA/d alpha`` [N m] (eq. 23, 24).
+
+    By virtual work ``M_1 phi_1' + M_2 phi_2' = M_1 psi'`` with ``M_2 = -M_1``;
+    quasi-static, frictionless, rigid links.
+    """
+    psi, d1 = psi_law(alpha, psi_min, a, b)[:2]
+    s = stroke_direction(alpha, psi_min, a, b)
+    return blade_torque(psi, s, torque_high, torque_low, psi_min) * d1
+
+
+def indicator_work(psi_min, a, b, torque_high, torque_low, nodes=None):
+    """Indicator work of the blade torques over one period ``0 <= alpha <= pi`` [J] (eq. 26-28).
+
+    ``A = integral_0^pi M_1(psi, sign psi') psi' d alpha``, integrated over the
+    law itself: [0, pi] is split at the stationary points of ``psi`` and each
+    monotone piece is integrated by Gauss-Legendre (exact to rounding for
+    these trigonometric integrands). For a law monotone between its extremes
+    this equals ``Delta M Delta psi`` (eq. 31, 34); every extra back-and-forth
+    swing of ``psi`` adds ``(M1 - M2)`` times its travel, so in general
+    ``A = (M1 - M2) * psi_total_variation / 2`` - the paper's claim that the
+    work does not depend on the profile holds for monotone laws only.
+
+    Parameters
+    ----------
+    psi_min : float
+        Scalar [rad].
+    a, b : sequence of float
+        [rad].
+    torque_high, torque_low : array_like
+        ``M1``, ``M2`` [N m], broadcast together.
+    nodes : int, optional
+        Gauss-Legendre nodes per piece; default ``64 + 16 K``.
+
+    Returns
+    -------
+    ndarray
+        [J], shape of the broadcast torques.
+    """
+    z = psi_stationary_points(psi_min, a, b)
+    lo, hi = z[:-1], z[1:]
+    n = nodes or 64 + 16 * max(len(np.atleast_1d(a)), len(np.atleast_1d(b)))
+    x, w = np.polynomial.legendre.leggauss(n)
+    half = 0.5 * (hi - lo)[:, None]
+    al = 0.5 * (hi + lo)[:, None] + half * x
+    psi, d1 = psi_law(al, float(psi_min), a, b)[:2]
+    ends = psi_law(z, float(psi_min), a, b)[0]
+    s = np.sign(np.diff(ends))[:, None]
+    m1 = np.asarray(torque_high, dtype=float)[..., None, None]
+    m2 = np.asarray(torque_low, dtype=float)[..., None, None]
+    M = blade_torque(psi, s, m1, m2, psi_min)
+    return np.sum(M * d1 * w * half, axis=(-2, -1))
+
+
+def indicator_work_closed_form(psi_min, torque_high, torque_low):
+    """``A = Delta M Delta psi = (M1 - M2)(pi - 2 psi_min)`` [J] (eq. 31, 34).
+
+    Holds for laws monotone between their extremes only; see :func:`indicator_work`.
+    """
+    return (np.asarray(torque_high) - np.asarray(torque_low)) * (
+        np.pi - 2.0 * np.asarray(psi_min, dtype=float)
+    )
+
+
+def mean_shaft_torque(psi_min, a, b, torque_high, torque_low):
+    """Mean driving torque on the output shaft ``A / pi`` [N m] (the paper's ``M_dv``)."""
+    return indicator_work(psi_min, a, b, torque_high, torque_low) / np.pi
+
+
+# --- parameters ---------------------------------------------------------------------------
+def _coeff_tuple(name, values):
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(name, repr(values), "a list of numbers [rad]") from None
+    if arr.size == 0:
+        return ()
+    if arr.ndim != 1:
+        raise ParameterError(name, repr(values), "a flat list of numbers [rad]")
+    if arr.size > MAX_HARMONICS:
+        raise ParameterError(
+            name, f"{arr.size} coefficients", f"at most {MAX_HARMONICS} higher harmonics"
+        )
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(name, repr(list(values)), "finite numbers [rad]")
+    return tuple(float(v) for v in arr)
+
+
+@dataclass(frozen=True)
+class RhomboidCam:
+    """Parameters of the rhomboid lever-cam converter.
+
+    Attributes
+    ----------
+    link_length : float
+        Side ``2l`` of the rhombus [m], > 0.
+    psi_min : float
+        Smallest angle between the blade axes [rad], ``0 < psi_min < pi/2``;
+        ``psi_max = pi - psi_min``.
+    a, b : tuple of float
+        Higher harmonics ``a3, a5, ...`` and ``b3, b5, ...`` of eq. 13 [rad]
+        (at most :data:`MAX_HARMONICS` each); empty for the first-harmonic law
+        (eq. 16). They must keep ``0 < psi < pi``.
+    """
+
+    link_length: float
+    psi_min: float
+    a: tuple = ()
+    b: tuple = ()
+
+    def __post_init__(self):
+        L = float(self.link_length)
+        if not (np.isfinite(L) and L > 0.0):
+            raise ParameterError("link_length", fmt_mm(L), "link_length > 0 mm")
+        p = float(self.psi_min)
+        if not (np.isfinite(p) and 0.0 < p < _HALF_PI):
+            raise ParameterError(
+                "psi_min",
+                fmt_deg(p),
+                "0 deg < psi_min < 90 deg (psi_min = 90 deg is the constant law: no motion)",
+            )
+        a = _coeff_tuple("a", self.a)
+        b = _coeff_tuple("b", self.b)
+        object.__setattr__(self, "link_length", L)
+        object.__setattr__(self, "psi_min", p)
+        object.__setattr__(self, "a", a)
+        object.__setattr__(self, "b", b)
+        check_law(p, a, b)

@@ -1,0 +1,489 @@
+"""Study of the rotary-blade engine with the rhomboid lever-cam converter (Zhuravlev et al. 2012).
+
+Config keys (SI, defaults filled by :mod:`rotorkin.io.config`; keys missing from a
+hand-built ``cfg`` take the same defaults):
+
+* ``drive.link_length`` [m], ``drive.psi_min`` [rad], ``drive.a``, ``drive.b``
+  (higher harmonics a3, a5, ... and b3, b5, ... [rad]);
+* ``machine.*``: the rotary-blade engine (:class:`rotorkin.machines.rotary_blade.RotaryBlade`)
+  and ``machine.speed_fluctuation`` for the flywheel;
+* ``loads.torque_high``, ``loads.torque_low`` [N m] (the paper's linear model, eq. 29),
+  ``loads.pressure_model`` (``"linear"`` or ``"isothermal"``), ``loads.charge_pressure``
+  [Pa], ``loads.hot_temperature``, ``loads.cold_temperature`` [K];
+* ``run.points``, ``run.speed`` [rad/s] (constant or a profile over one period, pi).
+
+The drive's outputs (psi law, cam, the paper's indicator work per *half* turn
+``indicator_work_J``) are kept as they were; the machine adds chamber volumes,
+pressures, member and shaft torques, inertia and flywheel, with work per output-shaft
+*revolution* in ``indicated_work_J``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+
+from rotorkin.analysis import flywheel as fw
+from rotorkin.analysis import torque as at
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.machines import rotary_blade as rb
+from rotorkin.studies import StudyResult
+from rotorkin.studies.helpers import angle_grid, build_params, time_domain
+
+__all__ = [
+    "evaluate",
+    "drive_params",
+    "HEADLINE",
+    "Loads",
+    "State",
+    "machine_state",
+    "indicated_work_per_period",
+]
+
+#: Summary keys printed by the command line, in order, with what each means (one line).
+HEADLINE = {
+    "psi_min_deg": "smallest angle psi between the blade axes",
+    "psi_max_deg": "largest angle psi between the blade axes, pi - psi_min",
+    "profile_radius_min_mm": "smallest radius of the cam pitch curve",
+    "profile_radius_max_mm": "largest radius of the cam pitch curve",
+    "indicator_work_J": "paper's linear torque model (eq. 31): work per period (half turn)",
+    "mean_shaft_torque_Nm": "paper's linear torque model: mean output-shaft torque",
+    "blade_accel_coeff_max": "max |d2 phi_1 / d alpha2| of a blade pair",
+    "psi_monotone": "true if psi rises and falls once per period",
+    "pressure_model": "chamber model of the machine keys below: linear or isothermal",
+    "compression_ratio_geometric": "V_max / V_min of a chamber",
+    "displacement_cm3_per_rev": "swept volume of all chambers per output turn",
+    "indicated_work_J": "pressure model above: work per output-shaft turn",
+    "mean_torque_Nm": "pressure model above: mean output-shaft torque",
+    "torque_ripple": "pressure model above: (max - min) / mean shaft torque",
+    "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+}
+
+#: Samples per period used for the peaks of the kinematic coefficients (independent of run.points).
+_PEAK_SAMPLES = 20_001
+
+
+def _deg(x) -> float:
+    return float(np.degrees(x))
+
+
+def _summary(params, m1, m2) -> dict:
+    law = (params.psi_min, params.a, params.b)
+    L = params.link_length
+    a1, b1 = rc.first_harmonic(*law)
+    lo, alo, hi, ahi = rc.psi_extremes(*law)
+    fine = np.linspace(0.0, rc.period(params), _PEAK_SAMPLES)
+    _, d1, d2, d3 = rc.psi_law(fine, *law)
+    kappa = rc.profile_curvature(fine, L, *law)
+    convex, concave = float(np.max(kappa)), float(-np.min(kappa))
+    work = float(rc.indicator_work(*law, m1, m2))
+    return {
+        "psi_min_deg": _deg(params.psi_min),
+        "psi_max_deg": _deg(np.pi - params.psi_min),
+        "psi_lowest_deg": _deg(lo),
+        "psi_highest_deg": _deg(hi),
+        "psi_lowest_at_alpha_deg": _deg(alo),
+        "psi_highest_at_alpha_deg": _deg(ahi),
+        "psi_monotone": rc.psi_is_monotone(*law),
+        "psi_travel_per_period_deg": _deg(rc.psi_total_variation(*law)),
+        "a1_rad": float(a1),
+        "b1_rad": float(b1) + 0.0,  # no negative zero
+        "highest_harmonic": 2 * max(len(params.a), len(params.b)) + 1,
+        "link_length_mm": L * 1e3,
+        "profile_radius_min_mm": float(L * np.cos(0.5 * hi)) * 1e3,
+        "profile_radius_max_mm": float(L * np.cos(0.5 * lo)) * 1e3,
+        "profile_convex_radius_min_mm": 1e3 / convex,
+        "profile_concave_radius_min_mm": 1e3 / concave if concave > 0.0 else float("inf"),
+        "profile_convex": bool(concave <= 0.0),
+        "indicator_work_J": work,
+        "indicator_work_closed_form_J": float(
+            rc.indicator_work_closed_form(params.psi_min, m1, m2)
+        ),
+        "mean_shaft_torque_Nm": work / np.pi,
+        "blade_speed_coeff_max": float(1.0 + 0.5 * np.max(np.abs(d1))),
+        "blade_speed_coeff_min": float(1.0 - 0.5 * np.max(np.abs(d1))),
+        "blade_accel_coeff_max": float(0.5 * np.max(np.abs(d2))),
+        "blade_jerk_coeff_max": float(0.5 * np.max(np.abs(d3))),
+        "torque_high_Nm": float(m1),
+        "torque_low_Nm": float(m2),
+    }
+
+
+_DOCS = {
+    "alpha_deg": "Output-shaft angle alpha: polar angle of diagonal OA, from +x counter-clockwise.",
+    "psi_deg": "Angle between the blade axes psi = phi_1 - phi_2 (eq. 13).",
+    "dpsi": "dpsi/dalpha (eq. 14).",
+    "d2psi_per_rad": "d2psi/dalpha2.",
+    "d3psi_per_rad2": "d3psi/dalpha3.",
+    "phi1_deg": "Blade pair 1 angle phi_1 = alpha + psi/2 from +x (eq. 21).",
+    "phi2_deg": "Blade pair 2 angle phi_2 = alpha - psi/2 from +x (eq. 21).",
+    "phi1_speed_coeff": "dphi_1/dalpha = 1 + psi'/2, blade pair 1 speed over shaft speed (eq. 22).",
+    "phi2_speed_coeff": "dphi_2/dalpha = 1 - psi'/2, blade pair 2 speed over shaft speed (eq. 22).",
+    "phi1_accel_per_rad": "d2phi_1/dalpha2 = psi''/2.",
+    "phi2_accel_per_rad": "d2phi_2/dalpha2 = -psi''/2.",
+    "phi1_jerk_per_rad2": "d3phi_1/dalpha3 = psi'''/2.",
+    "phi2_jerk_per_rad2": "d3phi_2/dalpha3 = -psi'''/2.",
+    "rho_mm": "Cam pitch-curve polar radius rho = OA = 2l cos(psi/2) at polar angle alpha (eq. 3).",
+    "drho_mm_per_rad": "drho/dalpha.",
+    "x_mm": "Pitch-curve point x = rho cos(alpha) (roller A centre).",
+    "y_mm": "Pitch-curve point y = rho sin(alpha) (roller A centre).",
+    "rho_b_mm": "Half-diagonal OB = 2l sin(psi/2) (eq. 4), = rho at alpha + 90 deg (eq. 10).",
+    "curvature_per_m": "Signed curvature of the pitch curve at A (negative where concave).",
+    "stroke": "+1 expansion (psi rising, M_p), -1 compression (psi falling, M_c).",
+    "blade_torque_Nm": "Torque M_1 on blade pair 1 from the linear model of eq. 29 (M_2 = -M_1).",
+    "dA_dalpha_J_per_rad": "Work rate M_1 psi' = torque driving the output shaft (eq. 24).",
+}
+
+
+def _columns(params, m1, m2, points) -> dict:
+    law = (params.psi_min, params.a, params.b)
+    L = params.link_length
+    alpha = angle_grid(rc.period(params), points)
+    psi, d1, d2, d3 = rc.psi_law(alpha, *law)
+    phi, p1, p2, p3 = rc.blade_angles(alpha, *law)
+    rho, drho = rc.profile_radius(alpha, L, *law)[:2]
+    xy = rc.profile_point(alpha, L, *law)[0]
+    stroke = rc.stroke_direction(alpha, *law)
+    torque = rc.blade_torque(psi, stroke, m1, m2, params.psi_min)
+    cols = {
+        "alpha_deg": np.degrees(alpha),
+        "psi_deg": np.degrees(psi),
+        "dpsi": d1,
+        "d2psi_per_rad": d2,
+        "d3psi_per_rad2": d3,
+    }
+    for k in (0, 1):
+        cols[f"phi{k + 1}_deg"] = np.degrees(phi[k])
+    for name, arr in (("speed_coeff", p1), ("accel_per_rad", p2), ("jerk_per_rad2", p3)):
+        for k in (0, 1):
+            cols[f"phi{k + 1}_{name}"] = arr[k]
+    cols["rho_mm"] = rho * 1e3
+    cols["drho_mm_per_rad"] = drho * 1e3
+    cols["x_mm"] = xy[0] * 1e3
+    cols["y_mm"] = xy[1] * 1e3
+    cols["rho_b_mm"] = L * np.sin(0.5 * psi) * 1e3
+    cols["curvature_per_m"] = rc.profile_curvature(alpha, L, *law)
+    cols["stroke"] = stroke
+    cols["blade_torque_Nm"] = torque
+    cols["dA_dalpha_J_per_rad"] = torque * d1
+    return cols
+
+
+# --- the machine --------------------------------------------------------------------------
+class Loads(NamedTuple):
+    """The pressure model and its data.
+
+    ``model`` is ``"linear"`` (paper, eq. 29: ``torque_high``, ``torque_low`` [N m]) or
+    ``"isothermal"`` (``gas`` and ``charge`` = ``m_j R`` per chamber [J/K]).
+    """
+
+    model: str
+    torque_high: float
+    torque_low: float
+    gas: rb.IsothermalGas | None = None
+    charge: np.ndarray | None = None
+
+
+class State(NamedTuple):
+    """The machine at a set of output-shaft angles (see :func:`machine_state`)."""
+
+    motion: object  # rotorkin.core.motion.Motion of the blade pairs
+    stroke: np.ndarray  # +1 while psi rises, -1 while it falls
+    volume: np.ndarray  # (2B, ...) [m^3]
+    dvolume: np.ndarray  # (2B, ...) dV/dalpha [m^3/rad]
+    pressure: np.ndarray | None  # (2B, ...) [Pa], None for the linear model
+    members: np.ndarray  # (2, ...) torques on the blade pairs [N m]
+    torque: np.ndarray  # (...) torque of the loads on the output shaft [N m]
+
+
+def machine_state(params, machine, loads: Loads, alpha, stroke=None) -> State:
+    """Volumes, pressures and torques at the output-shaft angles ``alpha`` (any shape).
+
+    Member torques: the linear model's ``(M_1, -M_1)`` (eq. 24, 29), or
+    ``M_i = sum_j p_j dV_j/dq_i`` from the isothermal pressures; the shaft torque by
+    virtual work ``T = sum_i M_i phi_i'`` (positive when it drives the shaft).
+
+    Parameters
+    ----------
+    stroke : array_like, optional
+        +1 / -1 for rising / falling ``psi``; default
+        :func:`rotorkin.drives.rhomboid_cam.kinematics.stroke_direction`.
+    """
+    law = (params.psi_min, params.a, params.b)
+    alpha = np.asarray(alpha, dtype=float)
+    mo = rc.motion(params, alpha)
+    stroke = rc.stroke_direction(alpha, *law) if stroke is None else np.asarray(stroke)
+    volume = rb.chamber_volumes(machine, mo.q)
+    dvolume = rb.chamber_volume_derivative(machine, mo.dq)
+    pressure = None
+    if loads.model == "linear":
+        psi = rc.psi_law(alpha, *law)[0]
+        m1 = rc.blade_torque(psi, stroke, loads.torque_high, loads.torque_low, params.psi_min)
+        members = rb.linear_member_torques(m1)
+    else:
+        strokes = rb.chamber_strokes(machine, stroke)
+        pressure = rb.isothermal_pressure(loads.gas, loads.charge, volume, strokes)
+        members = rb.gas_member_torques(machine, pressure)
+    torque = at.shaft_torque_from_members(members, mo.dq)
+    return State(mo, stroke, volume, dvolume, pressure, members, torque)
+
+
+def indicated_work_per_period(params, machine, loads: Loads, nodes: int = 64) -> float:
+    """Work of the loads on the output shaft over one period ``0 <= alpha <= pi`` [J].
+
+    ``integral_0^pi T d alpha`` with ``T`` from :func:`machine_state`, split at the
+    stationary points of ``psi`` (where the stroke, and so the model, switches) and
+    integrated by Gauss-Legendre on each smooth piece (exact to rounding for the
+    linear model, ~1e-15 relative for the isothermal one).
+    """
+    law = (params.psi_min, params.a, params.b)
+    z = rc.psi_stationary_points(*law)
+    x, w = np.polynomial.legendre.leggauss(int(nodes))
+    half = 0.5 * (z[1:] - z[:-1])[:, None]
+    al = 0.5 * (z[1:] + z[:-1])[:, None] + half * x
+    s = np.sign(np.diff(rc.psi_law(z, *law)[0]))[:, None] * np.ones_like(al)
+    return float(np.sum(machine_state(params, machine, loads, al, s).torque * w * half))
+
+
+def _cm3(v) -> float:
+    return float(v) * 1e6
+
+
+def _machine_setup(cfg, params):
+    m = cfg.get("machine", {})
+    keys = ("blade_thickness", "inner_radius", "outer_radius", "axial_width", "blades_per_pair",
+            "inertia_shaft", "inertia_blade_pair_1", "inertia_blade_pair_2")  # fmt: skip
+    machine = build_params(rb.RotaryBlade, "machine", {k: m[k] for k in keys})
+    lo, _, hi, _ = rc.psi_extremes(params.psi_min, params.a, params.b)
+    try:  # the blades must fit the drive's swing of psi
+        rb.check_swing(machine, lo, hi)
+    except ParameterError as exc:
+        raise ParameterError(f"machine.{exc.name}", exc.value, exc.admissible) from None
+    ld = cfg["loads"]
+    v_min, v_max = rb.volume_range(machine, lo, hi)
+    if ld["pressure_model"] == "isothermal":
+        gas = build_params(
+            rb.IsothermalGas,
+            "loads",
+            {k: ld[k] for k in ("charge_pressure", "hot_temperature", "cold_temperature")},
+        )
+        loads = Loads("isothermal", ld["torque_high"], ld["torque_low"], gas,
+                      rb.gas_charge(gas, v_max))  # fmt: skip
+    else:
+        loads = Loads("linear", float(ld["torque_high"]), float(ld["torque_low"]))
+    return machine, loads, (lo, hi, v_min, v_max)
+
+
+def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tuple[dict, dict]:
+    """Engine summary on a fine grid over one period, and the curves the figures draw."""
+    law = (params.psi_min, params.a, params.b)
+    lo, hi, v_min, v_max = extremes
+    period = rc.period(params)
+    alpha = np.linspace(0.0, period, _PEAK_SAMPLES)
+    st = machine_state(params, machine, loads, alpha)
+    mo = st.motion
+    _, _, td_summary, omega = time_domain(mo, speed, _SLUGS, period)
+    J = machine.member_inertias
+    t_inertia = at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, omega[0], omega[1])
+    w_mean = float(np.mean(omega[0][:-1]))
+    steady = st.torque - at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, w_mean, 0.0)
+    j_eq = at.equivalent_inertia(machine.inertia_shaft, J, mo.dq)
+    j_mean = float(np.mean(j_eq[:-1]))
+    d_e = float(fw.energy_fluctuation(steady, alpha))
+    flywheel = float(fw.flywheel_inertia(d_e, w_mean, coefficient, j_mean))
+    work_period = indicated_work_per_period(params, machine, loads)
+    revs = 2.0 * np.pi / period  # periods per output-shaft revolution
+    work_rev = revs * work_period
+    with_inertia = st.torque - t_inertia
+    s = {
+        "pressure_model": loads.model,
+        "blades_per_pair": machine.blades_per_pair,
+        "chambers": machine.chambers,
+        "blade_thickness_deg": _deg(machine.blade_thickness),
+        "blade_thickness_max_deg": _deg(min(lo, 2.0 * np.pi / machine.blades_per_pair - hi)),
+        "sector_volume_cm3_per_rad": _cm3(rb.sector_constant(machine)),
+        "chamber_volume_max_cm3": _cm3(np.max(v_max)),
+        "chamber_volume_min_cm3": _cm3(np.min(v_min)),
+        "chamber_swept_volume_cm3": _cm3(np.max(v_max - v_min)),
+        "compression_ratio_geometric": float(np.min(v_max / v_min)),
+        "displacement_cm3_per_rev": _cm3(
+            rb.displacement_per_rev(machine, revs * rc.psi_total_variation(*law))
+        ),
+        "indicated_work_J": work_rev,
+        "indicated_work_per_period_J": work_period,
+        "indicated_power_kW": work_period / float(np.trapezoid(1.0 / omega[0], alpha)) * 1e-3,
+        "mean_torque_Nm": work_rev / (2.0 * np.pi),
+        "torque_ripple": float(at.torque_ripple(st.torque)),
+        "torque_ripple_with_inertia": float(at.torque_ripple(with_inertia)),
+        "shaft_torque_max_Nm": float(np.max(st.torque)),
+        "shaft_torque_min_Nm": float(np.min(st.torque)),
+        "shaft_torque_with_inertia_max_Nm": float(np.max(with_inertia)),
+        "shaft_torque_with_inertia_min_Nm": float(np.min(with_inertia)),
+        "inertia_torque_peak_Nm": float(np.max(np.abs(t_inertia))),
+        "blade_pair_torque_peak_Nm": float(np.max(np.abs(st.members))),
+        "equivalent_inertia_mean_kgm2": j_mean,
+        "equivalent_inertia_min_kgm2": float(np.min(j_eq)),
+        "equivalent_inertia_max_kgm2": float(np.max(j_eq)),
+        "energy_fluctuation_J": d_e,
+        "speed_fluctuation_without_flywheel": (
+            float(fw.speed_fluctuation_coefficient(d_e, j_mean, w_mean))
+            if j_mean > 0.0
+            else float("inf")
+        ),
+        "speed_fluctuation": float(coefficient),
+        "flywheel_inertia_kgm2": flywheel,
+    }
+    if loads.model == "isothermal":
+        z = rc.psi_stationary_points(*law)
+        v_turns = rb.chamber_volumes(machine, rc.blade_angles(z, *law)[0])
+        closed = rb.isothermal_cycle_work(loads.gas, loads.charge, v_turns)
+        s["isothermal_work_closed_form_per_rev_J"] = float(revs * np.sum(closed))
+        s["gas_charge_J_per_K"] = float(np.sum(loads.charge))
+        s["pressure_max_bar"] = float(np.max(st.pressure)) * 1e-5
+        s["pressure_min_bar"] = float(np.min(st.pressure)) * 1e-5
+        s["charge_pressure_bar"] = loads.gas.charge_pressure * 1e-5
+        s["hot_temperature_K"] = loads.gas.hot_temperature
+        s["cold_temperature_K"] = loads.gas.cold_temperature
+    s.update(td_summary)
+    return s, {"alpha": alpha, "state": st, "inertia_torque": t_inertia, "steady": steady,
+               "equivalent_inertia": j_eq, "omega_mean": w_mean, "work_rev": work_rev,
+               "energy_fluctuation": d_e, "flywheel": flywheel}  # fmt: skip
+
+
+_SLUGS = ("blade_pair_1", "blade_pair_2")
+
+
+def _machine_columns(params, machine, loads, points, speed):
+    period = rc.period(params)
+    alpha = angle_grid(period, points)
+    st = machine_state(params, machine, loads, alpha)
+    mo = st.motion
+    cols, docs, _, omega = time_domain(mo, speed, _SLUGS, period)
+    J = machine.member_inertias
+    t_inertia = at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, omega[0], omega[1])
+    out, out_docs = {}, {}
+    for j in range(machine.chambers):
+        kind = "psi - t" if j % 2 == 0 else "2 pi/B - psi - t"
+        c = f"chamber{j + 1}"
+        out[f"{c}_volume_cm3"] = st.volume[j] * 1e6
+        out_docs[f"{c}_volume_cm3"] = f"Volume of chamber {j + 1} (angle {kind})."
+        out[f"{c}_dvolume_cm3_per_rad"] = st.dvolume[j] * 1e6
+        out_docs[f"{c}_dvolume_cm3_per_rad"] = f"dV/dalpha of chamber {j + 1} (exact)."
+        if st.pressure is not None:
+            out[f"{c}_pressure_bar"] = st.pressure[j] * 1e-5
+            out_docs[f"{c}_pressure_bar"] = (
+                f"Absolute gas pressure in chamber {j + 1}, isothermal model "
+                "(hot while it expands, cold while it is compressed)."
+            )
+    for i in (0, 1):
+        key = f"blade_pair_{i + 1}_torque_Nm"
+        out[key] = st.members[i]
+        out_docs[key] = (
+            f"Torque of the loads ({loads.model} model) on blade pair {i + 1}, "
+            f"positive counter-clockwise (increasing phi_{i + 1})."
+        )
+    out["shaft_torque_Nm"] = st.torque
+    out_docs["shaft_torque_Nm"] = (
+        "Torque of the loads on the output shaft by virtual work, sum M_i phi_i' "
+        "(positive: drives the shaft), without inertia."
+    )
+    out["inertia_torque_Nm"] = t_inertia
+    out_docs["inertia_torque_Nm"] = (
+        "Torque the shaft spends on the inertia of shaft and blade pairs at the shaft speed "
+        "of shaft_speed_rpm (positive: the shaft gives energy to them)."
+    )
+    out["shaft_torque_with_inertia_Nm"] = st.torque - t_inertia
+    out_docs["shaft_torque_with_inertia_Nm"] = (
+        "shaft_torque_Nm - inertia_torque_Nm: torque left to drive the load."
+    )
+    out["equivalent_inertia_kgm2"] = at.equivalent_inertia(machine.inertia_shaft, J, mo.dq)
+    out_docs["equivalent_inertia_kgm2"] = "J_eq = J_shaft + J_1 phi_1'^2 + J_2 phi_2'^2."
+    out.update(cols)
+    out_docs.update(docs)
+    return out, out_docs
+
+
+def _defaults(cfg: dict) -> dict:
+    """``cfg`` with the machine, loads and run keys it lacks filled from the config schema."""
+    from rotorkin.core.schema import RunSection
+    from rotorkin.drives.rhomboid_cam.schema import RhomboidLoads, RotaryBladeMachine
+
+    out = dict(cfg)
+    for name, model in (("machine", RotaryBladeMachine), ("loads", RhomboidLoads),
+                        ("run", RunSection)):  # fmt: skip
+        out[name] = {**model().model_dump(), **cfg.get(name, {})}
+    return out
+
+
+def drive_params(cfg: dict) -> rc.RhomboidCam:
+    """The drive's parameters from a validated config (SI); errors name the config keys."""
+    d = cfg["drive"]
+    params = build_params(
+        rc.RhomboidCam,
+        "drive",
+        {
+            "link_length": d["link_length"],
+            "psi_min": d["psi_min"],
+            "a": tuple(d.get("a", ())),
+            "b": tuple(d.get("b", ())),
+        },
+    )
+    return params
+
+
+def evaluate(cfg: dict) -> StudyResult:
+    """Run the rotary-blade engine study on a validated config (SI values).
+
+    Parameters
+    ----------
+    cfg : dict
+        ``cfg["drive"]``: ``link_length`` [m], ``psi_min`` [rad], ``a``, ``b``
+        (lists [rad]); ``cfg["machine"]``, ``cfg["loads"]``, ``cfg["run"]`` as in the
+        module docstring (missing keys take the config defaults).
+
+    Returns
+    -------
+    StudyResult
+        Summary keys: see :data:`HEADLINE`, ``docs/drives/rhomboid_cam.md`` and
+        ``docs/machines/rotary_blade.md``.
+    """
+    cfg = _defaults(cfg)
+    params = drive_params(cfg)
+    m1 = float(cfg["loads"]["torque_high"])
+    m2 = float(cfg["loads"]["torque_low"])
+    machine, loads, extremes = _machine_setup(cfg, params)
+    speed = cfg["run"]["speed"]
+    summary = _summary(params, m1, m2)
+    msum, curves = _machine_summary(
+        params, machine, loads, extremes, speed, cfg["machine"]["speed_fluctuation"]
+    )
+    summary.update(msum)
+    columns = _columns(params, m1, m2, cfg["run"]["points"])
+    docs = dict(_DOCS)
+    mcols, mdocs = _machine_columns(params, machine, loads, cfg["run"]["points"], speed)
+    columns.update(mcols)
+    docs.update(mdocs)
+
+    def state(alpha):
+        return machine_state(params, machine, loads, alpha)
+
+    def plot(outdir: Path) -> list[Path]:
+        from rotorkin.drives.rhomboid_cam import figures as figures_rhomboid_cam
+
+        figs = figures_rhomboid_cam.plot_all(params, m1, m2, Path(outdir))
+        return figs + figures_rhomboid_cam.plot_machine(
+            params, machine, loads, state, curves, summary, Path(outdir)
+        )
+
+    return StudyResult(
+        drive_type="rhomboid_cam",
+        title=f"Rotary-blade engine ({loads.model} loads), rhomboid lever-cam converter",
+        summary=summary,
+        columns=columns,
+        column_docs=docs,
+        headline=HEADLINE,
+        plot=plot,
+    )

@@ -1,0 +1,612 @@
+"""Spherical cam of the wobble-cam drive: grooves, walls, pressure angle, curvature, crossings.
+
+The cam is a hollow spherical shell around the wobble plate, turning at ``psi = -theta``
+(Chen Hu et al. 2015, section 1, Fig. 2); each of the 4 inner rollers runs in a groove
+cut from the shell's inner surface. The groove centre-line is the roller centre seen
+from the cam, eq. 10-11 (:func:`rotorkin.drives.wobble_cam.kinematics.groove_points`), on the
+sphere ``r = sphere_radius``. Derived here (see ``docs/cams.md``):
+
+* walls: envelope of the roller cylinder (radial axis ``e_r``, radius rho), exactly the
+  ruled surfaces ``lambda e_r +- rho n``, ``n = e_r x t``; the contact normal is ``+-n``;
+* geodesic curvature ``kappa_g = (g' x g'') . e_r / |g'|^3`` and the undercut limit
+  ``rho < R / sqrt(1 + (r kappa_g)^2)`` on the sphere R (strictest at R_i);
+* pressure angle between ``n`` and the roller centre's velocity relative to the
+  Z-shaft (the plate's spin, what the cam imposes), or in the fixed frame;
+* crossings of the centre-lines (the figure-eight's own, and between grooves).
+
+Shell: radii ``r -+ shell_thickness/2``; grooves from ``R_i`` to ``R_i + groove_depth``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorkin.core.angles import fmt_deg, fmt_mm
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.wobble_cam import kinematics as wc
+
+__all__ = [
+    "ROLLER_NAMES",
+    "ROLLER_SLUGS",
+    "SphericalCam",
+    "from_config",
+    "groove_period",
+    "distinct_grooves",
+    "groove_derivatives",
+    "groove_frame",
+    "groove_walls",
+    "pressure_angle",
+    "geodesic_curvature",
+    "curvature_radius",
+    "roller_radius_limit",
+    "sharpest_bend",
+    "check_roller_radius",
+    "guided",
+    "pressure_angle_peaks",
+    "summary",
+]
+
+#: Names defined in :mod:`rotorkin.drives.wobble_cam.cam_crossings`, reachable from here too.
+_CROSSING_NAMES = ("GrooveCrossing", "groove_crossings", "groove_separation")
+
+
+def __getattr__(name):
+    if name in _CROSSING_NAMES:  # lazily: spherical_crossings imports this module
+        from rotorkin.drives.wobble_cam import cam_crossings as spherical_crossings
+
+        return getattr(spherical_crossings, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+#: People's names of the rollers, in the order of ``wobble_cam.roller_offsets`` (group 1: 1, 1').
+ROLLER_NAMES = ("1", "1'", "2", "2'")
+#: The same names for file names and CSV column stems.
+ROLLER_SLUGS = ("1", "1p", "2", "2p")
+#: d psi / d theta of the drive's cam law ``psi = -theta`` (linear, so this is exact).
+_CAM_RATE = float(wc.cam_angle(1.0) - wc.cam_angle(0.0))
+#: Samples per groove period for the searches (minimum, crossings); refined afterwards.
+_SEARCH_SAMPLES = 4096
+#: Fraction of a step by which search samples are shifted off round angles.
+_SAMPLE_SHIFT = 0.5 * (np.sqrt(5.0) - 1.0)
+
+
+@dataclass(frozen=True)
+class SphericalCam:
+    """Geometry of the spherical cam shell and its grooves (SI).
+
+    Parameters
+    ----------
+    sphere_radius : float
+        Radius r of the roller centres = the groove centre-line sphere [m]
+        (config ``drive.sphere_radius``).
+    roller_radius : float, optional
+        Radius rho of the inner rollers [m], ``0 < rho < R_i`` (``cam.roller_radius``).
+    shell_thickness : float, optional
+        Radial thickness of the shell, centred on r [m], ``0 < t < 2 r``
+        (``cam.shell_thickness``).
+    groove_depth : float, optional
+        Radial depth of the grooves from the inner surface [m],
+        ``t/2 < d < t``: the groove must reach the roller centres (radius r) and
+        leave a floor (a groove through the shell would cut the figure-eight's
+        lobes out) (``cam.groove_depth``).
+    """
+
+    sphere_radius: float
+    roller_radius: float = 0.006
+    shell_thickness: float = 0.012
+    groove_depth: float = 0.008
+
+    def __post_init__(self):
+        r = float(self.sphere_radius)
+        if not (np.isfinite(r) and r > 0.0):
+            raise ParameterError("drive.sphere_radius", fmt_mm(r), "sphere_radius > 0 mm")
+        t = float(self.shell_thickness)
+        if not (np.isfinite(t) and 0.0 < t < 2.0 * r):
+            raise ParameterError(
+                "cam.shell_thickness",
+                fmt_mm(t),
+                f"0 mm < shell_thickness < {fmt_mm(2.0 * r)} (twice the sphere radius: the "
+                "shell spans sphere_radius -+ shell_thickness/2)",
+            )
+        d = float(self.groove_depth)
+        if not (np.isfinite(d) and 0.5 * t < d < t):
+            raise ParameterError(
+                "cam.groove_depth",
+                fmt_mm(d),
+                f"{fmt_mm(0.5 * t)} < groove_depth < {fmt_mm(t)} (the groove, cut from the "
+                "shell's inner surface, must reach the roller centres at sphere_radius and "
+                "leave a floor: shell_thickness/2 < groove_depth < shell_thickness)",
+            )
+        rho = float(self.roller_radius)
+        ri = r - 0.5 * t
+        if not (np.isfinite(rho) and 0.0 < rho < ri):
+            raise ParameterError(
+                "cam.roller_radius",
+                fmt_mm(rho),
+                f"0 mm < roller_radius < {fmt_mm(ri)} (the shell's inner radius)",
+            )
+        for name in ("sphere_radius", "roller_radius", "shell_thickness", "groove_depth"):
+            object.__setattr__(self, name, float(getattr(self, name)))
+
+    @property
+    def inner_radius(self) -> float:
+        """Inner radius of the shell ``R_i = r - t/2`` [m]."""
+        return self.sphere_radius - 0.5 * self.shell_thickness
+
+    @property
+    def outer_radius(self) -> float:
+        """Outer radius of the shell ``R_o = r + t/2`` [m]."""
+        return self.sphere_radius + 0.5 * self.shell_thickness
+
+    @property
+    def bottom_radius(self) -> float:
+        """Radius of the groove bottom ``R_b = R_i + groove_depth`` [m]."""
+        return self.inner_radius + self.groove_depth
+
+
+# --------------------------------------------------------------------------------------------
+# config
+# --------------------------------------------------------------------------------------------
+def from_config(cfg: dict):
+    """The drive and the cam of a validated wobble-cam config (SI values).
+
+    Returns
+    -------
+    (WobbleCam, SphericalCam)
+        Errors name the config key (``drive.plate_tilt``, ``cam.groove_depth``, ...).
+    """
+    d = cfg["drive"]
+    pistons = (cfg.get("machine") or {}).get("pistons_per_rotor", 4)
+    try:
+        drive = wc.WobbleCam(
+            plate_tilt=d["plate_tilt"],
+            roller_axis_angle=d.get("roller_axis_angle", np.pi / 2.0),
+            spin_ratio=d.get("spin_ratio", -2.0),
+            sphere_radius=d.get("sphere_radius", 0.06),
+            pistons_per_rotor=pistons,
+            spin_a=tuple(d.get("spin_a", ())),
+            spin_b=tuple(d.get("spin_b", ())),
+        )
+    except ParameterError as exc:
+        key = "machine.pistons_per_rotor" if exc.name == "pistons_per_rotor" else exc.name
+        key = key if "." in key else f"drive.{key}"
+        raise ParameterError(key, exc.value, exc.admissible) from None
+    c = cfg.get("cam") or {}
+    keys = ("roller_radius", "shell_thickness", "groove_depth")
+    cam = SphericalCam(drive.sphere_radius, **{k: c[k] for k in keys if k in c})
+    return drive, cam
+
+
+# --------------------------------------------------------------------------------------------
+# centre-lines and their derivatives
+# --------------------------------------------------------------------------------------------
+def _cross_x(v):
+    """``e_x x v`` for v of shape (3, ...)."""
+    return np.stack([np.zeros_like(v[0]), -v[2], v[1]])
+
+
+def _partials(drive: wc.WobbleCam, theta):
+    """Groove point ``p``, ``dp/d(theta - psi)``, ``dp/du`` (shape (3, 4, ...)) and the spin law.
+
+    ``p = plate_point(theta - psi, u)``, ``u = varphi + c`` (eq. 10-11). Exact partials:
+    ``dp/d(theta - psi) = -e_x x p`` (``A_t`` turns z towards +y, a turn about -x) and
+    ``dp/du = plate_point(theta - psi, u + pi/2)`` (the plate radius turned by 90 deg).
+    """
+    theta = np.asarray(theta, dtype=float)
+    c = wc.roller_offsets(drive.roller_axis_angle).reshape((4,) + (1,) * theta.ndim)
+    spin = wc.spin_law(drive, theta)
+    cam = wc.cam_angle(theta)
+    phi, r = drive.plate_tilt, drive.sphere_radius
+    p = wc.groove_point(theta, cam, spin[0], c, phi, r)
+    pu = wc.groove_point(theta, cam, spin[0], c + 0.5 * np.pi, phi, r)
+    return p, -_cross_x(p), pu, spin
+
+
+def groove_derivatives(drive: wc.WobbleCam, theta):
+    """Groove centre-lines of the 4 rollers and their first two derivatives (cam frame).
+
+    ``g(theta) = plate_point(theta - psi, varphi + c)`` (eq. 10-11,
+    :func:`rotorkin.drives.wobble_cam.kinematics.groove_points`), with ``psi = -theta`` and the
+    spin law of ``drive`` (periodic correction included); derivatives by the chain
+    rule from the exact partials of :func:`_partials`.
+
+    Parameters
+    ----------
+    drive : WobbleCam
+    theta : array_like, shape (...)
+        Shaft angle [rad].
+
+    Returns
+    -------
+    (g, dg, d2g) : tuple of ndarray, shape (4, 3, ...)
+        [m], [m/rad], [m/rad^2]; roller index first.
+    """
+    p, pt, pu, spin = _partials(drive, theta)
+    w = 1.0 - _CAM_RATE  # d(theta - psi)/d theta
+    d1 = pt * w + pu * spin[1]
+    ptu = -_cross_x(pu)
+    ptt = -_cross_x(pt)
+    d2 = ptt * w * w + 2.0 * ptu * w * spin[1] - p * spin[1] ** 2 + pu * spin[2]
+    return tuple(np.moveaxis(x, 0, 1) for x in (p, d1, d2))
+
+
+def groove_frame(drive: wc.WobbleCam, theta):
+    """Unit radial ``e_r``, tangent ``t`` and wall normal ``n = e_r x t`` (cam frame).
+
+    Returns
+    -------
+    (e_r, t, n) : tuple of ndarray, shape (4, 3, ...)
+    """
+    g, d1, _ = groove_derivatives(drive, theta)
+    e_r = g / np.linalg.norm(g, axis=1, keepdims=True)
+    t = d1 / np.linalg.norm(d1, axis=1, keepdims=True)
+    return e_r, t, np.cross(e_r, t, axis=1)
+
+
+def _check_pair(drive: wc.WobbleCam, cam: SphericalCam) -> None:
+    if abs(cam.sphere_radius - drive.sphere_radius) > 1e-12 * drive.sphere_radius:
+        raise ParameterError(
+            "drive.sphere_radius",
+            f"{fmt_mm(drive.sphere_radius)} (cam: {fmt_mm(cam.sphere_radius)})",
+            "the same sphere radius for the drive and its cam",
+        )
+
+
+def groove_walls(drive: wc.WobbleCam, cam: SphericalCam, theta, radius=None):
+    """Wall curves of the 4 grooves on the sphere of ``radius`` (cam frame) [m].
+
+    ``w_+- = sqrt(R^2 - rho^2) e_r +- rho n``: the exact envelope of the roller
+    cylinder (radial axis, radius rho) cut by the sphere R, i.e. the centre-line
+    offset along the sphere by ``arcsin(rho/R)``, perpendicular to its tangent.
+
+    Parameters
+    ----------
+    drive, cam : WobbleCam, SphericalCam
+    theta : array_like, shape (...)
+        Shaft angle [rad].
+    radius : float or array_like, optional
+        Sphere radius R [m], ``R > rho``; default ``cam.sphere_radius`` (broadcast with theta).
+
+    Returns
+    -------
+    ndarray, shape (4, 2, 3, ...)
+        Roller, wall (0: ``+n``, left of the roller's travel seen from outside;
+        1: ``-n``), coordinate.
+    """
+    _check_pair(drive, cam)
+    rad = cam.sphere_radius if radius is None else np.asarray(radius, dtype=float)
+    if np.any(rad <= cam.roller_radius):
+        raise ParameterError(
+            "radius",
+            fmt_mm(np.min(rad)),
+            f"radius > {fmt_mm(cam.roller_radius)} (the roller radius)",
+        )
+    e_r, _, n = groove_frame(drive, theta)
+    lam = np.sqrt(rad * rad - cam.roller_radius**2)
+    return np.stack([lam * e_r + cam.roller_radius * n, lam * e_r - cam.roller_radius * n], 1)
+
+
+# --------------------------------------------------------------------------------------------
+# checks along the groove
+# --------------------------------------------------------------------------------------------
+def pressure_angle(drive: wc.WobbleCam, theta, frame: str = "shaft"):
+    """Pressure angle of the 4 rollers along their grooves [rad], in ``[0, pi/2]``.
+
+    Angle between the contact force direction (the wall normal ``n``, friction
+    neglected) and the velocity of the roller centre:
+
+    * ``frame="shaft"`` (default): relative to the Z-shaft, ``dvarphi/dtheta dp/du``,
+      the plate's spin that the cam imposes; in the shaft frame the cam axis (x) and
+      the plate axis (x2) are both fixed, as in a classical cam pair;
+    * ``frame="fixed"``: in the fixed frame (spin plus the shaft's revolution).
+
+    ``mu = atan2(|t . v|, |n . v|)`` (v lies in the sphere's tangent plane). The
+    velocity relative to the cam is ``dg/dtheta``, along ``t``: at 90 deg to ``n``
+    always, so it cannot serve.
+
+    Returns
+    -------
+    ndarray, shape (4, ...)
+    """
+    if frame not in ("shaft", "fixed"):
+        raise ParameterError("frame", repr(frame), "'shaft' or 'fixed'")
+    p, pt, pu, spin = _partials(drive, theta)
+    v = pu * spin[1] if frame == "shaft" else pt + pu * spin[1]
+    v = np.moveaxis(v, 0, 1)
+    _, t, n = groove_frame(drive, theta)
+    return np.arctan2(np.abs(np.sum(t * v, axis=1)), np.abs(np.sum(n * v, axis=1)))
+
+
+def geodesic_curvature(drive: wc.WobbleCam, theta):
+    """Signed geodesic curvature of the 4 centre-lines on the sphere r [1/m].
+
+    ``kappa_g = (g' x g'') . e_r / |g'|^3``; positive when the groove turns towards
+    ``+n`` (left of the travel, seen from outside the sphere).
+
+    Returns
+    -------
+    ndarray, shape (4, ...)
+    """
+    g, d1, d2 = groove_derivatives(drive, theta)
+    e_r = g / np.linalg.norm(g, axis=1, keepdims=True)
+    num = np.sum(np.cross(d1, d2, axis=1) * e_r, axis=1)
+    return num / np.linalg.norm(d1, axis=1) ** 3
+
+
+def curvature_radius(drive: wc.WobbleCam, theta):
+    """Radius of curvature ``1/|kappa_g|`` of the centre-lines in the tangent plane [m], (4, ...)"""
+    k = np.abs(geodesic_curvature(drive, theta))
+    with np.errstate(divide="ignore"):
+        return np.where(k > 0.0, 1.0 / np.where(k > 0.0, k, 1.0), np.inf)
+
+
+def roller_radius_limit(drive: wc.WobbleCam, theta, radius=None):
+    """Largest roller radius whose groove walls stay free of cusps, on the sphere R [m].
+
+    ``rho_lim = R / sqrt(1 + (r kappa_g)^2) = R sin(a)``, ``a`` the angular radius of
+    the osculating small circle of the centre-line (derived here: the wall at angular
+    offset ``arcsin(rho/R)`` degenerates when that offset reaches ``a``). For a
+    gentle bend (``r kappa_g >> 1``) it is ``(R/r) / |kappa_g|``.
+
+    Parameters
+    ----------
+    radius : float, optional
+        R [m]; default ``drive.sphere_radius``. Use the shell's inner radius for the
+        check (the strictest radius where there is a wall).
+
+    Returns
+    -------
+    ndarray, shape (4, ...)
+    """
+    rad = drive.sphere_radius if radius is None else float(radius)
+    k = geodesic_curvature(drive, theta)
+    return rad / np.sqrt(1.0 + (drive.sphere_radius * k) ** 2)
+
+
+def groove_period(drive: wc.WobbleCam) -> float:
+    """Shaft angle after which every groove centre-line closes: pi, 2 pi or 4 pi [rad].
+
+    ``theta - psi = 2 theta`` closes after pi; the spin law adds ``n T`` (a multiple of
+    2 pi needed) and its correction (2 pi periodic). Found by testing the candidates.
+    """
+    theta = np.linspace(0.0, 2.0 * np.pi, 64, endpoint=False)
+    g0 = groove_derivatives(drive, theta)[0]
+    for period in (np.pi, 2.0 * np.pi, 4.0 * np.pi):
+        g1 = groove_derivatives(drive, theta + period)[0]
+        if np.max(np.abs(g1 - g0)) < 1e-9 * drive.sphere_radius:
+            return period
+    raise ParameterError(  # pragma: no cover - WobbleCam admits only closing laws
+        "drive.spin_ratio", f"{drive.spin_ratio:g}", "a law whose grooves close"
+    )
+
+
+def distinct_grooves(drive: wc.WobbleCam) -> list[int]:
+    """Rollers whose grooves are distinct curves (all 4, or 2 when rollers share grooves).
+
+    When the plate has turned by pi relative to the cam after a shift of the shaft
+    angle by a multiple of pi shorter than the groove period (spin ratio -1, -1/2,
+    ...), roller ``c`` runs on in the groove of roller ``c + pi``: one groove for two
+    rollers. Checked numerically for every such shift.
+    """
+    period = groove_period(drive)
+    theta = np.linspace(0.0, period, 97)
+    g = groove_derivatives(drive, theta)[0]
+    shifts = np.pi * np.arange(1, int(round(period / np.pi)))
+    shifted = [groove_derivatives(drive, theta + x)[0] for x in shifts]
+    keep: list[int] = []
+    for j in range(4):
+        if not any(
+            np.max(np.abs(gs[i] - g[j])) < 1e-9 * drive.sphere_radius
+            for i in keep
+            for gs in shifted
+        ):
+            keep.append(j)
+    return keep
+
+
+def _refine_min(fun, theta0, step):
+    """Refine a sampled minimum of a scalar function of theta (bounded Brent)."""
+    from scipy.optimize import minimize_scalar
+
+    res = minimize_scalar(
+        fun, bounds=(theta0 - step, theta0 + step), method="bounded", options={"xatol": 1e-12}
+    )
+    return float(res.x), float(res.fun)
+
+
+def sharpest_bend(drive: wc.WobbleCam, roller: int | None = None):
+    """Largest ``|kappa_g|`` over the grooves: ``(kappa_max [1/m], theta [rad], roller)``."""
+    period = groove_period(drive)
+    theta = np.linspace(0.0, period, _SEARCH_SAMPLES, endpoint=False)
+    k = np.abs(geodesic_curvature(drive, theta))
+    rollers = range(4) if roller is None else (roller,)
+    best = None
+    for i in rollers:
+        j = int(np.argmax(k[i]))
+        th, val = _refine_min(
+            lambda x, i=i: -abs(float(geodesic_curvature(drive, x)[i])),
+            theta[j],
+            period / _SEARCH_SAMPLES,
+        )
+        if best is None or -val > best[0]:
+            best = (-val, th % period, i)
+    return best
+
+
+def check_roller_radius(drive: wc.WobbleCam, cam: SphericalCam) -> float:
+    """Raise ``ParameterError("cam.roller_radius")`` where the roller undercuts a wall.
+
+    The check is ``rho < R_i / sqrt(1 + (r kappa_g)^2)`` (:func:`roller_radius_limit` at
+    the inner shell radius, the strictest radius where the wall exists) everywhere on
+    every groove; the message names the shaft angle, the roller and both radii.
+
+    Returns
+    -------
+    float
+        The smallest admissible limit [m] (the roller radius is below it).
+    """
+    _check_pair(drive, cam)
+    kmax, theta, roller = sharpest_bend(drive)
+    limit = cam.inner_radius / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
+    if cam.roller_radius >= limit:
+        raise ParameterError(
+            "cam.roller_radius",
+            fmt_mm(cam.roller_radius),
+            f"roller_radius < {fmt_mm(limit)}: at shaft angle theta = {fmt_deg(theta)} "
+            f"(roller {ROLLER_NAMES[roller]}) the groove centre-line bends with radius "
+            f"{fmt_mm(1.0 / kmax)} in the tangent plane, and a larger roller makes a cusp in "
+            f"the inner groove wall at the shell's inner radius {fmt_mm(cam.inner_radius)}",
+        )
+    return float(limit)
+
+
+# --------------------------------------------------------------------------------------------
+# crossings
+# --------------------------------------------------------------------------------------------
+def guided(drive: wc.WobbleCam, cam: SphericalCam, theta, crossings=None):
+    """Whether each roller runs between both walls of its groove at ``theta``.
+
+    Where two groove branches cross at the angle ``a`` each loses its walls over
+    ``2 rho / sin a`` (:meth:`GrooveCrossing.gap_length`), centred on the crossing: a
+    roller is taken as unguided while its centre is closer than ``rho / sin a`` to a
+    crossing point (straight distance; the branch is nearly straight there).
+
+    Parameters
+    ----------
+    drive, cam : WobbleCam, SphericalCam
+    theta : array_like, shape (...)
+        Shaft angle [rad].
+    crossings : list of GrooveCrossing, optional
+        Default :func:`groove_crossings` of ``drive``.
+
+    Returns
+    -------
+    ndarray of bool, shape (4, ...)
+    """
+    from rotorkin.drives.wobble_cam.cam_crossings import groove_crossings
+
+    _check_pair(drive, cam)
+    crossings = groove_crossings(drive) if crossings is None else crossings
+    g = groove_derivatives(drive, theta)[0]  # (4, 3, ...)
+    out = np.ones(g.shape[:1] + g.shape[2:], dtype=bool)
+    for c in crossings:
+        point = np.asarray(c.point, dtype=float).reshape((1, 3) + (1,) * (g.ndim - 2))
+        out &= np.linalg.norm(g - point, axis=1) >= 0.5 * c.gap_length(cam.roller_radius)
+    return out
+
+
+def pressure_angle_peaks(
+    drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881, crossings=None
+) -> dict:
+    """Largest pressure angles over one turn, where and of which roller.
+
+    Sampled at ``samples`` shaft angles over ``[0, 2 pi]`` (as :func:`summary`).
+
+    Returns
+    -------
+    dict
+        ``name -> (angle [rad], theta [rad], roller index)`` for
+
+        * ``"any"``: largest of any roller (shaft frame), crossings included;
+        * ``"guided"``: the same away from the crossings (:func:`guided`);
+        * ``"fixed_guided"``: the same in the fixed frame;
+        * ``"best"``: over the turn, the largest of the smallest pressure angle of the 4
+          rollers (the best-placed roller guides the plate), crossings included;
+        * ``"best_guided"``: the same over the rollers between both walls only
+          (``pi/2`` where none is);
+
+        the roller is the one reaching the angle (for the best: the best-placed one).
+    """
+    theta = np.linspace(0.0, 2.0 * np.pi, samples)
+    ok = guided(drive, cam, theta, crossings)
+    mu = pressure_angle(drive, theta)
+    fixed = pressure_angle(drive, theta, "fixed")
+
+    def peak(values):  # the first shaft angle reaching the maximum, then its roller
+        j = int(np.argmax(np.max(values, axis=0)))
+        i = int(np.argmax(values[:, j]))
+        return float(values[i, j]), float(theta[j]), i
+
+    def best(values):
+        k = np.argmin(values, axis=0)
+        low = values[k, np.arange(values.shape[1])]
+        j = int(np.argmax(low))
+        if not np.isfinite(low[j]):
+            return 0.5 * np.pi, float(theta[j]), -1
+        return float(low[j]), float(theta[j]), int(k[j])
+
+    return {
+        "any": peak(mu),
+        "guided": peak(np.where(ok, mu, -1.0)),
+        "fixed_guided": peak(np.where(ok, fixed, -1.0)),
+        "best": best(mu),
+        "best_guided": best(np.where(ok, mu, np.inf)),
+    }
+
+
+def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict:
+    """Scalar results for a study's ``summary.json`` (units in the key names).
+
+    ``cam_pressure_angle_max_deg``: largest pressure angle of any roller (shaft frame);
+    ``cam_pressure_angle_best_roller_max_deg``: over the turn, the largest of the
+    smallest pressure angle of the 4 rollers at each shaft angle (all 4 rollers hold
+    the one plate, so the best-placed one guides it);
+    ``cam_pressure_angle_fixed_max_deg``: largest in the fixed frame;
+    ``cam_pressure_angle_guided_max_deg`` and ``..._theta_deg``: largest of any roller
+    away from the crossings (:func:`guided`, :func:`pressure_angle_peaks`) and where;
+    ``cam_pressure_angle_best_guided_roller_max_deg`` and ``..._theta_deg``: the
+    best-roller value over the rollers between both walls;
+    ``cam_curvature_radius_min_mm``: smallest ``1/|kappa_g|`` on r and
+    ``cam_curvature_min_theta_deg`` where (first roller reaching it);
+    ``cam_roller_radius_limit_mm``: undercut limit at the inner radius R_i;
+    ``cam_groove_period_deg``; ``cam_distinct_grooves``; ``cam_self_crossings``
+    and ``cam_crossings_between_grooves`` (counts over the distinct grooves);
+    ``cam_crossing_angle_min_deg``; ``cam_unguided_length_max_mm``
+    (``2 rho / sin`` of the crossing angle); ``cam_groove_separation_mm`` (closest
+    centre-lines of two different grooves, 0 where they cross); ``cam_groove_width_mm``.
+    """
+    from rotorkin.drives.wobble_cam.cam_crossings import groove_crossings, groove_separation
+
+    _check_pair(drive, cam)
+    period = groove_period(drive)
+    theta = np.linspace(0.0, 2.0 * np.pi, samples)
+    mu = pressure_angle(drive, theta)
+    k = int(np.argmax(np.max(mu, axis=0)))
+    kmax, th_k, _ = sharpest_bend(drive)
+    crossings = groove_crossings(drive)
+    distinct = distinct_grooves(drive)
+    n_self = sum(c.rollers[0] == c.rollers[1] for c in crossings)
+    peaks = pressure_angle_peaks(drive, cam, samples, crossings)
+    return {
+        "cam_roller_radius_mm": cam.roller_radius * 1e3,
+        "cam_pressure_angle_max_deg": float(np.degrees(mu[:, k].max())),
+        "cam_pressure_angle_max_theta_deg": float(np.degrees(theta[k])),
+        "cam_pressure_angle_best_roller_max_deg": float(np.degrees(mu.min(axis=0).max())),
+        "cam_pressure_angle_fixed_max_deg": float(
+            np.degrees(pressure_angle(drive, theta, "fixed").max())
+        ),
+        "cam_pressure_angle_guided_max_deg": float(np.degrees(peaks["guided"][0])),
+        "cam_pressure_angle_guided_max_theta_deg": float(np.degrees(peaks["guided"][1])),
+        "cam_pressure_angle_best_guided_roller_max_deg": float(np.degrees(peaks["best_guided"][0])),
+        "cam_pressure_angle_best_guided_roller_max_theta_deg": float(
+            np.degrees(peaks["best_guided"][1])
+        ),
+        "cam_curvature_radius_min_mm": 1e3 / kmax,
+        "cam_curvature_min_theta_deg": float(np.degrees(th_k)),
+        "cam_roller_radius_limit_mm": 1e3
+        * cam.inner_radius
+        / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2),
+        "cam_groove_period_deg": float(np.degrees(period)),
+        "cam_distinct_grooves": len(distinct),
+        "cam_self_crossings": int(n_self),
+        "cam_crossings_between_grooves": len(crossings) - int(n_self),
+        "cam_crossing_angle_min_deg": float(
+            np.degrees(min((c.angle for c in crossings), default=np.nan))
+        ),
+        "cam_unguided_length_max_mm": 1e3
+        * max((c.gap_length(cam.roller_radius) for c in crossings), default=0.0),
+        "cam_groove_separation_mm": groove_separation(drive)[0] * 1e3,
+        "cam_groove_width_mm": 2e3 * cam.roller_radius,
+    }

@@ -1,0 +1,356 @@
+"""Fast path of the wobble-cam kinematics: one fused pass over blocks of points.
+
+The closed form of :func:`rotorkin.drives.wobble_cam.kinematics.rotor_angles_from_spin`,
+rearranged so that each point costs three transcendental calls and about 55
+in-place multiplications and additions (``u_k = varphi + s_k alpha/2``,
+``s_1 = -1``, ``s_2 = +1``, ``c = cos(phi)``, ``k = 1 - c^2``):
+
+* ``sin 2varphi = 2 t/(1 + t^2)`` and ``cos 2varphi = 2/(1 + t^2) - 1`` from one
+  ``t = tan varphi`` (cheaper than a sine and a cosine; ``|t| < 2e16`` for any
+  double, so ``t^2`` never overflows and both stay accurate to a few ulp);
+* ``S_k = sin 2u_k`` and ``C_k = cos 2u_k`` of *both* rotors from them and the
+  constants ``cos alpha``, ``sin alpha`` (angle sums, ``2u_k = 2 varphi -+ alpha``);
+* ``E(u) = u + atan(S / (g - C))``, ``g = (1 + c)/(1 - c)``: the ``atan2`` of
+  :func:`rotorkin.core.angles.angle_near` with reference ``u`` (the projected plate
+  radius rotated by ``-u`` is ``((1 - c) sin u cos u, sin^2 u + c cos^2 u)``;
+  divide by ``(1 - c)/2``). Its denominator ``g - C > 0``, so one ``atan`` per
+  rotor gives the continuous branch;
+* ``D = sin^2 u + c^2 cos^2 u = (1 + c^2)/2 - k/2 C`` (the paper note's
+  eq. 14 squared projection length): ``E' = c/D``, ``E'' = -c k S/D^2``,
+  ``E''' = 2 c k/D^2 (k S^2/D - C)``;
+* ``Phi_k = theta + E(u_k)`` and the chain rule (Faa di Bruno) through the spin
+  law; for the linear law ``varphi = n theta`` it reduces to
+  ``Phi' = 1 + n E'``, ``Phi'' = n^2 E''``, ``Phi''' = n^3 E'''``;
+* the chamber angles of eq. 18-19, ``delta_A = alpha' - 2 gamma - beta`` and
+  ``delta_B = 2 pi/N + 2 gamma - alpha' - beta``, ``alpha' = Phi_2 - Phi_1``.
+
+The points are walked in blocks of :data:`BLOCK`: slices when every array input
+has the full shape, else a buffered C-order :class:`numpy.nditer` broadcasts
+them (inputs of different shapes are never materialised at the full size). The
+scratch arrays of a block stay in the L2 cache and every result is written
+once, straight into the output. With ``threads > 1`` (or ``$ROTORKIN_THREADS``)
+the blocks of large inputs are shared among a thread pool: numpy releases the
+GIL inside its loops. Every value depends on its own point only, so the
+results are the same, bit for bit, whatever the shape, the strides, the block
+boundaries or the thread count.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import threading
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+from rotorkin.core.errors import ParameterError
+
+__all__ = ["BLOCK", "THREADS_ENV", "default_threads", "rotor_kinematics"]
+
+#: Points per block (an operation touches 3 blocks of 64 KiB: they stay in the L2 cache).
+BLOCK = 8192
+#: Environment variable giving the default thread count (default 1).
+THREADS_ENV = "ROTORKIN_THREADS"
+#: Fewest points for which a thread pool is used.
+_MIN_PARALLEL = 8 * BLOCK
+_SCRATCH = 14
+_POOL: ThreadPoolExecutor | None = None
+_POOL_KEY = (0, 0)  # (threads, pid): a pool inherited through fork() has no threads
+_POOL_LOCK = threading.Lock()
+
+
+def default_threads() -> int:
+    """Threads used when ``threads=None``: ``$ROTORKIN_THREADS``, else 1.
+
+    Raises
+    ------
+    ParameterError
+        named ``ROTORKIN_THREADS`` when it is not an integer >= 1.
+    """
+    text = os.environ.get(THREADS_ENV, "").strip()
+    if not text:
+        return 1
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise ParameterError(THREADS_ENV, repr(text), "an integer >= 1 (threads per evaluation)")
+    return value
+
+
+def _pool(size: int) -> ThreadPoolExecutor:
+    """A shared pool with at least ``size`` threads (created on first use)."""
+    global _POOL, _POOL_KEY
+    with _POOL_LOCK:
+        if _POOL is None or _POOL_KEY[0] < size or _POOL_KEY[1] != os.getpid():
+            old, forked = _POOL, _POOL_KEY[1] != os.getpid()
+            _POOL = ThreadPoolExecutor(max_workers=size, thread_name_prefix="rotorkin")
+            _POOL_KEY = (size, os.getpid())
+            if old is not None and not forked:
+                old.shutdown(wait=False)
+        return _POOL
+
+
+def rotor_kinematics(
+    theta, spin, plate_tilt, roller_axis_angle, chamber=None, *, threads=None, out=None
+):
+    """Rotor angles, their three derivatives and (optionally) the chamber angles, fused.
+
+    Parameters
+    ----------
+    theta : array_like, shape (...)
+        Shaft angle [rad].
+    spin : float or sequence of 4 array_like
+        The spin law: a number ``n`` for the linear law ``varphi = n theta``
+        (the paper's ``n = -2``), or ``varphi, varphi', varphi'', varphi'''``
+        at ``theta`` [rad, -, 1/rad, 1/rad^2].
+    plate_tilt, roller_axis_angle : float or array_like
+        phi and alpha [rad], ``0 <= phi < pi/2``; broadcast with ``theta``.
+    chamber : (piston_width, pistons), optional
+        beta [rad] (float or array_like, broadcast) and N (pistons per rotor):
+        also return the chamber angles of both kinds (eq. 18-19).
+    threads : int, optional
+        Threads sharing the blocks (default :func:`default_threads`); arrays
+        under ``8 BLOCK`` points always run on the calling thread.
+    out : (ndarray, ndarray or None), optional
+        Arrays to write the results into (float64, C-contiguous, the shapes
+        below), e.g. to reuse them block after block; new arrays by default.
+
+    Returns
+    -------
+    rotor : ndarray, shape (4, 2, ...)
+        ``Phi, dPhi/dtheta, d2Phi/dtheta2, d3Phi/dtheta3`` (axis 0) of rotor 1
+        and rotor 2 (axis 1) [rad, -, 1/rad, 1/rad^2].
+    chambers : ndarray, shape (2, ...), or None
+        ``delta_A, delta_B`` [rad] when ``chamber`` is given.
+    """
+    inputs = {"theta": np.asarray(theta, dtype=float)}
+    if isinstance(spin, (float, int, np.number)) or np.ndim(spin) == 0:
+        n = float(spin)
+    else:
+        n = None
+        parts = [np.asarray(s, dtype=float) for s in spin]
+        if len(parts) != 4:
+            raise ValueError(f"spin: expected a number or 4 arrays, got {len(parts)} arrays")
+        inputs.update(zip(("v", "g1", "g2", "g3"), parts, strict=True))
+    inputs["tilt"] = np.asarray(plate_tilt, dtype=float)
+    inputs["half"] = 0.5 * np.asarray(roller_axis_angle, dtype=float)
+    pistons = None
+    if chamber is not None:
+        inputs["width"] = np.asarray(chamber[0], dtype=float)
+        pistons = float(chamber[1])
+    shapes = {a.shape for a in inputs.values()} - {()}
+    shape = shapes.pop() if len(shapes) == 1 else np.broadcast_shapes(*shapes, ())
+    size = math.prod(shape)
+    if out is None:
+        rotor = np.empty((4, 2, *shape))
+        cham = np.empty((2, *shape)) if chamber is not None else None
+    else:
+        rotor, cham = out
+        _check_out(rotor, (4, 2, *shape), "out[0]")
+        if chamber is not None:
+            _check_out(cham, (2, *shape), "out[1]")
+        else:
+            cham = None
+    if size == 0:
+        return rotor, cham
+    scalars = {k: float(a.reshape(-1)[0]) for k, a in inputs.items() if a.size == 1}
+    arrays = {k: a for k, a in inputs.items() if a.size > 1}
+    flat_r = rotor.reshape(4, 2, size)
+    flat_c = cham.reshape(2, size) if cham is not None else None
+    if all(a.shape == shape and a.flags.c_contiguous for a in arrays.values()):
+        arrays = {k: a.reshape(-1) for k, a in arrays.items()}  # plain slices, no nditer
+        flat = True
+    else:
+        flat = False
+    job = (arrays, flat, scalars, n, pistons, flat_r, flat_c)
+    nthreads = default_threads() if threads is None else int(threads)
+    if nthreads < 1:
+        raise ParameterError("threads", repr(threads), "an integer >= 1")
+    nthreads = min(nthreads, max(1, size // (_MIN_PARALLEL // 2)))
+    if nthreads == 1 or size < _MIN_PARALLEL:
+        _run(job, 0, size)
+    else:
+        step = -(-size // nthreads)
+        step = -(-step // BLOCK) * BLOCK
+        cuts = [(lo, min(size, lo + step)) for lo in range(0, size, step)]
+        futures = [_pool(nthreads).submit(_run, job, lo, hi) for lo, hi in cuts]
+        for f in futures:
+            f.result()
+    return rotor, cham
+
+
+def _check_out(array, shape, name):
+    ok = isinstance(array, np.ndarray) and array.dtype == np.float64
+    if not (ok and array.shape == shape and array.flags.c_contiguous and array.flags.writeable):
+        got = f"{getattr(array, 'dtype', type(array).__name__)} {np.shape(array)}"
+        raise ValueError(
+            f"{name}: expected a writeable C-contiguous float64 array {shape}, got {got}"
+        )
+
+
+def _run(job, lo, hi):
+    """Evaluate the flat points ``lo:hi`` block by block."""
+    arrays, flat, scalars, n, pistons, flat_r, flat_c = job
+    work = np.empty((_SCRATCH, min(BLOCK, hi - lo)))
+    fixed = _coefficients(scalars, n, pistons)
+    if not arrays:  # a single point
+        _block(scalars, fixed, n, flat_r, flat_c, work[:, :1])
+        return
+    varying = [name for name in ("tilt", "half", "width") if name in arrays]
+    for start, stop, chunk in _chunks(arrays, flat, lo, hi):
+        x = {**scalars, **chunk}
+        k = fixed
+        if varying:
+            k = {**fixed, **_coefficients({name: x[name] for name in varying}, n, pistons)}
+        cham = flat_c[:, start:stop] if flat_c is not None else None
+        _block(x, k, n, flat_r[:, :, start:stop], cham, work[:, : stop - start])
+
+
+def _chunks(arrays, flat, lo, hi):
+    """``(start, stop, {name: block of the input})`` over the flat points ``lo:hi``.
+
+    ``flat``: every array has the full shape and is C-contiguous, a block is a
+    slice; otherwise a buffered C-order :class:`numpy.nditer` broadcasts them.
+    """
+    names = list(arrays)
+    if flat:
+        for start in range(lo, hi, BLOCK):
+            stop = min(hi, start + BLOCK)
+            yield start, stop, {name: arrays[name][start:stop] for name in names}
+        return
+    it = np.nditer(
+        [arrays[name] for name in names],
+        flags=["external_loop", "buffered", "ranged", "zerosize_ok"],
+        op_flags=[["readonly"]] * len(names),
+        buffersize=BLOCK,
+        order="C",
+    )
+    it.iterrange = (lo, hi)
+    while not it.finished:
+        start = it.iterindex
+        chunk = it.value if len(names) > 1 else (it.value,)
+        yield start, start + chunk[0].shape[0], dict(zip(names, chunk, strict=True))
+        it.iternext()
+
+
+def _coefficients(x, n, pistons):
+    """Constants of the formulas from the tilt, half angle and piston width in ``x``.
+
+    Floats for scalar inputs (once per call), block arrays for array inputs
+    (once per block); inputs missing from ``x`` are skipped.
+    """
+    out = {}
+    if "tilt" in x:
+        tilt = x["tilt"]
+        if isinstance(tilt, float):
+            c = math.cos(tilt)
+            gamma = (1.0 + c) / (1.0 - c) if c != 1.0 else math.inf
+        else:
+            c = np.cos(tilt)
+            with np.errstate(divide="ignore"):  # phi = 0: gamma = inf, atan term 0
+                gamma = (1.0 + c) / (1.0 - c)
+        k = 1.0 - c * c
+        ck = c * k
+        out.update(c=c, k=k, gamma=gamma, a0=0.5 * (1.0 + c * c), b0=0.5 * k, mck=-ck, ck2=2 * ck)
+        if n is not None:
+            out.update(nc=n * c, a2=-(n * n) * ck, a3=2.0 * n**3 * ck)
+    if "half" in x:
+        h = x["half"]
+        trig = math if isinstance(h, float) else np
+        ca, sa = trig.cos(2.0 * h), trig.sin(2.0 * h)
+        out.update(h=h, mh=-h, ca=ca, sa=sa, ca2=2.0 * ca, sa2=2.0 * sa)
+    if pistons is not None and "width" in x:
+        g2 = 2.0 * (0.25 * np.pi - 0.5 * np.pi / pistons)
+        out.update(ka=-g2 - x["width"], kb=2.0 * np.pi / pistons + g2 - x["width"])
+    return out
+
+
+def _block(x, k, n, o, dch, w):
+    """One block: fill ``o`` (4, 2, m) and ``dch`` (2, m) from inputs ``x``, constants ``k``.
+
+    In terms of ``S = sin 2u``, ``C = cos 2u``, ``D = (1 + c^2)/2 - k/2 C``:
+    ``E = u + atan(S / (gamma - C))``, ``gamma = (1 + c)/(1 - c)``;
+    ``E' = c/D``, ``E'' = -c k S/D^2``, ``E''' = 2 c k/D^2 (k S^2/D - C)``.
+    """
+    tv, vt, s2v, c2v, t1, t2, t3, t4, s, c, a, b, e1, e2 = w
+    th = x["theta"]
+    if n is not None:
+        np.multiply(th, n, out=tv)
+        np.multiply(th, 1.0 + n, out=vt)  # theta + varphi
+    else:
+        np.copyto(tv, x["v"])  # contiguous: one tan loop whatever the strides
+        np.add(x["v"], th, out=vt)
+    # sin 2 varphi = 2 t/(1 + t^2), cos 2 varphi = 2/(1 + t^2) - 1, t = tan varphi: one
+    # call instead of sin and cos (|t| < 2e16 for any double, t^2 does not overflow)
+    np.tan(tv, out=tv)
+    np.multiply(tv, tv, out=c2v)
+    np.add(c2v, 1.0, out=c2v)
+    np.divide(1.0, c2v, out=c2v)  # cos^2 varphi
+    np.multiply(tv, c2v, out=s2v)  # sin 2 varphi / 2
+    np.multiply(c2v, 2.0, out=c2v)
+    np.subtract(c2v, 1.0, out=c2v)  # cos 2 varphi
+    # sin 2u, cos 2u of both rotors, 2u = 2 varphi -+ alpha (angle sums)
+    np.multiply(s2v, k["ca2"], out=t1)
+    np.multiply(c2v, k["sa"], out=t2)
+    np.multiply(c2v, k["ca"], out=t3)
+    np.multiply(s2v, k["sa2"], out=t4)
+    if n is None:
+        g1, g2, g3 = x["g1"], x["g2"], x["g3"]
+        g1s, g1c, g12 = g1 * g1, g1 * g1 * g1, 3.0 * g1 * g2
+    for rot, plus in ((0, False), (1, True)):
+        if plus:
+            np.add(t1, t2, out=s)
+            np.subtract(t3, t4, out=c)
+        else:
+            np.subtract(t1, t2, out=s)
+            np.add(t3, t4, out=c)
+        o0, o1, o2, o3 = o[0, rot], o[1, rot], o[2, rot], o[3, rot]
+        # Phi = theta + u + atan(S / (gamma - C))
+        np.subtract(k["gamma"], c, out=a)
+        np.divide(s, a, out=b)
+        np.arctan(b, out=b)
+        np.add(vt, k["h"] if plus else k["mh"], out=o0)
+        np.add(o0, b, out=o0)
+        # 1/D
+        np.multiply(c, k["b0"], out=a)
+        np.subtract(k["a0"], a, out=a)
+        np.divide(1.0, a, out=a)
+        np.multiply(s, a, out=b)  # S/D
+        if n is not None:
+            np.multiply(a, k["nc"], out=o1)
+            np.add(o1, 1.0, out=o1)
+            np.multiply(b, a, out=o2)  # S/D^2
+            _third(b, s, a, c, k, o3, k["a3"])
+            np.multiply(o2, k["a2"], out=o2)
+        else:
+            np.multiply(a, k["c"], out=e1)  # E'
+            np.multiply(b, a, out=e2)
+            np.multiply(e2, k["mck"], out=e2)  # E''
+            _third(b, s, a, c, k, s, k["ck2"])  # E''' (in s)
+            np.multiply(e1, g1, out=o1)
+            np.add(o1, 1.0, out=o1)
+            np.multiply(e2, g1s, out=o2)
+            np.multiply(e1, g2, out=a)
+            np.add(o2, a, out=o2)
+            np.multiply(s, g1c, out=o3)
+            np.multiply(e2, g12, out=a)
+            np.add(o3, a, out=o3)
+            np.multiply(e1, g3, out=a)
+            np.add(o3, a, out=o3)
+    if dch is not None:
+        np.subtract(o[0, 1], o[0, 0], out=a)
+        np.add(a, k["ka"], out=dch[0])
+        np.subtract(k["kb"], a, out=dch[1])
+
+
+def _third(b, s, a, c, k, out, factor):
+    """Set ``out = factor / D^2 (k S^2/D - C)`` from ``b = S/D`` (spent) and ``a = 1/D``."""
+    np.multiply(b, s, out=b)
+    np.multiply(b, k["k"], out=b)
+    np.subtract(b, c, out=b)
+    np.multiply(a, a, out=out)
+    np.multiply(out, b, out=out)
+    np.multiply(out, factor, out=out)

@@ -1,0 +1,516 @@
+"""Wobble plate + spherical figure-eight cam: the differential drive of a twin-rotor engine.
+
+Source: Chen Hu, Xu Haijun, Pan Cunyun, Zou Teng'an, Jiang Lei, "Kinematic
+performance of new-type power transmission mechanism in twin-rotor piston
+engine", J. National University of Defense Technology 37(5), 2015 (in Chinese).
+Equation numbers below are the paper's.
+
+The output shaft turns about the fixed x axis by ``theta``; its middle section
+is tilted by the plate tilt ``phi``; the wobble plate spins on it by ``varphi``
+(the *spin law*, ``varphi = spin_ratio * theta``, paper: ``-2 theta``); the cam
+shell turns by ``psi = -theta``. Four radial roller shafts on the plate, in two
+groups at ``roller_axis_angle = alpha`` to each other in the plate plane, drive
+rotor 1 (group 1) and rotor 2 (group 2) through straight slider rails.
+
+Conventions (the paper is silent on some):
+
+* Fixed frame xyz, x along the output shaft. Frames follow eq. 2-5 and 9:
+  ``r|0 = A_theta A_phi A_varphi r|3``, cam frame ``r|4 = A_psi^T r|0``.
+* A point of the plate at angle ``c`` in the plate plane (from z3 towards y3)
+  and radius r is ``r|3 = r [0, sin c, cos c]``; it is the eq.-8 point with
+  ``varphi -> varphi + c``. Rollers: group 1 at ``c = -alpha/2, pi - alpha/2``,
+  group 2 at ``c = +alpha/2, pi + alpha/2`` (eq. 12).
+* Rotor angle ``Phi_k``: angle of group k's shaft projected on the yz plane,
+  measured from +z towards +y (the direction in which positive ``theta`` turns
+  the shaft frame). ``Phi_k = theta + E(varphi + s_k alpha/2)``,
+  ``s_1 = -1, s_2 = +1``, ``E(u) = atan2(sin u, cos(phi) cos u)`` on its
+  continuous branch. This per-rotor form is derived here; the paper gives only
+  the angle between the rotors, eq. 15.
+* Chambers (N pistons and 2 rails per rotor, eq. 18-19 generalised from the
+  paper's N = 4): ``gamma = pi/4 - pi/(2N)`` (pi/8 at N = 4); rotor 1 pistons
+  at ``Phi_1 + gamma + 2 pi k/N``, rotor 2 pistons at ``Phi_2 - gamma + 2 pi k/N``;
+  chamber kind A (between a rotor-1 piston and the rotor-2 piston ahead of it)
+  ``delta_A = alpha' - 2 gamma - beta``, kind B
+  ``delta_B = 2 pi/N + 2 gamma - alpha' - beta``. N must be even: the two rails
+  of a rotor are pi apart and eq. 18-19 need the pistons to repeat every pi.
+
+Misprints of the paper: eq. 5 prints ``A_psi`` for ``A_theta``; eq. 8 and 11
+print ``cos phi cos phi`` for ``cos(phi) cos(varphi)``; eq. 18's text says
+``alpha'_2 = 90 deg - alpha'_1`` where the equation (right) says ``pi``. The
+paper's symbols phi and varphi are swapped against ours in eq. 2-3 and 14-15
+(the OCR's); here ``phi`` is always the plate tilt and ``varphi`` the spin.
+
+The pistons and chambers (eq. 17-23, :mod:`rotorkin.drives.wobble_cam.chambers`) and
+the fused fast path of the kinematics (:mod:`rotorkin.drives.wobble_cam.fast`)
+live in their own modules; every public name is importable from here.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorkin.core.angles import angle_near, fmt_deg, fmt_mm
+from rotorkin.core.errors import ParameterError
+from rotorkin.core.motion import Motion
+from rotorkin.drives.wobble_cam.chambers import (
+    CHAMBERS,
+    PISTON_OFFSET,
+    PistonLayout,
+    _check_pistons,
+    chamber_angles,
+    chamber_count,
+    max_plate_tilt,
+    min_compression_ratio,
+    piston_layout,
+    piston_offset,
+    power_strokes_per_rev,
+    slider_angle_extremes,
+    slider_angle_limits,
+    volume_cycles_per_rev,
+)
+from rotorkin.drives.wobble_cam.fast import rotor_kinematics
+
+__all__ = [
+    "PISTON_OFFSET",
+    "CHAMBERS",
+    "piston_offset",
+    "chamber_count",
+    "slider_angle_limits",
+    "WobbleCam",
+    "PistonLayout",
+    "max_plate_tilt",
+    "spin_law",
+    "cam_angle",
+    "projected_angle",
+    "rotor_angles_from_spin",
+    "rotor_angles",
+    "Kinematics",
+    "kinematics",
+    "motion",
+    "period",
+    "slider_angle",
+    "slider_angle_extremes",
+    "chamber_angles",
+    "min_compression_ratio",
+    "piston_layout",
+    "roller_offsets",
+    "plate_point",
+    "groove_point",
+    "roller_positions",
+    "groove_points",
+    "volume_cycles_per_rev",
+    "power_strokes_per_rev",
+]
+
+
+# --------------------------------------------------------------------------------------------
+# parameters
+# --------------------------------------------------------------------------------------------
+def _is_half_integer(x) -> bool:
+    return bool(np.isfinite(x) and x != 0 and abs(2.0 * x - np.round(2.0 * x)) < 1e-9)
+
+
+@dataclass(frozen=True)
+class WobbleCam:
+    """Parameters of the wobble-plate + spherical-cam drive (SI).
+
+    Parameters
+    ----------
+    plate_tilt : float
+        Tilt phi of the shaft's middle section (the plate axis) [rad];
+        ``0 < phi < max_plate_tilt(roller_axis_angle)`` (eq. 20). Table 1: 45 deg.
+    roller_axis_angle : float, optional
+        Angle alpha between the two roller groups in the plate plane [rad];
+        ``pi/4 < alpha < 3 pi/4``. Table 1: 90 deg (default).
+    spin_ratio : float, optional
+        n in the spin law ``varphi = n theta`` (plate spin relative to the
+        tilted shaft section); a nonzero multiple of 0.5 so that the motion
+        repeats every shaft turn. Paper: -2 (default).
+    sphere_radius : float, optional
+        Radius r of the inner roller centres, i.e. of the groove centre-line
+        sphere [m] (default 0.05; the paper gives no value).
+    pistons_per_rotor : int, optional
+        Pistons N on each rotor, even, >= 2 (paper: 4, default). It only sets the
+        interference limits of eq. 20 (and the chamber bookkeeping).
+    spin_a, spin_b : tuple of float, optional
+        Periodic correction of the spin law (not in the paper; for synthesis):
+        ``varphi = n theta + sum_k a_k cos(k theta) + b_k sin(k theta)``,
+        ``k = 1, 2, ...`` [rad]. Empty (default): the paper's linear law.
+    """
+
+    plate_tilt: float
+    roller_axis_angle: float = np.pi / 2.0
+    spin_ratio: float = -2.0
+    sphere_radius: float = 0.05
+    pistons_per_rotor: int = 4
+    spin_a: tuple = ()
+    spin_b: tuple = ()
+
+    def __post_init__(self):
+        n_p = self.pistons_per_rotor
+        _check_pistons(n_p)
+        a = float(self.roller_axis_angle)
+        lo, hi = np.pi / 2.0 - np.pi / n_p, np.pi / 2.0 + np.pi / n_p
+        if not (np.isfinite(a) and lo < a < hi):
+            raise ParameterError(
+                "roller_axis_angle",
+                fmt_deg(a),
+                f"{fmt_deg(lo)} < roller_axis_angle < {fmt_deg(hi)} (eq. 20: beyond, no plate "
+                f"tilt is admissible for {n_p}-piston rotors)",
+            )
+        lim = float(max_plate_tilt(a, n_p))
+        p = float(self.plate_tilt)
+        if not (np.isfinite(p) and 0.0 < p < lim):
+            raise ParameterError(
+                "plate_tilt",
+                fmt_deg(p),
+                f"0 deg < plate_tilt < {np.degrees(lim):.2f} deg (eq. 20 limit at "
+                f"roller_axis_angle = {fmt_deg(a)}, {n_p} pistons per rotor)",
+            )
+        if not _is_half_integer(float(self.spin_ratio)):
+            raise ParameterError(
+                "spin_ratio",
+                f"{float(self.spin_ratio):g}",
+                "a finite nonzero multiple of 0.5 (e.g. -2, the paper's law), so that "
+                "the motion repeats every shaft turn",
+            )
+        r = float(self.sphere_radius)
+        if not (np.isfinite(r) and r > 0.0):
+            raise ParameterError("sphere_radius", fmt_mm(r), "sphere_radius > 0 mm")
+        for name in ("spin_a", "spin_b"):
+            coeffs = np.asarray(getattr(self, name), dtype=float).ravel()
+            if not np.all(np.isfinite(coeffs)):
+                raise ParameterError(name, str(list(coeffs)), "finite coefficients [rad]")
+            object.__setattr__(self, name, tuple(float(c) for c in coeffs))
+        if self.spin_a or self.spin_b:
+            rate = spin_law(self, np.linspace(0.0, 2.0 * np.pi, 4097))[1] * np.sign(self.spin_ratio)
+            if np.min(rate) <= 0.0:
+                raise ParameterError(
+                    "spin_a",
+                    f"{list(self.spin_a)} (spin_b = {list(self.spin_b)})",
+                    "a correction that keeps the spin monotone: sign(spin_ratio) dvarphi/dtheta "
+                    f"> 0 everywhere (lowest here {np.min(rate):.4g})",
+                )
+
+
+# --------------------------------------------------------------------------------------------
+# laws of the plate and the cam
+# --------------------------------------------------------------------------------------------
+def spin_law(params: WobbleCam, theta):
+    """Plate spin ``varphi(theta)`` and its derivatives (paper: ``varphi = -2 theta``).
+
+    ``varphi = n theta + c(theta)``, with the periodic correction
+    ``c = sum_k a_k cos(k theta) + b_k sin(k theta)`` (``spin_a``, ``spin_b``,
+    k = 1, 2, ...; empty for the paper's law). The correction is 2 pi periodic,
+    so the motion still repeats every shaft turn.
+
+    Parameters
+    ----------
+    params : WobbleCam
+    theta : array_like
+        Shaft angle [rad].
+
+    Returns
+    -------
+    tuple of 4 ndarray
+        ``varphi`` [rad], ``dvarphi/dtheta`` [-], ``d2``, ``d3`` [1/rad, 1/rad^2]
+        (the last two are zero for the linear law), all of ``theta``'s shape.
+    """
+    theta = np.asarray(theta, dtype=float)
+    n = float(params.spin_ratio)
+    out = [n * theta, np.zeros_like(theta) + n, np.zeros_like(theta), np.zeros_like(theta)]
+    for coeffs, phase in ((params.spin_a, 0.0), (params.spin_b, -0.5 * np.pi)):
+        # a cos(k t + phase): a sin term is a cos term shifted by -pi/2
+        for k, amp in enumerate(coeffs, start=1):
+            if amp == 0.0:
+                continue
+            arg = k * theta + phase
+            c, s = np.cos(arg), np.sin(arg)
+            out[0] = out[0] + amp * c
+            out[1] = out[1] - amp * k * s
+            out[2] = out[2] - amp * k * k * c
+            out[3] = out[3] + amp * k**3 * s
+    return tuple(out)
+
+
+def cam_angle(theta):
+    """Cam shell angle ``psi = -theta`` (bevel gearbox, equal and opposite) [rad]."""
+    return -np.asarray(theta, dtype=float)
+
+
+def projected_angle(u, plate_tilt):
+    """Angle of a plate radius projected on the shaft frame's y1z1 plane, and derivatives.
+
+    A plate radius at angle ``u`` in the plate plane (from z2 towards y2) seen
+    along the shaft axis makes the angle ``E(u) = atan2(sin u, cos(phi) cos u)``
+    with z1 (eq. 14 with theta = 0). We use the branch that is continuous in u,
+
+    ``E = u + atan2((1 - c) sin u cos u, sin^2 u + c cos^2 u)``, ``c = cos(phi)``,
+
+    (the second term stays within (-pi/2, pi/2) since c > 0; this is
+    :func:`rotorkin.core.angles.angle_near` with reference u), so ``E(u + pi) = E(u) + pi``.
+    Derivatives, with ``D = sin^2 u + c^2 cos^2 u = (1 + c^2)/2 - (1 - c^2)/2 cos 2u``:
+    ``E' = c/D``, ``E'' = -c D'/D^2``, ``E''' = -c D''/D^2 + 2 c D'^2/D^3``.
+
+    Parameters
+    ----------
+    u : array_like
+        Angle in the plate plane [rad].
+    plate_tilt : array_like
+        phi [rad], ``0 <= phi < pi/2``.
+
+    Returns
+    -------
+    tuple of 4 ndarray
+        ``E`` [rad], ``dE/du`` [-], ``d2E/du2`` [1/rad], ``d3E/du3`` [1/rad^2].
+    """
+    u = np.asarray(u, dtype=float)
+    c = np.cos(np.asarray(plate_tilt, dtype=float))
+    su, cu = np.sin(u), np.cos(u)
+    # = u + atan2((1 - c) sin u cos u, sin^2 u + c cos^2 u): the vector measured from angle u
+    e0 = angle_near(su, c * cu, u)
+    a, b = 0.5 * (1.0 + c * c), 0.5 * (1.0 - c * c)
+    s2, c2 = np.sin(2.0 * u), np.cos(2.0 * u)
+    d0 = a - b * c2
+    d1 = 2.0 * b * s2
+    d2 = 4.0 * b * c2
+    e1 = c / d0
+    e2 = -c * d1 / d0**2
+    e3 = -c * d2 / d0**2 + 2.0 * c * d1**2 / d0**3
+    return e0, e1, e2, e3
+
+
+def rotor_angles_from_spin(theta, spin, plate_tilt, roller_axis_angle, *, threads=None):
+    """Angles of both rotors and their derivatives, for any spin law (eq. 13-14).
+
+    ``Phi_k = theta + E(u_k)``, ``u_k = varphi(theta) + s_k alpha/2``,
+    ``s_1 = -1``, ``s_2 = +1`` (see :func:`projected_angle`); the chain rule
+    (Faa di Bruno, as :func:`rotorkin.core.motion.compose`) gives the derivatives from
+    those of the spin law, so a spin law with a periodic correction only needs
+    its value and three derivatives. Evaluated by the fused, blocked fast path
+    :func:`rotorkin.drives.wobble_cam.fast.rotor_kinematics` (4 transcendental
+    calls per point, no temporaries of the full size).
+
+    Parameters
+    ----------
+    theta : array_like, shape (...)
+        Shaft angle [rad].
+    spin : sequence of 4 array_like, or float
+        ``varphi, varphi', varphi'', varphi'''`` at ``theta`` [rad, -, 1/rad, 1/rad^2];
+        a number n stands for the linear law ``varphi = n theta``.
+    plate_tilt, roller_axis_angle : float or array_like
+        phi and alpha [rad] (broadcast with ``theta``).
+    threads : int, optional
+        Threads for large arrays (default ``$ROTORKIN_THREADS`` or 1); the
+        values do not depend on it.
+
+    Returns
+    -------
+    tuple of 4 ndarray, shape (2, ...)
+        ``Phi``, ``dPhi/dtheta``, ``d2Phi/dtheta2``, ``d3Phi/dtheta3`` of
+        rotor 1 (index 0) and rotor 2 (index 1) [rad, -, 1/rad, 1/rad^2].
+        Angles are measured in the yz plane from +z towards +y; at theta = 0
+        and varphi = 0 rotor 1 is at ``-alpha'_max/2``, rotor 2 at ``+alpha'_max/2``.
+    """
+    rotor, _ = rotor_kinematics(theta, spin, plate_tilt, roller_axis_angle, threads=threads)
+    return tuple(rotor)
+
+
+def _spin(params: WobbleCam, theta):
+    """The spin law as :func:`rotor_kinematics` takes it: n when linear, else 4 arrays."""
+    if params.spin_a or params.spin_b:
+        return spin_law(params, theta)
+    return float(params.spin_ratio)
+
+
+def rotor_angles(params: WobbleCam, theta, *, threads=None):
+    """Rotor angles and derivatives under the params' spin law.
+
+    See :func:`rotor_angles_from_spin`; returns 4 arrays of shape ``(2, *theta.shape)``.
+    """
+    theta = np.asarray(theta, dtype=float)
+    return rotor_angles_from_spin(
+        theta, _spin(params, theta), params.plate_tilt, params.roller_axis_angle, threads=threads
+    )
+
+
+@dataclass(frozen=True)
+class Kinematics:
+    """Rotor angles, their three derivatives and the chamber angles (see :func:`kinematics`).
+
+    Attributes
+    ----------
+    q, dq, d2q, d3q : ndarray, shape (2, ...)
+        ``Phi_k`` and its derivatives with respect to theta, rotor 1 at index 0
+        [rad, -, 1/rad, 1/rad^2].
+    chamber_a, chamber_b : ndarray, shape (...)
+        ``delta_A``, ``delta_B`` [rad] (eq. 18-19, :func:`chamber_angles`).
+    """
+
+    q: np.ndarray
+    dq: np.ndarray
+    d2q: np.ndarray
+    d3q: np.ndarray
+    chamber_a: np.ndarray
+    chamber_b: np.ndarray
+
+    @property
+    def slider(self) -> np.ndarray:
+        """Slider angle ``alpha' = Phi_2 - Phi_1`` [rad] (eq. 15)."""
+        return self.q[1] - self.q[0]
+
+
+def kinematics(params: WobbleCam, theta, piston_width, *, threads=None) -> Kinematics:
+    """Rotor angles, derivatives and chamber angles of both kinds, in one fused pass.
+
+    The same values as :func:`rotor_angles` followed by
+    ``chamber_angles(q[1] - q[0], piston_width, pistons_per_rotor)``, computed
+    block by block (:func:`rotorkin.drives.wobble_cam.fast.rotor_kinematics`).
+
+    Parameters
+    ----------
+    params : WobbleCam
+    theta : array_like, shape (...)
+        Shaft angle [rad].
+    piston_width : float or array_like
+        beta [rad] (e.g. ``piston_layout(params, eps).piston_width``).
+    threads : int, optional
+        Threads for large arrays (default ``$ROTORKIN_THREADS`` or 1).
+    """
+    theta = np.asarray(theta, dtype=float)
+    rotor, cham = rotor_kinematics(
+        theta,
+        _spin(params, theta),
+        params.plate_tilt,
+        params.roller_axis_angle,
+        (piston_width, params.pistons_per_rotor),
+        threads=threads,
+    )
+    return Kinematics(*rotor, *cham)
+
+
+def motion(params: WobbleCam, theta) -> Motion:
+    """Motion of rotor 1 and rotor 2 (``q = (Phi_1, Phi_2)`` [rad]) over shaft angle theta."""
+    theta = np.asarray(theta, dtype=float)
+    q, dq, d2q, d3q = rotor_angles(params, theta)
+    return Motion(theta, q, dq, d2q, d3q, members=("rotor 1", "rotor 2"), unit="rad")
+
+
+def period(params: WobbleCam) -> float:
+    """Shaft angle after which the motion repeats: 2 pi [rad].
+
+    With a spin ratio that is a multiple of 0.5, each rotor has then turned by
+    ``2 pi (1 + n)``, a multiple of pi, which maps its 2 rails and 4 pistons
+    onto themselves; all derivatives are 2 pi periodic (in fact pi/|n|).
+    """
+    return 2.0 * np.pi
+
+
+# --------------------------------------------------------------------------------------------
+# slider angle
+# --------------------------------------------------------------------------------------------
+def slider_angle(spin_angle, plate_tilt, roller_axis_angle):
+    """Angle alpha' between the rails of rotor 1 and rotor 2 (eq. 15) [rad].
+
+    ``alpha' = Phi_2 - Phi_1 = E(varphi + alpha/2) - E(varphi - alpha/2)``; it
+    depends on the spin angle only (period pi) and lies in (0, pi). Same value
+    as the paper's arccos form, eq. 15, without its loss of sign and precision.
+
+    Parameters
+    ----------
+    spin_angle : array_like
+        Plate spin varphi [rad].
+    plate_tilt, roller_axis_angle : array_like
+        phi and alpha [rad].
+    """
+    half = 0.5 * np.asarray(roller_axis_angle, dtype=float)
+    v = np.asarray(spin_angle, dtype=float)
+    return projected_angle(v + half, plate_tilt)[0] - projected_angle(v - half, plate_tilt)[0]
+
+
+# --------------------------------------------------------------------------------------------
+# roller trajectories and groove centre-lines
+# --------------------------------------------------------------------------------------------
+def roller_offsets(roller_axis_angle):
+    """Angles c of the 4 rollers in the plate plane (from z3 towards y3) [rad], shape (4,).
+
+    Order: group 1 (``-alpha/2``, ``pi - alpha/2``), group 2 (``alpha/2``,
+    ``pi + alpha/2``); roller 1 is index 0 (eq. 12).
+    """
+    h = 0.5 * float(roller_axis_angle)
+    return np.array([-h, np.pi - h, h, np.pi + h])
+
+
+def plate_point(theta, spin_angle, offset, plate_tilt, radius):
+    """Plate point at angle ``offset`` and ``radius``, in the fixed frame (eq. 7-8) [m].
+
+    ``r|0 = A_theta A_phi A_varphi r [0, sin c, cos c]
+    = r [sin(phi) cos u, cos(theta) sin u + sin(theta) cos(phi) cos u,
+    -sin(theta) sin u + cos(theta) cos(phi) cos u]``, ``u = varphi + c``.
+
+    Returns
+    -------
+    ndarray, shape (3, ...)
+        x, y, z of the broadcast inputs.
+    """
+    theta = np.asarray(theta, dtype=float)
+    u = np.asarray(spin_angle, dtype=float) + offset
+    sp, cp = np.sin(plate_tilt), np.cos(plate_tilt)
+    su, cu = np.sin(u), np.cos(u)
+    st, ct = np.sin(theta), np.cos(theta)
+    x = sp * cu
+    y = ct * su + st * cp * cu
+    z = -st * su + ct * cp * cu
+    return radius * np.stack(np.broadcast_arrays(x, y, z))
+
+
+def groove_point(theta, cam, spin_angle, offset, plate_tilt, radius):
+    """The plate point of :func:`plate_point` seen in the cam frame (eq. 10-11) [m].
+
+    ``r|4 = A_psi^T r|0``; the first two rotations combine to ``A_(theta - psi)``.
+    With ``psi = -theta`` and ``varphi = -2 theta`` it closes after ``theta = pi``.
+
+    Returns
+    -------
+    ndarray, shape (3, ...)
+    """
+    return plate_point(
+        np.asarray(theta, dtype=float) - np.asarray(cam, dtype=float),
+        spin_angle,
+        offset,
+        plate_tilt,
+        radius,
+    )
+
+
+def _per_roller(params: WobbleCam, theta):
+    theta = np.asarray(theta, dtype=float)
+    c = roller_offsets(params.roller_axis_angle).reshape((4,) + (1,) * theta.ndim)
+    return theta, spin_law(params, theta)[0], c
+
+
+def roller_positions(params: WobbleCam, theta):
+    """Inner-roller centres of the 4 rollers in the fixed frame (Fig. 8) [m].
+
+    Returns
+    -------
+    ndarray, shape (4, 3, ...)
+        Roller (order of :func:`roller_offsets`), coordinate x y z, ``theta``'s shape.
+    """
+    theta, v, c = _per_roller(params, theta)
+    p = plate_point(theta, v, c, params.plate_tilt, params.sphere_radius)
+    return np.moveaxis(p, 0, 1)
+
+
+def groove_points(params: WobbleCam, theta):
+    """Groove centre-line points of the 4 rollers in the cam frame (Fig. 9) [m].
+
+    Returns
+    -------
+    ndarray, shape (4, 3, ...)
+    """
+    theta, v, c = _per_roller(params, theta)
+    p = groove_point(theta, cam_angle(theta), v, c, params.plate_tilt, params.sphere_radius)
+    return np.moveaxis(p, 0, 1)

@@ -1,0 +1,426 @@
+"""Study of the wobble-plate + spherical-cam twin-rotor engine (Chen Hu et al. 2015).
+
+Config keys (SI, defaults filled by :mod:`rotorkin.io.config`):
+``drive.plate_tilt``, ``drive.roller_axis_angle``, ``drive.spin_ratio``,
+``drive.sphere_radius``; ``machine.*`` (:class:`rotorkin.machines.twin_rotor.TwinRotor`:
+compression ratio, pistons per rotor, cylinder section, clearance, inertias, speed
+fluctuation); ``loads.*`` (:class:`rotorkin.analysis.engine_cycle.IdealCycle`:
+ambient pressure, polytropic exponent, heat per cycle); ``run.points``, ``run.speed``.
+Keys missing from a hand-built cfg take the dataclasses' defaults (= the config's).
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import fields
+from pathlib import Path
+
+import numpy as np
+
+from rotorkin.analysis import engine_cycle as ec
+from rotorkin.analysis.flywheel import energy_fluctuation, flywheel_inertia
+from rotorkin.analysis.timing import shaft_speed
+from rotorkin.analysis.torque import (
+    equivalent_inertia,
+    inertia_torque,
+    kinetic_energy,
+    torque_ripple,
+)
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.machines import twin_rotor as tr
+from rotorkin.studies import StudyResult
+from rotorkin.studies.helpers import angle_grid, build_params, time_domain
+
+__all__ = ["evaluate", "models", "HEADLINE"]
+
+#: Summary keys printed by the command line, in order, with what each means (one line).
+HEADLINE = {
+    "slider_angle_max_deg": "largest angle between the slider groups, alpha'_max (eq. 15)",
+    "slider_angle_min_deg": "smallest angle between the slider groups, alpha'_min",
+    "chamber_angle_max_deg": "chamber angle delta at bottom dead centre (eq. 22)",
+    "chamber_angle_min_deg": "chamber angle delta at top dead centre (eq. 22)",
+    "chamber_swing_deg": "swing of the chamber angle over a turn (Fig. 10)",
+    "piston_width_deg": "angular width beta of a piston for the compression ratio (eq. 21)",
+    "volume_cycles_per_rev": "volume cycles of one chamber per shaft turn",
+    "power_strokes_per_rev": "power strokes of the engine per shaft turn",
+    "max_plate_tilt_deg": "largest admissible plate tilt, eq. 20 (Fig. 13)",
+    "displacement_cm3_per_rev": "swept volume of all chambers per shaft turn",
+    "compression_ratio_geometric": "V_max / V_min of a chamber, with clearance",
+    "peak_pressure_bar": "highest chamber pressure of the ideal cycle",
+    "indicated_work_J": "indicated work of all chambers per shaft turn",
+    "mean_torque_Nm": "mean gas torque on the shaft (+ drives the shaft)",
+    "torque_ripple": "(max - min) / mean of the gas torque on the shaft",
+    "indicated_power_kW": "indicated power at the run speed",
+    "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+}
+
+#: Samples per shaft turn used for the peaks of the rotor derivatives (independent of run.points).
+_PEAK_SAMPLES = 20_001
+#: Default shaft speed when a hand-built cfg has none: 3000 rpm [rad/s] (the config's default).
+_DEFAULT_SPEED = 3000.0 * np.pi / 30.0
+
+
+def _deg(x) -> float:
+    return float(np.degrees(x))
+
+
+def _layout(params, machine):
+    try:
+        return tr.piston_layout(params, machine)
+    except ParameterError as exc:
+        raise ParameterError("machine.compression_ratio", exc.value, exc.admissible) from None
+
+
+def _section(cfg, name, cls):
+    """The cfg section's values for the fields of ``cls`` (missing ones: the defaults)."""
+    section = cfg.get(name, {}) or {}
+    return {f.name: section[f.name] for f in fields(cls) if f.name in section}
+
+
+def _summary(params, layout) -> dict:
+    amax, amin = (
+        float(v) for v in wc.slider_angle_extremes(params.plate_tilt, params.roller_axis_angle)
+    )
+    design_min, design_max = (
+        (layout.chamber_a_min, layout.chamber_a_max)
+        if layout.design_kind == "A"
+        else (layout.chamber_b_min, layout.chamber_b_max)
+    )
+    # peaks of the rotor kinematic coefficients on a fine grid (closed-form values, sampled)
+    fine = np.linspace(0.0, wc.period(params), _PEAK_SAMPLES)
+    _, d1, d2, d3 = wc.rotor_angles(params, fine)
+    c, n = np.cos(params.plate_tilt), params.spin_ratio
+    if params.spin_a or params.spin_b:  # a corrected spin law: sampled extremes
+        ratios = (float(np.min(d1)), float(np.max(d1)))
+    else:  # dPhi/dtheta = 1 + n c / D with c^2 <= D <= 1: extremes 1 + n c and 1 + n / c
+        ratios = sorted((1.0 + n * c, 1.0 + n / c))
+    return {
+        "slider_angle_max_deg": _deg(amax),
+        "slider_angle_min_deg": _deg(amin),
+        "chamber_angle_max_deg": _deg(design_max),
+        "chamber_angle_min_deg": _deg(design_min),
+        "chamber_swing_deg": _deg(amax - amin),
+        "piston_width_deg": _deg(layout.piston_width),
+        "volume_cycles_per_rev": wc.volume_cycles_per_rev(params),
+        "power_strokes_per_rev": wc.power_strokes_per_rev(params),
+        "max_plate_tilt_deg": _deg(
+            wc.max_plate_tilt(params.roller_axis_angle, params.pistons_per_rotor)
+        ),
+        "piston_offset_gamma_deg": _deg(wc.piston_offset(params.pistons_per_rotor)),
+        "chambers": wc.chamber_count(params.pistons_per_rotor),
+        "compression_ratio": float(layout.compression_ratio),
+        "min_compression_ratio": float(wc.min_compression_ratio(params)),
+        "design_chamber_kind": layout.design_kind,
+        "chamber_a_angle_min_deg": _deg(layout.chamber_a_min),
+        "chamber_a_angle_max_deg": _deg(layout.chamber_a_max),
+        "chamber_b_angle_min_deg": _deg(layout.chamber_b_min),
+        "chamber_b_angle_max_deg": _deg(layout.chamber_b_max),
+        "compression_ratio_a": float(layout.compression_ratio_a),
+        "compression_ratio_b": float(layout.compression_ratio_b),
+        "volume_cycles_per_rev_all_chambers": wc.chamber_count(params.pistons_per_rotor)
+        * wc.volume_cycles_per_rev(params),
+        "rotor_mean_speed_ratio": float(1.0 + n),
+        "rotor_speed_ratio_min": float(ratios[0]),
+        "rotor_speed_ratio_max": float(ratios[1]),
+        "rotor_accel_peak_per_rad": float(np.max(np.abs(d2))),
+        "rotor_jerk_peak_per_rad2": float(np.max(np.abs(d3))),
+    }
+
+
+_DOCS = {
+    "theta_deg": "Output-shaft angle theta, positive from +z towards +y about x.",
+    "rotor1_angle_deg": "Rotor 1 angle Phi_1 in the yz plane from +z towards +y (rail of group 1).",
+    "rotor2_angle_deg": "Rotor 2 angle Phi_2 in the yz plane from +z towards +y (rail of group 2).",
+    "rotor1_speed_ratio": "dPhi_1/dtheta, rotor 1 speed over shaft speed.",
+    "rotor2_speed_ratio": "dPhi_2/dtheta, rotor 2 speed over shaft speed.",
+    "rotor1_accel_per_rad": "d2Phi_1/dtheta2, rotor 1 angular acceleration per shaft speed^2.",
+    "rotor2_accel_per_rad": "d2Phi_2/dtheta2, rotor 2 angular acceleration per shaft speed^2.",
+    "rotor1_jerk_per_rad2": "d3Phi_1/dtheta3, rotor 1 angular jerk over shaft speed cubed.",
+    "rotor2_jerk_per_rad2": "d3Phi_2/dtheta3, rotor 2 angular jerk over shaft speed cubed.",
+    "slider_angle_deg": "Slider (rail) angle alpha' = Phi_2 - Phi_1 (eq. 15).",
+    "chamber_a_angle_deg": "Chamber kind A angle delta_A = alpha' - 2 gamma - beta (eq. 19).",
+    "chamber_b_angle_deg": "Chamber kind B, delta_B = 2 pi/N + 2 gamma - alpha' - beta (eq. 18).",
+    "roller1_x_mm": "Roller 1 (group 1, c = -alpha/2) centre x in the fixed frame (eq. 8).",
+    "roller1_y_mm": "Roller 1 centre y in the fixed frame (eq. 8).",
+    "roller1_z_mm": "Roller 1 centre z in the fixed frame (eq. 8).",
+    "groove1_x_mm": "Groove centre-line point of roller 1, x4 in the cam frame (eq. 11).",
+    "groove1_y_mm": "Groove centre-line point of roller 1, y4 in the cam frame (eq. 11).",
+    "groove1_z_mm": "Groove centre-line point of roller 1, z4 in the cam frame (eq. 11).",
+}
+
+
+def _columns(params, layout, points) -> dict:
+    theta = angle_grid(wc.period(params), points)
+    q, d1, d2, d3 = wc.rotor_angles(params, theta)
+    slider = q[1] - q[0]
+    da, db = wc.chamber_angles(slider, layout.piston_width, params.pistons_per_rotor)
+    roller = wc.roller_positions(params, theta)[0] * 1e3
+    groove = wc.groove_points(params, theta)[0] * 1e3
+    cols = {"theta_deg": np.degrees(theta)}
+    for k in (0, 1):
+        cols[f"rotor{k + 1}_angle_deg"] = np.degrees(q[k])
+    for k in (0, 1):
+        cols[f"rotor{k + 1}_speed_ratio"] = d1[k]
+    for k in (0, 1):
+        cols[f"rotor{k + 1}_accel_per_rad"] = d2[k]
+    for k in (0, 1):
+        cols[f"rotor{k + 1}_jerk_per_rad2"] = d3[k]
+    cols["slider_angle_deg"] = np.degrees(slider)
+    cols["chamber_a_angle_deg"] = np.degrees(da)
+    cols["chamber_b_angle_deg"] = np.degrees(db)
+    for i, ax in enumerate("xyz"):
+        cols[f"roller1_{ax}_mm"] = roller[i]
+    for i, ax in enumerate("xyz"):
+        cols[f"groove1_{ax}_mm"] = groove[i]
+    return cols
+
+
+# --------------------------------------------------------------------------------------------
+# the engine: volumes, pressures, torques, inertia
+# --------------------------------------------------------------------------------------------
+def _dynamics(machine, state, omega, omega_dot):
+    """Inertia torque, net shaft torque, J_eq and kinetic energy at the given speed."""
+    dq, d2q = state.chambers.motion.dq, state.chambers.motion.d2q
+    j_s, j_m = machine.inertia_shaft, machine.member_inertias
+    t_in = inertia_torque(j_s, j_m, dq, d2q, omega, omega_dot)
+    return (
+        t_in,
+        state.shaft_torque - t_in,
+        equivalent_inertia(j_s, j_m, dq),
+        kinetic_energy(j_s, j_m, dq, omega),
+    )
+
+
+def _ratio(num, den) -> float:
+    """num/den as a float; NaN when den is 0 (e.g. no heat, no inertia)."""
+    return float(num / den) if den > 0 else float("nan")
+
+
+def _engine_summary(params, machine, cycle, layout, speed) -> dict:
+    """Volumes, cycle, torques and flywheel; closed forms where they exist, else a fine grid."""
+    v_min, v_max = tr.volume_limits(machine, layout)
+    eps_a, eps_b = tr.compression_ratio_geometric(machine, layout)
+    design = 0 if layout.design_kind == "A" else 1
+    swept = tr.swept_volume(machine, layout)
+    disp = tr.displacement_per_rev(params, machine, layout)
+    work_cycle = ec.indicated_work(cycle, v_max[:2], v_min[:2])  # kinds A, B
+    work_rev = tr.indicated_work_per_rev(params, machine, cycle, layout)
+    heat_rev = cycle.heat_per_cycle * machine.chambers * tr.cycles_per_rev(params)
+    fine = np.linspace(0.0, wc.period(params), _PEAK_SAMPLES)
+    state = tr.engine_state(params, machine, cycle, fine)
+    omega = shaft_speed(fine, speed, wc.period(params))
+    omega_mean = wc.period(params) / np.trapezoid(1.0 / omega[0], fine)  # time average
+    _, net, j_eq, _ = _dynamics(machine, state, omega[0], omega[1])
+    # flywheel at the constant mean speed: net torque T_gas - T_inertia(omega_mean)
+    _, net_const, _, _ = _dynamics(machine, state, omega_mean, 0.0)
+    d_e = float(energy_fluctuation(net_const, fine))
+    j_mean = float(np.mean(j_eq[:-1]))
+    cs = machine.speed_fluctuation
+    mm3 = 1e6
+    return {
+        "pistons_per_rotor": int(machine.pistons_per_rotor),
+        "section": machine.section,
+        "annulus_volume_cm3": tr.annulus_volume(machine) * mm3,
+        "clearance_volume_cm3": float(machine.clearance_volume) * mm3,
+        "chamber_volume_max_cm3": float(np.max(v_max)) * mm3,
+        "chamber_volume_min_cm3": float(np.min(v_min)) * mm3,
+        "chamber_a_volume_min_cm3": float(v_min[0]) * mm3,
+        "chamber_a_volume_max_cm3": float(v_max[0]) * mm3,
+        "chamber_b_volume_min_cm3": float(v_min[1]) * mm3,
+        "chamber_b_volume_max_cm3": float(v_max[1]) * mm3,
+        "swept_volume_cm3": swept * mm3,
+        "displacement_cm3_per_rev": disp * mm3,
+        "equivalent_capacity_cm3": tr.swept_volume_per_rev(params, machine, layout) * mm3,
+        "intake_strokes_per_rev": int(round(machine.chambers * tr.cycles_per_rev(params))),
+        "chambers_in_power_stroke": machine.pistons_per_rotor // 2,
+        "compression_ratio_geometric": (eps_a, eps_b)[design],
+        "compression_ratio_geometric_a": eps_a,
+        "compression_ratio_geometric_b": eps_b,
+        "compression_end_pressure_bar": float(
+            np.max(ec.compression_end_pressure(cycle, v_max, v_min))
+        )
+        / 1e5,
+        "peak_pressure_bar": float(np.max(ec.peak_pressure(cycle, v_max, v_min))) / 1e5,
+        "indicated_work_per_cycle_a_J": float(work_cycle[0]),
+        "indicated_work_per_cycle_b_J": float(work_cycle[1]),
+        "indicated_work_J": work_rev,
+        "heat_added_J_per_rev": heat_rev,
+        "indicated_efficiency": _ratio(work_rev, heat_rev),
+        "otto_efficiency": float(
+            ec.otto_efficiency((eps_a, eps_b)[design], cycle.polytropic_exponent)
+        ),
+        "imep_bar": _ratio(work_rev, disp) / 1e5,
+        "mean_torque_Nm": work_rev / wc.period(params),
+        "torque_ripple": float(torque_ripple(state.shaft_torque)),
+        "torque_ripple_with_inertia": float(torque_ripple(net)),
+        "shaft_torque_max_Nm": float(np.max(state.shaft_torque)),
+        "shaft_torque_min_Nm": float(np.min(state.shaft_torque)),
+        "shaft_torque_with_inertia_max_Nm": float(np.max(net)),
+        "shaft_torque_with_inertia_min_Nm": float(np.min(net)),
+        "rotor_gas_torque_peak_Nm": float(np.max(np.abs(state.member_torque))),
+        "indicated_power_kW": work_rev * omega_mean / wc.period(params) / 1e3,
+        "equivalent_inertia_mean_kgm2": j_mean,
+        "energy_fluctuation_J": d_e,
+        "speed_fluctuation_without_flywheel": _ratio(d_e, j_mean * omega_mean**2),
+        "speed_fluctuation": float(cs),
+        "flywheel_inertia_kgm2": float(flywheel_inertia(d_e, omega_mean, cs, j_mean)),
+    }
+
+
+def _engine_columns(params, machine, cycle, speed, theta):
+    state = tr.engine_state(params, machine, cycle, theta)
+    ch = state.chambers
+    omega = shaft_speed(theta, speed, wc.period(params))
+    t_in, net, j_eq, ke = _dynamics(machine, state, omega[0], omega[1])
+    cols, docs = {}, {}
+
+    def add(name, values, doc):
+        cols[name] = np.asarray(values, dtype=float)
+        docs[name] = doc
+
+    for j, kind in ((0, "a"), (1, "b")):
+        add(
+            f"chamber_{kind}_volume_cm3",
+            ch.volume[j] * 1e6,
+            f"Volume of every kind-{kind.upper()} chamber (chambers {j + 1}, {j + 3}, ...), "
+            "K delta + V_c.",
+        )
+    for j, kind in ((0, "a"), (1, "b")):
+        add(
+            f"chamber_{kind}_dvolume_cm3_per_rad",
+            ch.dvolume[j] * 1e6,
+            f"dV/dtheta of a kind-{kind.upper()} chamber (exact).",
+        )
+    for j in range(machine.chambers):
+        add(
+            f"chamber{j + 1}_stroke",
+            state.stroke[j],
+            f"Stroke of chamber {j + 1}: 0 intake, 1 compression, 2 power, 3 exhaust.",
+        )
+    for j in range(machine.chambers):
+        kind = "AB"[j % 2]
+        add(
+            f"chamber{j + 1}_pressure_bar",
+            state.pressure[j] / 1e5,
+            f"Absolute pressure of chamber {j + 1} (kind {kind}), ideal four-stroke cycle.",
+        )
+    add(
+        "chambers_in_power_stroke",
+        np.sum(state.stroke == ec.POWER, axis=0),
+        "Number of chambers on the power stroke.",
+    )
+    for i in (0, 1):
+        add(
+            f"rotor{i + 1}_gas_torque_Nm",
+            state.member_torque[i],
+            f"Gas torque on rotor {i + 1}, sum_j p_j dV_j/dPhi_{i + 1}, positive along +Phi.",
+        )
+    add(
+        "shaft_torque_Nm",
+        state.shaft_torque,
+        "Gas torque on the shaft by virtual work, sum_i M_i dPhi_i/dtheta, without inertia; "
+        "positive when it drives the shaft.",
+    )
+    add(
+        "inertia_torque_Nm",
+        t_in,
+        "Torque the shaft spends on accelerating shaft and rotors at the run speed.",
+    )
+    add(
+        "shaft_torque_with_inertia_Nm",
+        net,
+        "Shaft torque with inertia: gas torque minus inertia torque (what reaches the load).",
+    )
+    add(
+        "equivalent_inertia_kgm2",
+        j_eq,
+        "J_eq = J_shaft + J_1 Phi_1'^2 + J_2 Phi_2'^2, inertia seen at the shaft.",
+    )
+    add("kinetic_energy_J", ke, "Kinetic energy of shaft and rotors, 1/2 J_eq omega^2.")
+    tcols, tdocs, tsummary, _ = time_domain(
+        ch.motion, speed, ("rotor1", "rotor2"), wc.period(params)
+    )
+    for name, values in tcols.items():
+        add(name, values, tdocs[name][0].upper() + tdocs[name][1:] + ".")
+    return cols, docs, tsummary
+
+
+def models(cfg: dict) -> tuple[wc.WobbleCam, tr.TwinRotor, ec.IdealCycle]:
+    """Drive, machine and cycle parameters from a validated config (SI); errors name the keys."""
+    d = cfg["drive"]
+    machine = build_params(tr.TwinRotor, "machine", _section(cfg, "machine", tr.TwinRotor))
+    params = build_params(
+        wc.WobbleCam,
+        "drive",
+        {
+            "plate_tilt": d["plate_tilt"],
+            "roller_axis_angle": d["roller_axis_angle"],
+            "spin_ratio": d["spin_ratio"],
+            "sphere_radius": d["sphere_radius"],
+            "pistons_per_rotor": machine.pistons_per_rotor,
+            "spin_a": tuple(d.get("spin_a", ())),
+            "spin_b": tuple(d.get("spin_b", ())),
+        },
+        aliases={"pistons_per_rotor": "machine.pistons_per_rotor"},
+    )
+    cycle = build_params(ec.IdealCycle, "loads", _section(cfg, "loads", ec.IdealCycle))
+    return params, machine, cycle
+
+
+def evaluate(cfg: dict) -> StudyResult:
+    """Run the twin-rotor engine study on a validated config (SI values).
+
+    Parameters
+    ----------
+    cfg : dict
+        ``cfg["drive"]``: ``plate_tilt`` [rad], ``roller_axis_angle`` [rad],
+        ``spin_ratio`` [-], ``sphere_radius`` [m]; ``cfg["machine"]``: the fields of
+        :class:`~rotorkin.machines.twin_rotor.TwinRotor`; ``cfg["loads"]``: the
+        fields of :class:`~rotorkin.analysis.engine_cycle.IdealCycle`;
+        ``cfg["run"]``: ``points``, ``speed`` [rad/s or list].
+
+    Returns
+    -------
+    StudyResult
+        Summary keys: see :data:`HEADLINE` and the docs pages
+        ``docs/drives/wobble_cam.md`` and ``docs/machines/twin_rotor.md``.
+    """
+    params, machine, cycle = models(cfg)
+    layout = _layout(params, machine)
+    run = cfg.get("run", {})
+    speed = run.get("speed", _DEFAULT_SPEED)
+    summary = _summary(params, layout)
+    summary.update(_engine_summary(params, machine, cycle, layout, speed))
+    theta = angle_grid(wc.period(params), run.get("points", 721))
+    columns = _columns(params, layout, len(theta))
+    docs = dict(_DOCS)
+    engine_cols, engine_docs, time_summary = _engine_columns(params, machine, cycle, speed, theta)
+    columns.update(engine_cols)
+    docs.update(engine_docs)
+    summary.update(time_summary)
+    summary = {k: v.item() if isinstance(v, np.generic) else v for k, v in summary.items()}
+
+    def plot(outdir: Path) -> list[Path]:
+        from rotorkin.drives.wobble_cam import figures as figures_wobble_cam
+        from rotorkin.drives.wobble_cam import figures_cam as figures_spherical_cam
+
+        paths = figures_wobble_cam.plot_all(
+            params, layout, Path(outdir), machine=machine, cycle=cycle, speed=speed
+        )
+        if "cam" in cfg:  # the cam's own figure, when its roller fits the grooves
+            try:
+                paths += figures_spherical_cam.plot_spherical_cam(cfg, Path(outdir))
+            except ParameterError as exc:
+                print(f"rotorkin: warning: spherical cam figure not drawn: {exc}", file=sys.stderr)
+        return paths
+
+    return StudyResult(
+        drive_type="wobble_cam",
+        title="Twin-rotor engine, wobble plate + spherical cam",
+        summary=summary,
+        columns=columns,
+        column_docs=docs,
+        headline=HEADLINE,
+        plot=plot,
+    )

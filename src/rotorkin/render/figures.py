@@ -1,0 +1,77 @@
+"""Helpers of the matplotlib figures, and the recipe of a paper's sweep figure.
+
+matplotlib is imported when a figure is drawn, never at import time, and its
+backend is left to the caller: the command line selects Agg; a notebook keeps
+its own.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+__all__ = ["DPI", "BASELINE", "SYNTHESIZED", "pyplot", "save", "save_in", "degree_axis", "Recipe"]
+
+#: Resolution of the PNG figures [dots per inch].
+DPI = 120
+
+
+def pyplot():
+    """``matplotlib.pyplot``, imported on first use."""
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def save(fig, path: Path, dpi: int = DPI) -> Path:
+    """Lay out, write and close ``fig``; return ``path``."""
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    pyplot().close(fig)
+    return Path(path)
+
+
+@dataclass(frozen=True)
+class Recipe:
+    """A sweep behind one or more of a paper's figures.
+
+    ``sets`` are ``--set`` overrides of the config, ``vary`` the ``--vary`` items,
+    ``figures`` the PNG names drawn from its dataset, ``note`` what the recipe
+    changes in the config and why, ``metrics`` the summary keys it needs and
+    ``plot(ds, outdir, recipe, cfg) -> list[Path]`` draws the figures from the
+    sweep's dataset and its validated base config.
+    """
+
+    key: str
+    sets: tuple
+    vary: tuple
+    curves: bool
+    figures: tuple
+    note: str = ""
+    metrics: tuple = field(default=())
+    plot: Callable | None = field(default=None, compare=False, repr=False)
+
+
+#: Line styles of a baseline design and a synthesized one drawn side by side.
+BASELINE = {"color": "0.45", "lw": 1.6, "label": "baseline (paper)"}
+SYNTHESIZED = {"color": "C3", "lw": 1.8, "label": "synthesized"}
+
+
+def save_in(fig, outdir, name: str, dpi: int = DPI) -> Path:
+    """Write and close ``fig`` as ``outdir/name`` (its layout as it is); return the path."""
+    path = Path(outdir) / name
+    fig.savefig(path, dpi=dpi)
+    pyplot().close(fig)
+    return path
+
+
+def degree_axis(ax, end: float, step: float, label: str | None) -> None:
+    """An x axis of angles from 0 to ``end`` [deg] with ticks every ``step``, and a grid."""
+    import numpy as np
+
+    ax.set_xlim(0.0, end)
+    ax.set_xticks(np.arange(0.0, end + 1e-9, step))
+    if label:
+        ax.set_xlabel(label)
+    ax.grid(True, alpha=0.4)
