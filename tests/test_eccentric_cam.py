@@ -388,7 +388,7 @@ def test_study_errors_name_config_keys():
 
 def test_study_plot_writes_pngs(tmp_path):
     res = evaluate(_cfg(follower="roller", roller_radius=0.01))
-    paths = res.plot(tmp_path)
+    paths = res.write_figures(tmp_path)
     assert len(paths) == 7  # 4 of the drive (paper) + 3 of the reactor
     for p in paths:
         assert p.exists() and p.suffix == ".png" and p.stat().st_size > 1000

@@ -433,7 +433,7 @@ def test_bad_inputs_name_the_key(machine, key, text):
 
 def test_plot_writes_reactor_figures(tmp_path):
     res = evaluate(_cfg(machine={"fluid": "gas"}, follower="roller", roller_radius=0.012))
-    paths = res.plot(tmp_path)
+    paths = res.write_figures(tmp_path)
     names = {p.name for p in paths}
     assert {
         "reactor_volume_pressure.png",

@@ -531,7 +531,7 @@ def test_run_with_report(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(
         rotorkin.drives,
         "evaluate",
-        lambda cfg: dataclasses.replace(real(cfg), plot=lambda outdir: []),
+        lambda cfg: dataclasses.replace(real(cfg), write_figures=lambda outdir: []),
     )
     out = tmp_path / "run"
     assert main(["run", "-e", "guide-bar-pump", "--report", "-q", "--out", str(out)]) == 0

@@ -501,7 +501,7 @@ def test_study_fills_missing_machine_and_loads_keys():
 
 @pytest.mark.parametrize(("model", "count"), [("linear", 7), ("isothermal", 8)])
 def test_plots(tmp_path, model, count):
-    paths = evaluate(cfg(model)).plot(tmp_path)
+    paths = evaluate(cfg(model)).write_figures(tmp_path)
     assert len(paths) == count
     assert ("fig06_pv_diagram.png" in [p.name for p in paths]) == (model == "isothermal")
     for p in paths:
@@ -515,7 +515,7 @@ def test_plots_other_blade_counts(tmp_path):
                 machine_keys={"blades_per_pair": B, "blade_thickness": t})  # fmt: skip
         out = tmp_path / str(B)
         out.mkdir()
-        assert len(evaluate(c).plot(out)) == 8
+        assert len(evaluate(c).write_figures(out)) == 8
 
 
 # --- bad input ----------------------------------------------------------------------------

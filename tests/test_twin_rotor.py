@@ -790,7 +790,7 @@ def test_no_heat_no_inertia_gives_nan_not_a_crash():
 def test_plot_writes_engine_figures(tmp_path):
     paths = study.evaluate(
         example_cfg(**{"machine.pistons_per_rotor": 6, "drive.plate_tilt": '"40 deg"'})
-    ).plot(tmp_path)
+    ).write_figures(tmp_path)
     names = {p.name for p in paths}
     assert {
         "fig_chamber_volumes.png",

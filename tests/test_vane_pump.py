@@ -592,7 +592,7 @@ def test_plot_writes_pump_figures(tmp_path):
             phase=np.radians(150.0),
         )
     )
-    paths = res.plot(tmp_path)
+    paths = res.write_figures(tmp_path)
     names = {p.name for p in paths}
     assert {"pump_sections.png", "pump_chambers.png", "pump_flow.png", "pump_torque.png"} <= names
     for p in paths:

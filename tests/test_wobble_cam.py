@@ -577,7 +577,7 @@ def test_study_off_90deg_reports_both_kinds():
 
 def test_plot_writes_pngs(tmp_path):
     for cfg in (_cfg(), _cfg(roller_axis_angle=70 * D, spin_ratio=-1.5)):
-        paths = study.evaluate(cfg).plot(tmp_path)
+        paths = study.evaluate(cfg).write_figures(tmp_path)
         names = {p.name for p in paths}
         assert {
             "fig08_roller_trajectory.png",

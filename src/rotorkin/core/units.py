@@ -11,7 +11,7 @@ import math
 
 from rotorkin.core.errors import ConfigError
 
-__all__ = ["KINDS", "to_si", "parse_quantity", "describe_kind"]
+__all__ = ["KINDS", "to_si", "parse_quantity", "describe_kind", "metric_units"]
 
 #: quantity kind -> (SI unit name for pint, example for messages, pint dimensionality)
 KINDS = {
@@ -114,3 +114,21 @@ def _suggest_unit(kind: str) -> str:
         "temperature": "K",
         "modulus": "GPa",
     }[kind]
+
+
+#: Suffix of a summary key or column name -> its unit (longer suffixes first).
+_UNITS = (
+    ("_rad_per_s3", "rad/s^3"), ("_rad_per_s2", "rad/s^2"), ("_rad_per_s", "rad/s"),
+    ("_m_per_s3", "m/s^3"), ("_m_per_s2", "m/s^2"), ("_m_per_s", "m/s"), ("_rpm", "rpm"),
+    ("_mm_per_rad3", "mm/rad^3"), ("_mm_per_rad2", "mm/rad^2"), ("_mm_per_rad", "mm/rad"),
+    ("_per_rad2", "1/rad^2"), ("_per_rad", "1/rad"), ("_per_m", "1/m"), ("_deg", "deg"),
+    ("_mm", "mm"), ("_cm3_per_rev", "cm^3/rev"), ("_cm3_per_rad", "cm^3/rad"), ("_cm3", "cm^3"),
+    ("_cm2", "cm^2"), ("_Nm", "N*m"), ("_J_per_rev", "J/rev"), ("_J", "J"), ("_bar", "bar"),
+    ("_kW", "kW"), ("_W", "W"), ("_l_per_min", "l/min"), ("_percent", "%"), ("_rad", "rad"),
+    ("_kgm2", "kg*m^2"), ("_K", "K"),
+)  # fmt: skip
+
+
+def metric_units(name: str) -> str:
+    """Unit of a summary key from its suffix ("1" when dimensionless)."""
+    return next((u for suffix, u in _UNITS if name.endswith(suffix)), "1")

@@ -45,7 +45,7 @@ def write_outputs(result, outdir: Path, raw_config: dict, meta: dict) -> list[Pa
         (stage / "summary.json").write_text(json.dumps(_jsonable(summary), indent=2) + "\n")
         _write_csv(stage / "motion.csv", result.columns)
         (stage / "config.toml").write_text(to_toml(raw_config))
-        figures = result.plot(stage)
+        figures = result.write_figures(stage)
         (stage / "README.txt").write_text(_readme(result, [Path(f).name for f in figures]))
     return written
 

@@ -18,6 +18,7 @@ import numpy as np
 from rotorkin import drives
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, sample_grid
 from rotorkin.core.errors import ParameterError, RotorkinError
+from rotorkin.core.units import metric_units
 from rotorkin.io.config import glossary
 
 __all__ = [
@@ -295,21 +296,6 @@ def compute_chunk(spec: SweepSpec, start: int, stop: int, threads=None) -> dict:
 # --------------------------------------------------------------------------------------------
 # the result
 # --------------------------------------------------------------------------------------------
-_UNITS = (
-    ("_mm_per_rad3", "mm/rad^3"), ("_mm_per_rad2", "mm/rad^2"), ("_mm_per_rad", "mm/rad"),
-    ("_per_rad2", "1/rad^2"), ("_per_rad", "1/rad"), ("_per_m", "1/m"), ("_deg", "deg"),
-    ("_mm", "mm"), ("_cm3_per_rev", "cm^3/rev"), ("_cm3_per_rad", "cm^3/rad"), ("_cm3", "cm^3"),
-    ("_cm2", "cm^2"), ("_Nm", "N*m"), ("_J_per_rev", "J/rev"), ("_J", "J"), ("_bar", "bar"),
-    ("_kW", "kW"), ("_W", "W"), ("_l_per_min", "l/min"), ("_percent", "%"), ("_rad", "rad"),
-    ("_kgm2", "kg*m^2"), ("_K", "K"),
-)  # fmt: skip
-
-
-def metric_units(name: str) -> str:
-    """Unit of a summary key from its suffix ("1" when dimensionless)."""
-    return next((u for suffix, u in _UNITS if name.endswith(suffix)), "1")
-
-
 def to_dataset(spec: SweepSpec, flat: dict):
     """Shape flat results (every design in order) into an :class:`xarray.Dataset`.
 

@@ -360,5 +360,5 @@ def evaluate(cfg: dict) -> StudyResult:
         columns=columns,
         column_docs={**_DOCS, **more_docs},
         headline=HEADLINE,
-        plot=plot,
+        write_figures=plot,
     )

@@ -426,5 +426,5 @@ def evaluate(cfg: dict) -> StudyResult:
         columns=columns,
         column_docs={**_DOCS, **pump_docs},
         headline=HEADLINE,
-        plot=plot,
+        write_figures=plot,
     )

@@ -422,5 +422,5 @@ def evaluate(cfg: dict) -> StudyResult:
         columns=columns,
         column_docs=docs,
         headline=HEADLINE,
-        plot=plot,
+        write_figures=plot,
     )
