@@ -35,8 +35,16 @@ import numpy as np
 from rotorkin.core.batch import DEFAULT_SAMPLES
 from rotorkin.core.errors import ConfigError, ParameterError, RotorkinError
 from rotorkin.core.units import parse_quantity
+from rotorkin.drives import evaluate, get
+from rotorkin.io.config import validate_config
 from rotorkin.sweep import Designs, evaluate_designs, resolve_metrics
-from rotorkin.sweep.engine import SweepFallbackWarning, coverage, reason_keys, warn_fallback
+from rotorkin.sweep.engine import (
+    SweepFallbackWarning,
+    coverage,
+    metric_units,
+    reason_keys,
+    warn_fallback,
+)
 from rotorkin.sweep.spec import DISPLAY_UNITS, Field, _check_key, parse_item
 
 __all__ = ["Tolerance", "parse_tol", "draw", "run_tolerance", "summarize", "PERCENTILES"]
@@ -112,7 +120,6 @@ def draw(tols, samples: int, seed: int) -> dict:
 
 def _held(cfg: dict) -> tuple[dict, dict]:
     """The config and extras that keep the manufactured parts at their nominal size."""
-    from rotorkin.drives import get
 
     hold = get(cfg["drive"]["type"]).tolerance_hold
     return hold(copy.deepcopy(cfg)) if hold else (copy.deepcopy(cfg), {})
@@ -144,10 +151,6 @@ def run_tolerance(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int 
         attributes ``nominal:<metric>``, ``seed``, ``tolerances``.
     """
     import xarray as xr
-
-    from rotorkin.drives import evaluate
-    from rotorkin.io.config import validate_config
-    from rotorkin.sweep.engine import metric_units
 
     cfg = validate_config(base_cfg_raw)
     tols = [t if isinstance(t, Tolerance) else parse_tol(t, base_cfg_raw) for t in tols]

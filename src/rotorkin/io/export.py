@@ -18,7 +18,8 @@ from pathlib import Path
 from rotorkin import drives
 from rotorkin.core.errors import ConfigError, ParameterError
 from rotorkin.io.output import staged_output
-from rotorkin.render.cad import DEFAULT_TOLERANCE
+from rotorkin.render import cad as cp
+from rotorkin.render.cad import DEFAULT_TOLERANCE, _bd
 
 __all__ = ["FORMATS", "DEFAULT_TOLERANCE", "export", "planar_parts", "profile_checks"]
 
@@ -66,7 +67,6 @@ def _check_format(fmt: str) -> list[str]:
 
 
 def _write_planar(parts, fmt: str, stage: Path, name: str) -> list[Path]:
-    from rotorkin.render import cad as cp
 
     out = []
     for part in parts:
@@ -111,8 +111,6 @@ def export(cfg: dict, fmt: str, outdir, name: str) -> list[Path]:
     if spec.cad_parts is None and spec.cad_write is None:
         raise ConfigError(f"drive.type = {spec.name!r} has no parts to export")
     if "step" in fmts:
-        from rotorkin.render.cad import _bd
-
         _bd()
     parts = planar_parts(cfg)[0] if spec.cad_parts is not None else None
     with staged_output(outdir, "export-" + "-".join(fmts)) as (stage, written):

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorkin.io.config import validate_config
 from rotorkin.render.figures import Recipe
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save as _save
@@ -42,8 +43,6 @@ def paper_recipes(cfg: dict, spec) -> list[Recipe]:
 def plot_recipe(recipe: Recipe, ds, outdir: Path) -> list[Path]:
     """Draw the recipe's figures from its dataset into ``outdir``; return the paths."""
     import json
-
-    from rotorkin.io.config import validate_config
 
     cfg = validate_config(json.loads(ds.attrs["spec"])["base_raw"])
     return recipe.plot(ds, Path(outdir), recipe, cfg)

@@ -26,6 +26,10 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.core.errors import ConfigError
+from rotorkin.drives import get
+from rotorkin.io.output import to_toml
+from rotorkin.render.scenes import fmt
+from rotorkin.studies.published import paper_rows
 
 __all__ = ["write_report", "render_report", "FRAMES"]
 
@@ -83,10 +87,6 @@ def write_report(result, cfg, raw, meta, path) -> Path:
 def render_report(result, cfg, raw, meta, frames: int = FRAMES) -> str:
     """The report as one HTML string (see :func:`write_report`)."""
     import plotly.offline
-
-    from rotorkin.drives import get
-    from rotorkin.io.output import to_toml
-    from rotorkin.studies.published import paper_rows
 
     spec = get(result.drive_type)
     mod = spec.scene
@@ -181,7 +181,6 @@ def _nav(plots) -> str:
 
 
 def _value(v) -> str:
-    from rotorkin.render.scenes import fmt
 
     return _html.escape(fmt(v, 6 if isinstance(v, float) else 4))
 

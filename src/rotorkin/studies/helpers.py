@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.errors import ParameterError
 
 __all__ = ["build_params", "angle_grid"]
@@ -60,7 +61,6 @@ def time_domain(motion, speed, slugs, period):
         (u = rad or m) with their docs, peak values for the summary, and
         ``(omega, omega_dot, omega_ddot)`` at the samples.
     """
-    from rotorkin.analysis.timing import shaft_speed
 
     omega = shaft_speed(motion.theta, speed, period)
     v, a, j = motion.in_time(*omega)

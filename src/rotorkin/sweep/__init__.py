@@ -26,7 +26,9 @@ from collections.abc import Mapping
 import numpy as np
 
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, block_progress
-from rotorkin.core.errors import ConfigError
+from rotorkin.core.errors import ConfigError, ParameterError
+from rotorkin.drives import evaluate
+from rotorkin.io.config import validate_config
 from rotorkin.sweep.engine import (
     SweepFallbackWarning,
     SweepSpec,
@@ -41,6 +43,7 @@ from rotorkin.sweep.engine import (
     warn_fallback,
 )
 from rotorkin.sweep.spec import Vary, parse_vary
+from rotorkin.sweep.store import ChunkStore, write_dataset
 
 __all__ = [
     "run_sweep",
@@ -103,8 +106,6 @@ def resolve_metrics(cfg: dict, metrics=None) -> tuple[str, ...]:
 
 def _all_metrics(cfg: dict) -> tuple[str, ...]:
     """Numeric summary keys of the study (from the kernel list and one scalar run)."""
-    from rotorkin.core.errors import ParameterError
-    from rotorkin.drives import evaluate
 
     kern = kernel_of(cfg["drive"]["type"])
     names = [*kern.metric_names(cfg), *getattr(kern, "OPTIONAL_METRICS", ())]
@@ -166,7 +167,6 @@ def build_spec(base_cfg_raw: dict, vary, *, keep_curves=False, chunk_size=None, 
                samples=None, memory_budget=MEMORY_BUDGET, name="sweep", extra=None,
                check=True) -> SweepSpec:  # fmt: skip
     """Validate a sweep and return its :class:`SweepSpec` (arguments of :func:`run_sweep`)."""
-    from rotorkin.io.config import validate_config
 
     cfg = validate_config(base_cfg_raw)
     varies = _varies(base_cfg_raw, vary)
@@ -254,8 +254,6 @@ def execute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
             keep_chunks=False, on_status=None):  # fmt: skip
     """Run a validated spec (locally or on ``client``), optionally through a chunk store."""
     from pathlib import Path
-
-    from rotorkin.sweep.store import ChunkStore, write_dataset
 
     chunks = ChunkStore(Path(store) / ".chunks", spec.manifest()) if store is not None else None
     done = chunks.open() if chunks else set()

@@ -16,6 +16,7 @@ import contextlib
 import logging
 
 from rotorkin.core.errors import ConfigError
+from rotorkin.sweep.engine import compute_chunk
 
 __all__ = ["local_client", "connect", "run_chunks"]
 
@@ -70,7 +71,6 @@ def run_chunks(client, spec, todo, on_result) -> None:
     ``on_result(index, result)`` is called in the client as each chunk finishes
     (in completion order); results are released once handed over.
     """
-    from rotorkin.sweep.engine import compute_chunk
 
     distributed = _distributed()
     if not todo:

@@ -15,11 +15,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from rotorkin import drives
+from rotorkin import __version__, drives
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, sample_grid
 from rotorkin.core.errors import ParameterError, RotorkinError
 from rotorkin.core.units import metric_units
 from rotorkin.io.config import glossary
+from rotorkin.sweep.spec import display
 
 __all__ = [
     "SweepSpec",
@@ -126,7 +127,6 @@ class SweepSpec:
 
     def manifest(self) -> dict:
         """A JSON-able description; two specs with equal manifests give equal numbers."""
-        from rotorkin import __version__
 
         return {
             "format": "rotorkin-sweep-1",
@@ -308,8 +308,6 @@ def to_dataset(spec: SweepSpec, flat: dict):
     """
     import xarray as xr
 
-    from rotorkin import __version__
-
     kern = kernel_of(spec.drive_type)
     dims = tuple(v.key for v in spec.varies)
     shape = spec.shape
@@ -424,7 +422,6 @@ def check_spec_values(spec: SweepSpec) -> None:
 
 def _refuse(spec: SweepSpec, axis: int, j: int, flat: int):
     """Raise the one-line error of value ``j`` of swept key ``axis`` (design ``flat``)."""
-    from rotorkin.sweep.spec import display
 
     v = spec.varies[axis]
     where = f"--vary {v.key}={v.text} at {display(v.field, v.values[j])}"

@@ -19,7 +19,7 @@ One module per drive family, each a set of plain functions on arrays plus a
 The result carries the baseline (the config as given: the paper's design in
 the examples) beside the synthesized design, the raw config keys to change,
 and the functions writing its figures and CSV files; ``rotorkin synthesize``
-writes them (:mod:`rotorkin.cli_synthesize`).
+writes them (:mod:`rotorkin.cli.synthesize`).
 """
 
 from __future__ import annotations
@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.units import parse_quantity
 
 __all__ = [
     "DWELL_TOLERANCE",
@@ -181,7 +182,6 @@ def parse_fraction(text, name: str = "--target") -> float:
 
 def parse_quantity_arg(text, kind: str, name: str = "--target") -> float:
     """A value with a unit (``"60 deg"``, ``"5 mm"``) -> SI float; ParameterError if not."""
-    from rotorkin.core.units import parse_quantity
 
     value, reason = parse_quantity(str(text), kind)
     if reason:

@@ -11,7 +11,12 @@ from typing import Annotated
 
 import typer
 
-from rotorkin.cli_options import ConfigArg, ExampleOpt, SetOpt
+from rotorkin import __version__
+from rotorkin.cli.options import ConfigArg, ExampleOpt, SetOpt
+from rotorkin.core.errors import ConfigError
+from rotorkin.drives import evaluate
+from rotorkin.io.config import load_config
+from rotorkin.report.html import write_report
 
 
 def register(app) -> None:
@@ -28,11 +33,6 @@ def register(app) -> None:
         ] = None,
     ):
         """Write report.html: summary vs the paper, checks, animated mechanism, plots (offline)."""
-        from rotorkin import __version__
-        from rotorkin.core.errors import ConfigError
-        from rotorkin.drives import evaluate
-        from rotorkin.io.config import load_config
-        from rotorkin.report.html import write_report
 
         cfg, raw, name = load_config(config, example, set_ or [])
         outdir = out if out is not None else Path("rotorkin-out") / name

@@ -7,11 +7,13 @@ from typing import Annotated
 
 import typer
 
+from rotorkin.drives import DEFAULT_EXAMPLE
+
 __all__ = ["ConfigArg", "ExampleOpt", "SetOpt", "QuietOpt"]
 
 #: The config file (positional).
 ConfigArg = Annotated[
-    Path | None, typer.Argument(help="TOML config; default: the wobble-cam-engine example.")
+    Path | None, typer.Argument(help=f"TOML config; default: the {DEFAULT_EXAMPLE} example.")
 ]
 #: ``--example NAME``: start from a built-in example instead of a file.
 ExampleOpt = Annotated[

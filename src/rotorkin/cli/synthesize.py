@@ -18,9 +18,14 @@ from typing import Annotated
 import numpy as np
 import typer
 
-from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
+from rotorkin import __version__
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import REGISTRY
+from rotorkin.drives import synthesize as run_synthesis
+from rotorkin.io.config import load_config
+from rotorkin.io.output import staged_output, to_toml
+from rotorkin.synthesis import fmt, parse_quantity_arg, synthesized_raw_config
 
 __all__ = ["register", "write_synthesis"]
 
@@ -100,10 +105,6 @@ def register(app) -> None:
         quiet: QuietOpt = False,
     ):
         """Synthesize a design for an objective; compare it with the config's (the paper's)."""
-        from rotorkin import __version__
-        from rotorkin.drives import synthesize as run_synthesis
-        from rotorkin.io.config import load_config
-        from rotorkin.synthesis import parse_quantity_arg, synthesized_raw_config
 
         cfg, raw, name = load_config(config, example, set_ or [])
         kind = cfg["drive"]["type"]
@@ -163,7 +164,6 @@ def write_synthesis(result, new_raw: dict, outdir: Path, meta: dict) -> list[Pat
     list of Path
         The files written.
     """
-    from rotorkin.io.output import staged_output, to_toml
 
     with staged_output(outdir, "synthesize") as (stage, written):
         doc = {
@@ -187,8 +187,6 @@ def _print(result, outdir, written):
     from rich.console import Console
     from rich.markup import escape
     from rich.table import Table
-
-    from rotorkin.synthesis import fmt
 
     console = Console()
     console.print(escape(result.title), highlight=False, soft_wrap=True)

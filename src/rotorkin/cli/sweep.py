@@ -20,10 +20,16 @@ from typing import Annotated
 
 import typer
 
-from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
 from rotorkin.core.errors import ConfigError
 from rotorkin.drives import REGISTRY, get
+from rotorkin.io.config import apply_sets, load_config
 from rotorkin.io.output import staged_output
+from rotorkin.report import figures_sweep as fs
+from rotorkin.sweep import build_spec, execute
+from rotorkin.sweep.engine import SweepFallbackWarning, coverage
+from rotorkin.sweep.store import write_dataset
+from rotorkin.tolerance import run_tolerance, summarize
 
 __all__ = ["register"]
 
@@ -106,11 +112,6 @@ def register(app) -> None:
         = False,
     ):  # fmt: skip
         """Sweep config keys over ranges or lists; write sweep.nc (netCDF) and figures."""
-        from rotorkin.io.config import apply_sets, load_config
-        from rotorkin.report import figures_sweep as fs
-        from rotorkin.sweep import build_spec, execute
-        from rotorkin.sweep.engine import coverage
-        from rotorkin.sweep.store import write_dataset
 
         t0 = time.perf_counter()
         cfg, raw, name = load_config(config, example, set_ or [])
@@ -220,12 +221,6 @@ def register(app) -> None:
         import warnings
 
         import numpy as np
-
-        from rotorkin.io.config import load_config
-        from rotorkin.report import figures_sweep as fs
-        from rotorkin.sweep.engine import SweepFallbackWarning
-        from rotorkin.sweep.store import write_dataset
-        from rotorkin.tolerance import run_tolerance, summarize
 
         cfg, raw, name = load_config(config, example, set_ or [])
         outdir = out if out is not None else Path("rotorkin-out") / f"{name}-tolerance"

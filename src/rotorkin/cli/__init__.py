@@ -7,7 +7,6 @@ traceback).
 
 from __future__ import annotations
 
-import importlib
 import os
 import sys
 from pathlib import Path
@@ -16,8 +15,16 @@ from typing import Annotated
 import typer
 
 from rotorkin import __version__
-from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
+from rotorkin.cli import export as cli_export
+from rotorkin.cli import report as cli_report
+from rotorkin.cli import sweep as cli_sweep
+from rotorkin.cli import synthesize as cli_synthesize
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
 from rotorkin.core.errors import RotorkinError
+from rotorkin.drives import REGISTRY, evaluate
+from rotorkin.io.config import example_names, example_path, glossary, load_config, read_toml
+from rotorkin.io.output import write_outputs
+from rotorkin.report.html import write_report
 
 app = typer.Typer(
     name="rotorkin",
@@ -40,7 +47,7 @@ def _root(
         bool, typer.Option("--version", callback=_version, is_eager=True, help="Print the version.")
     ] = False,
 ):
-    """rotorkin: exact kinematics of wobble-cam, eccentric, guide-bar and rhomboid-cam drives."""
+    """rotorkin: exact kinematics, volumes and torques of the drives of rotary machines."""
 
 
 @app.command()
@@ -58,9 +65,6 @@ def run(
     ] = False,
 ):
     """Evaluate a drive over one period; write summary.json, motion.csv and figures."""
-    from rotorkin.drives import evaluate
-    from rotorkin.io.config import load_config
-    from rotorkin.io.output import write_outputs
 
     cfg, raw, name = load_config(config, example, set_ or [])
     result = evaluate(cfg)
@@ -68,8 +72,6 @@ def run(
     meta = {"name": name, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
     written = write_outputs(result, outdir, raw, meta)
     if report:
-        from rotorkin.report.html import write_report
-
         written = [*written, write_report(result, cfg, raw, meta, outdir / "report.html")]
     if not quiet:
         _print_summary(result, name, outdir, written)
@@ -78,7 +80,6 @@ def run(
 @app.command()
 def examples():
     """List the built-in examples (run one with: rotorkin run --example NAME)."""
-    from rotorkin.io.config import example_names, example_path, read_toml
 
     for name in example_names():
         title = read_toml(example_path(name)).get("title", "")
@@ -88,12 +89,10 @@ def examples():
 @app.command()
 def keys(
     drive_type: Annotated[
-        str | None, typer.Argument(help="Only this drive type (wobble_cam, ...).")
+        str | None, typer.Argument(help=f"Only this drive type ({', '.join(REGISTRY)}).")
     ] = None,
 ):
     """List every config key with its default and meaning (the glossary)."""
-    from rotorkin.drives import REGISTRY
-    from rotorkin.io.config import glossary
 
     if drive_type is not None and drive_type not in REGISTRY:
         choices = ", ".join(REGISTRY)
@@ -133,12 +132,14 @@ def _print_summary(result, name, outdir, written):
 
 # Commands that live in their own modules (cad export, synthesis, html report, sweeps):
 # each module has register(app), which adds its commands.
-for _module in ("cli_export", "cli_synthesize", "cli_report", "cli_sweep"):
-    importlib.import_module(f"rotorkin.{_module}").register(app)
+for _module in (cli_export, cli_synthesize, cli_report, cli_sweep):
+    _module.register(app)
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit code."""
+    # figures are files here: matplotlib draws off screen unless the user chose a backend
+    os.environ.setdefault("MPLBACKEND", "Agg")
     args = sys.argv[1:] if argv is None else list(argv)
     if not args:
         args = ["--help"]
@@ -169,7 +170,3 @@ def main(argv: list[str] | None = None) -> int:
         )
         return 1
     return 0
-
-
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())

@@ -12,8 +12,11 @@ from typing import Annotated
 
 import typer
 
-from rotorkin.cli_options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
 from rotorkin.core.errors import RotorkinError
+from rotorkin.drives import get
+from rotorkin.io.config import load_config
+from rotorkin.io.export import FORMATS, export, profile_checks
 
 
 def _size(n: int) -> str:
@@ -29,9 +32,6 @@ def _fmt(value, digits=4) -> str:
 def _check_rows(cfg: dict) -> list[tuple[str, str]]:
     """(metric, value) rows of the profile checks, units in the metric names."""
     import numpy as np
-
-    from rotorkin.drives import get
-    from rotorkin.io.export import profile_checks
 
     spec = get(cfg["drive"]["type"])
     if spec.check_rows is not None:
@@ -79,8 +79,6 @@ def register(app) -> None:
         quiet: QuietOpt = False,
     ):
         """Write CAD files of the cam(s): DXF profiles, STL/STEP solids, CSV point lists (mm)."""
-        from rotorkin.io.config import load_config
-        from rotorkin.io.export import FORMATS, export
 
         fmt_ = fmt.strip().lower()
         if fmt_ not in (*FORMATS, "all"):
