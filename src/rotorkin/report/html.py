@@ -27,6 +27,7 @@ import numpy as np
 
 from rotorkin.core.errors import ConfigError
 from rotorkin.drives import get
+from rotorkin.render import member_scene
 from rotorkin.io.output import to_toml
 from rotorkin.render.scenes import fmt
 from rotorkin.studies.published import paper_rows
@@ -89,7 +90,7 @@ def render_report(result, cfg, raw, meta, frames: int = FRAMES) -> str:
     import plotly.offline
 
     spec = get(result.drive_type)
-    mod = spec.scene
+    mod = spec.scene or member_scene
     scene = mod.scene(result, cfg, frames)
     plots = mod.plots(result, cfg)
     checks = mod.checks(result, cfg)

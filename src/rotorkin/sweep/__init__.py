@@ -27,7 +27,7 @@ import numpy as np
 
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, block_progress
 from rotorkin.core.errors import ConfigError, ParameterError
-from rotorkin.drives import evaluate
+from rotorkin.drives import evaluate, get
 from rotorkin.io.config import validate_config
 from rotorkin.sweep.engine import (
     SweepFallbackWarning,
@@ -83,7 +83,8 @@ def reason_text(ds, code: int) -> str:
 def resolve_metrics(cfg: dict, metrics=None) -> tuple[str, ...]:
     """The summary keys a sweep computes.
 
-    ``None``: those the drive's kernel computes by default (the fast path);
+    ``None``: those the drive's batch module computes by default (the fast path),
+    or the drive's headline keys when it has none;
     ``"all"``: those, the kernel's optional ones (e.g. the wobble cam's
     ``sampled_*`` extremes of every curve) and every numeric summary key of
     :func:`rotorkin.drives.evaluate` (the others through the scalar study); or a
@@ -91,7 +92,7 @@ def resolve_metrics(cfg: dict, metrics=None) -> tuple[str, ...]:
     """
     kern = kernel_of(cfg["drive"]["type"])
     if metrics is None:
-        return tuple(kern.metric_names(cfg))
+        return tuple(kern.metric_names(cfg)) or tuple(get(cfg["drive"]["type"]).headline)
     known = _all_metrics(cfg)
     if isinstance(metrics, str) and metrics == "all":
         return known
