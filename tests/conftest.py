@@ -21,3 +21,10 @@ def pytest_runtest_makereport(item, call):
         reason = report.longrepr[-1] if isinstance(report.longrepr, tuple) else report.longrepr
         report.outcome = "failed"
         report.longrepr = f"skipped under CI, where everything must run: {reason}"
+
+
+def pytest_collection_modifyitems(config, items):
+    """A test that needs the browser or build123d is slow: ``-m "not slow"`` leaves it out."""
+    for item in items:
+        if item.get_closest_marker("browser") or item.get_closest_marker("cad"):
+            item.add_marker(pytest.mark.slow)

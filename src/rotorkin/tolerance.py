@@ -14,12 +14,10 @@ Sampling, exactly (so that a run can be reproduced elsewhere):
 width ``w`` in SI units (rad, m, ...); the sample is ``nominal + delta``.
 
 The manufactured parts keep their nominal size: a tolerance perturbs the
-drive, not the design rules that size the parts from it. So the wobble-cam
-engine's piston width stays that of the nominal design (from
-``machine.compression_ratio``, eq. 21) and plate-tilt or roller-angle errors
-show as a spread of the actual compression ratio (``compression_ratio``,
-``compression_ratio_a``, ``_b``, ``compression_ratio_geometric``); the
-guide-bar pump's vane angle stays the nominal gamma_0. Samples that are not
+drive, not the design rules that size the parts from it: each drive says which
+parts it holds (``DriveSpec.tolerance_hold``; e.g. a piston width sized for the
+nominal compression ratio stays that width, and drive errors show as a spread of
+the actual compression ratio). Samples that are not
 admissible (e.g. pistons that would collide) get NaN and a reason, are counted
 and left out of the statistics.
 """

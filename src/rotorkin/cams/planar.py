@@ -14,7 +14,7 @@ array shape. Conventions used throughout:
 * Offset by a signed distance ``d`` [m]: ``q = p + d n`` (``d > 0`` outwards).
   A roller of radius ``r`` whose centre runs on the pitch curve touches the
   cam on the offset ``d = -r`` when it rolls on the *outside* of a disc cam
-  (rhomboid cam, eccentric discs) and on ``d = +r`` when it runs inside a ring.
+  (cam plates, discs) and on ``d = +r`` when it runs inside a ring.
   The offset's signed radius is ``1/kappa + d``: where it changes sign the
   actual profile has a cusp (the roller undercuts the cam), i.e. where
   ``1 + d kappa <= 0``.
@@ -90,7 +90,7 @@ class Part:
     Attributes
     ----------
     name : str
-        File-name stem (``"rhomboid_cam"``, ``"disc_left"``, ``"impeller_1"``).
+        File-name stem (``"cam"``, ``"disc_left"``, ``"impeller_1"``).
     outline : Curve
         The closed profile of the part (layer ``"PROFILE"``), counter-clockwise.
     thickness : float

@@ -26,7 +26,7 @@ class DriveSpec:
     Attributes
     ----------
     name : str
-        ``drive.type`` in configs (``"wobble_cam"``).
+        ``drive.type`` in configs, an identifier.
     title : str
         One line for people: the mechanism and the machine it drives.
     config_model : type

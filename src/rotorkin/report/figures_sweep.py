@@ -2,18 +2,12 @@
 
 ``rotorkin sweep --example NAME --paper-figures`` runs, for the drive of the
 config, the sweeps behind the papers' figures (:func:`paper_recipes`) and draws
-them from the resulting datasets:
+them from the resulting datasets: each drive lists its recipes
+(``DriveSpec.sweep_recipes``, in ``rotorkin/drives/<name>/figures_sweep.py``), each
+recipe the sweep and the function that draws its figures. Here: the recipes'
+dispatch, the overview of any sweep and the tolerance histograms.
 
-* wobble cam (Chen Hu et al. 2015): Fig. 11 slider angle over a shaft turn for
-  several roller axis angles; Fig. 12 its extremes against the roller axis
-  angle; Fig. 13 against the plate tilt (with the eq. 20 limits);
-* eccentric cams (Zhu & Zhu 2012): Fig. 6 the parts xi, mu and x of the piston
-  travel, Fig. 7 the gap change delta, both for lambda = 0.1 ... 0.9;
-* guide bar (JHIT 2012): Fig. 9 lambda against the vane angle gamma_0 for
-  u = 2, 3 and both drivers; Fig. 10 / 11 the input torque over a period for
-  several lambda, crank- and guide-driven.
-
-matplotlib is imported lazily (Agg backend).
+matplotlib is imported when a figure is drawn.
 """
 
 from __future__ import annotations

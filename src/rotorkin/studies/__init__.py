@@ -35,7 +35,7 @@ class StudyResult:
     drive_type : str
         ``drive.type`` of the config.
     title : str
-        One line for people, e.g. ``"Twin-rotor engine, wobble plate + spherical cam"``.
+        One line for people, e.g. ``"Twin-rotor engine on a cam drive"``.
     summary : dict
         Flat mapping of metric name (unit as suffix, e.g. ``chamber_swing_deg``)
         to a float, int, bool or str. Written as ``summary.json``.

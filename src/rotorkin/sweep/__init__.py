@@ -1,7 +1,7 @@
 """Design-space sweeps: config keys over ranges or lists -> an xarray Dataset of summary metrics.
 
 >>> from rotorkin.io.config import load_config
->>> _, raw, _ = load_config(None, "wobble-cam-engine")
+>>> _, raw, _ = load_config()  # the default example
 >>> ds = run_sweep(raw, {"drive.plate_tilt": "20deg:55deg:36",
 ...                      "drive.roller_axis_angle": "80deg,90deg,100deg"}, progress=False)
 >>> ds["chamber_swing_deg"].sel({"drive.roller_axis_angle": 90.0}).max().item() > 60
@@ -85,7 +85,7 @@ def resolve_metrics(cfg: dict, metrics=None) -> tuple[str, ...]:
 
     ``None``: those the drive's batch module computes by default (the fast path),
     or the drive's headline keys when it has none;
-    ``"all"``: those, the kernel's optional ones (e.g. the wobble cam's
+    ``"all"``: those, the batch module's optional ones (e.g. the
     ``sampled_*`` extremes of every curve) and every numeric summary key of
     :func:`rotorkin.drives.evaluate` (the others through the scalar study); or a
     list of names (or one comma-separated string).

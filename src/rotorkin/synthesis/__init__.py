@@ -1,20 +1,11 @@
 """Synthesis: the drive parameters or cam laws that produce a wanted motion.
 
-One module per drive family, each a set of plain functions on arrays plus a
-``synthesize(cfg, raw, objective, target, harmonics)`` entry point that returns a
-:class:`SynthesisResult`:
-
-* :mod:`~rotorkin.drives.rhomboid_cam.synthesis` - harmonics ``a3, b3, a5, b5, ...`` of the
-  rhomboid cam's law ``psi(alpha)`` optimising an objective (``min_accel``,
-  ``dwell_min``, ``dwell_max``, ``min_pressure_angle``) under eq. 15 and the
-  profile checks;
-* :mod:`~rotorkin.drives.wobble_cam.synthesis` - a periodic spin-law correction giving a
-  target chamber-angle law (``sine_chamber``, ``dwell_min_volume``) whose grooves
-  the configured roller can follow;
-* :mod:`~rotorkin.drives.guide_bar.synthesis` - lambda for a target vane angle at any
-  phase (``vane_angle``);
-* :mod:`~rotorkin.drives.eccentric_cam.synthesis` - lambda or the follower for a tolerated
-  gap change (``gap_change``).
+Each drive that synthesizes has a module ``rotorkin/drives/<name>/synthesis.py``
+of plain functions on arrays plus a ``synthesize(cfg, raw, objective, target,
+harmonics, options)`` entry point returning a :class:`SynthesisResult`; its
+objectives are listed by its ``DriveSpec`` and reached through
+:func:`rotorkin.drives.synthesize`. This module holds what they share: the
+result type, the dwell measure and the parsing of targets.
 
 The result carries the baseline (the config as given: the paper's design in
 the examples) beside the synthesized design, the raw config keys to change,
@@ -46,7 +37,7 @@ __all__ = [
 
 #: Dwell tolerance as a fraction of the swing of the chamber angle (psi or delta):
 #: a law "dwells" where it is within this fraction of the swing from its extreme
-#: (2 deg for the rhomboid example's 100 deg swing, 0.78 deg for the wobble cam's 38.9 deg).
+#: (2 deg of a 100 deg swing).
 DWELL_TOLERANCE = 0.02
 
 
