@@ -27,8 +27,8 @@ import numpy as np
 
 from rotorkin.core.errors import ConfigError
 from rotorkin.drives import get
-from rotorkin.render import member_scene
 from rotorkin.io.output import to_toml
+from rotorkin.render import member_scene
 from rotorkin.render.scenes import fmt
 from rotorkin.studies.published import paper_rows
 
