@@ -11,6 +11,7 @@ from rotorkin.cli import main
 EXAMPLES = ["eccentric-reactor", "guide-bar-pump", "rhomboid-engine", "wobble-cam-engine"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", EXAMPLES)
 def test_every_example_runs_and_writes_its_files(name, tmp_path, capsys):
     out = tmp_path / name
@@ -79,6 +80,7 @@ def test_out_that_is_a_file_is_refused(tmp_path, capsys):
     assert target.read_text() == "x"
 
 
+@pytest.mark.slow
 def test_console_script_entry_point_in_a_subprocess(tmp_path):
     done = subprocess.run(
         [sys.executable, "-m", "rotorkin.cli", "run", "--set", "drive.plate_tilt=70 deg"],
@@ -101,6 +103,7 @@ def test_examples_and_keys_commands(capsys):
     assert main(["keys", "nope"]) == 2
 
 
+@pytest.mark.slow
 def test_a_rerun_into_the_same_folder_leaves_no_stale_files(tmp_path, capsys):
     """The wobble-cam figures of a first run do not stay beside a second run's summary;
     a file the user put there stays."""
@@ -123,6 +126,7 @@ def test_a_rerun_into_the_same_folder_leaves_no_stale_files(tmp_path, capsys):
     assert figures == {n for n in (out / "README.txt").read_text().split() if n.endswith(".png")}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", EXAMPLES)
 def test_printed_summary_says_what_each_metric_is(name, tmp_path, capsys):
     """Every headline metric is in summary.json and printed with a line saying what it is

@@ -161,6 +161,7 @@ def test_thickness_has_an_upper_bound(tmp_path, capsys, example, diameter):
     assert code == 2 and "cam.thickness" in err
 
 
+@pytest.mark.slow
 def test_subprocess(tmp_path):
     res = subprocess.run(
         [sys.executable, "-m", "rotorkin.cli", "export", "-e", "guide-bar-pump", "-f", "dxf",

@@ -522,6 +522,7 @@ def test_cli_report_out_is_a_file(tmp_path, capsys):
     assert "--out" in capsys.readouterr().err and f.read_text() == "x"
 
 
+@pytest.mark.slow
 def test_run_with_report(tmp_path, monkeypatch, capsys):
     import dataclasses
 
@@ -538,6 +539,7 @@ def test_run_with_report(tmp_path, monkeypatch, capsys):
     assert (out / "report.html").stat().st_size > 1e6 and (out / "summary.json").exists()
 
 
+@pytest.mark.slow
 def test_cli_report_subprocess(tmp_path):
     out = tmp_path / "sub"
     proc = subprocess.run(

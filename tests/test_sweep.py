@@ -55,6 +55,7 @@ def _close(a, b, scale):
     return a == b or (np.isnan(a) and np.isnan(b)) or abs(a - b) <= 1e-12 * max(abs(b), scale)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("example", sorted(CASES))
 def test_sweep_equals_the_designs_run_one_by_one(example):
     sets, varies = CASES[example]
@@ -201,6 +202,7 @@ def _cli_sweep(tmp_path, name, *varies):
     return xr.open_dataset(out / "sweep.nc", engine="scipy").load()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "varies",
     [

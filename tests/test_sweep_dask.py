@@ -40,6 +40,7 @@ def test_dask_sweep_with_a_store_and_curves(client, tmp_path):
         xr.testing.assert_identical(ds.load(), remote)
 
 
+@pytest.mark.slow
 def test_cli_workers_option(tmp_path, capsys):
     from rotorkin.cli import main
 

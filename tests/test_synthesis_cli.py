@@ -21,6 +21,7 @@ def _files(path):
     return sorted(p.name for p in path.iterdir() if not p.name.startswith("."))
 
 
+@pytest.mark.slow
 def test_guide_bar_outputs_and_run_round_trip(tmp_path, capsys):
     out = tmp_path / "syn"
     code = main(
@@ -58,6 +59,7 @@ def test_guide_bar_outputs_and_run_round_trip(tmp_path, capsys):
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 20_000
 
 
+@pytest.mark.slow
 def test_rhomboid_synthesized_toml_runs_and_is_better(tmp_path, capsys):
     out = tmp_path / "rh"
     code = main(
@@ -180,6 +182,7 @@ def test_errors_one_line_exit_2_no_output(tmp_path, capsys, args, words):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_subprocess_eccentric(tmp_path):
     out = tmp_path / "ecc"
     proc = subprocess.run(

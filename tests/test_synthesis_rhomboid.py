@@ -161,7 +161,7 @@ def test_synthesize_on_the_example_and_run_the_result():
     [
         ({"target": "3 deg"}, "--target"),
         ({"harmonics": 21}, "--harmonics"),
-        ({"harmonics": 0}, "--harmonics"),
+        ({"harmonics": 0}, "harmonics"),
         ({"max_pressure_angle": np.radians(30.0)}, "--max-pressure-angle"),
     ],
 )

@@ -111,6 +111,7 @@ def test_no_tolerance_is_refused():
         run_tolerance(raw, [])
 
 
+@pytest.mark.slow
 def test_cli_writes_json_netcdf_and_histograms(tmp_path, capsys):
     out = tmp_path / "tol"
     args = [

@@ -159,7 +159,9 @@ def run_tolerance(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int 
     if dup:
         raise ConfigError(f"--tol {dup} is not admissible: the key is given twice")
     if int(samples) < 2:
-        raise ConfigError(f"--samples = {samples} is not admissible: --samples >= 2")
+        raise ParameterError("samples", samples, "samples >= 2")
+    if angles is not None and int(angles) < 3:
+        raise ParameterError("angles", angles, "angles >= 3")
     names = resolve_metrics(cfg, metrics)
     angles = DEFAULT_SAMPLES if angles is None else int(angles)
     try:

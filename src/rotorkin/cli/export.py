@@ -12,7 +12,7 @@ from typing import Annotated
 
 import typer
 
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import get
 from rotorkin.io.config import load_config
@@ -62,6 +62,7 @@ def register(app) -> None:
     """Add ``export`` to the typer ``app``."""
 
     @app.command("export")
+    @flag_names(fmt="--format")
     def export_cmd(
         config: ConfigArg = None,
         example: ExampleOpt = None,

@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import functools
+import re
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
+from rotorkin.core.errors import ParameterError
 from rotorkin.drives import DEFAULT_EXAMPLE
 
-__all__ = ["ConfigArg", "ExampleOpt", "SetOpt", "QuietOpt"]
+__all__ = ["ConfigArg", "ExampleOpt", "SetOpt", "QuietOpt", "flag_names"]
 
 #: The config file (positional).
 ConfigArg = Annotated[
@@ -26,3 +29,28 @@ SetOpt = Annotated[
 ]
 #: ``--quiet``.
 QuietOpt = Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing on success.")]
+
+
+def flag_names(**flags):
+    """Decorate a command: a library error naming a parameter names the flag the user typed.
+
+    The library speaks of its parameters (``samples = 2 is not admissible: samples
+    >= 3``); ``flag_names(samples="--angles")`` makes the command say ``--angles = 2 is
+    not admissible: --angles >= 3``.
+    """
+
+    def decorate(command):
+        @functools.wraps(command)
+        def wrapped(*args, **kwargs):
+            try:
+                return command(*args, **kwargs)
+            except ParameterError as exc:
+                flag = flags.get(exc.name)
+                if flag is None:
+                    raise
+                word = rf"(?<![\w.-]){re.escape(exc.name)}(?!\w)"
+                raise ParameterError(flag, exc.value, re.sub(word, flag, exc.admissible)) from None
+
+        return wrapped
+
+    return decorate

@@ -20,7 +20,7 @@ from typing import Annotated
 
 import typer
 
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names
 from rotorkin.core.errors import ConfigError
 from rotorkin.drives import REGISTRY, get
 from rotorkin.io.config import apply_sets, load_config
@@ -82,6 +82,7 @@ def register(app) -> None:
     """Add ``sweep`` and ``tolerance`` to the typer ``app``."""
 
     @app.command()
+    @flag_names(samples="--angles", chunk_size="--chunk", metrics="--metrics", workers="--workers")
     def sweep(
         config: ConfigArg = None,
         example: ExampleOpt = None,
@@ -196,6 +197,7 @@ def register(app) -> None:
             _print_sweep(name, specs, main_ds, outdir, written, time.perf_counter() - t0)
 
     @app.command()
+    @flag_names(samples="--samples", angles="--angles", metrics="--metrics")
     def tolerance(
         config: ConfigArg = None,
         example: ExampleOpt = None,

@@ -19,7 +19,7 @@ import numpy as np
 import typer
 
 from rotorkin import __version__
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import REGISTRY
 from rotorkin.drives import synthesize as run_synthesis
@@ -56,6 +56,12 @@ def register(app) -> None:
     """Add ``synthesize`` to the typer ``app``."""
 
     @app.command()
+    @flag_names(
+        objective="--objective",
+        target="--target",
+        harmonics="--harmonics",
+        max_pressure_angle="--max-pressure-angle",
+    )
     def synthesize(
         config: ConfigArg = None,
         example: ExampleOpt = None,

@@ -125,24 +125,24 @@ def synthesize(
         )
     if objective not in names:
         raise ParameterError(
-            "--objective",
+            "objective",
             repr(objective),
             f"one of {', '.join(names)} for drive.type = {kind}",
         )
     if harmonics is not None and (isinstance(harmonics, bool) or int(harmonics) < 1):
-        raise ParameterError("--harmonics", repr(harmonics), "an integer >= 1")
+        raise ParameterError("harmonics", repr(harmonics), "an integer >= 1")
     if max_pressure_angle is not None:
         if "max_pressure_angle" not in spec.synthesis_options:
             takers = [k for k, s in REGISTRY.items() if "max_pressure_angle" in s.synthesis_options]
             raise ParameterError(
-                "--max-pressure-angle",
+                "max_pressure_angle",
                 "given",
                 f"only for drive.type = {' or '.join(takers)}, not {kind}",
             )
         value = float(max_pressure_angle)
         if not (np.isfinite(value) and 0.0 < value < 0.5 * np.pi):
             raise ParameterError(
-                "--max-pressure-angle", f"{np.degrees(value):.6g} deg", "0 deg < angle < 90 deg"
+                "max_pressure_angle", f"{np.degrees(value):.6g} deg", "0 deg < angle < 90 deg"
             )
         return spec.synthesize(
             cfg, raw, objective, target, harmonics, {"max_pressure_angle": max_pressure_angle}

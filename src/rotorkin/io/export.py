@@ -62,7 +62,7 @@ def _check_format(fmt: str) -> list[str]:
     if fmt == "all":
         return list(FORMATS)
     if fmt not in FORMATS:
-        raise ParameterError("--format", repr(fmt), "one of " + ", ".join(FORMATS) + ", all")
+        raise ParameterError("fmt", repr(fmt), "one of " + ", ".join(FORMATS) + ", all")
     return [fmt]
 
 

@@ -99,9 +99,9 @@ def resolve_metrics(cfg: dict, metrics=None) -> tuple[str, ...]:
     names = [m.strip() for m in (metrics.split(",") if isinstance(metrics, str) else metrics)]
     unknown = [m for m in names if m not in known]
     if unknown or not names:
-        raise ConfigError(f"--metrics {','.join(names)!r} is not admissible: unknown metric "
-                          f"{unknown[0] if unknown else '(none)'}; known: all, "
-                          + ", ".join(known))  # fmt: skip
+        raise ParameterError("metrics", repr(",".join(names)),
+                             f"unknown metric {unknown[0] if unknown else '(none)'}; known: all, "
+                             + ", ".join(known))  # fmt: skip
     return tuple(dict.fromkeys(names))
 
 
@@ -174,7 +174,7 @@ def build_spec(base_cfg_raw: dict, vary, *, keep_curves=False, chunk_size=None, 
     names = resolve_metrics(cfg, metrics)
     samples = DEFAULT_SAMPLES if samples is None else int(samples)
     if samples < 3:
-        raise ConfigError(f"--samples = {samples} is not admissible: --samples >= 3")
+        raise ParameterError("samples", samples, "samples >= 3")
     points = int(cfg["run"]["points"])
     size = math.prod(len(v) for v in varies)
     n_curves = len(kernel_of(cfg["drive"]["type"]).CURVES) if keep_curves else 0
@@ -182,7 +182,7 @@ def build_spec(base_cfg_raw: dict, vary, *, keep_curves=False, chunk_size=None, 
     if chunk_size is None:
         chunk_size = _chunk_size(len(names), n_curves, points, size, memory_budget)
     elif int(chunk_size) < 1:
-        raise ConfigError(f"--chunk = {chunk_size} is not admissible: --chunk >= 1")
+        raise ParameterError("chunk_size", chunk_size, "chunk_size >= 1")
     spec = SweepSpec(name, base_cfg_raw, cfg, varies, names, samples, bool(keep_curves), points,
                      int(chunk_size), dict(extra or {}))  # fmt: skip
     if check:

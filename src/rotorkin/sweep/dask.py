@@ -15,7 +15,7 @@ from __future__ import annotations
 import contextlib
 import logging
 
-from rotorkin.core.errors import ConfigError
+from rotorkin.core.errors import ConfigError, ParameterError
 from rotorkin.sweep.engine import compute_chunk
 
 __all__ = ["local_client", "connect", "run_chunks"]
@@ -35,7 +35,7 @@ def _distributed():
 def local_client(workers: int, processes: bool = True):
     """A :class:`distributed.Client` on a new LocalCluster of ``workers`` single-thread workers."""
     if int(workers) < 1:
-        raise ConfigError(f"--workers = {workers} is not admissible: --workers >= 1")
+        raise ParameterError("workers", workers, "workers >= 1")
     distributed = _distributed()
     cluster = distributed.LocalCluster(
         n_workers=int(workers),
