@@ -81,6 +81,9 @@ def sine_study(cfg: dict) -> StudyResult:
         },
         headline=HEADLINE,
         motion=m,
+        warnings=("drive.amplitude = 0: the rotors turn uniformly, nothing breathes",)
+        if a == 0
+        else (),
     )
 
 
@@ -168,3 +171,19 @@ def test_tolerance(sine_drive, tmp_path, capsys):
     assert swing["nominal"] == pytest.approx(60.0, rel=1e-4)
     assert 56.0 - 1e-6 <= swing["min"] < swing["max"] <= 64.0 + 1e-6
     assert swing["admissible"] == 50
+
+
+def test_a_meaningless_input_is_warned_about_in_one_line(sine_drive, tmp_path, capsys):
+    out = tmp_path / "run"
+    assert (
+        main(["run", str(sine_drive), "--set", "drive.amplitude=0 deg", "-q", "--out", str(out)])
+        == 0
+    )
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [
+        "rotorkin: warning: drive.amplitude = 0: the rotors turn uniformly, nothing breathes"
+    ]
+    assert (
+        main(["report", str(sine_drive), "--set", "drive.amplitude=0 deg", "--out", str(out)]) == 0
+    )
+    assert "nothing breathes" in (out / "report.html").read_text()

@@ -7,6 +7,7 @@ traceback).
 
 from __future__ import annotations
 
+import math
 import os
 import sys
 from pathlib import Path
@@ -70,6 +71,8 @@ def run(
     result = evaluate(cfg)
     outdir = out if out is not None else Path("rotorkin-out") / name
     meta = {"name": name, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
+    for line in result.warnings:
+        print(f"rotorkin: warning: {line}", file=sys.stderr)
     written = write_outputs(result, outdir, raw, meta)
     if report:
         written = [*written, write_report(result, cfg, raw, meta, outdir / "report.html")]
@@ -118,7 +121,10 @@ def _print_summary(result, name, outdir, written):
         table.add_column("meaning")
     for key in result.headline:
         value = result.summary[key]
-        shown = f"{value:.6g}" if isinstance(value, float) else str(value)
+        if isinstance(value, float):
+            shown = f"{value:.6g}" if math.isfinite(value) else "n/a"
+        else:
+            shown = str(value)
         table.add_row(key, shown, *([meanings[key]] if meanings else []))
     console.print(table)
     figures = [p.name for p in written if p.suffix == ".png"]

@@ -29,7 +29,7 @@ from rotorkin.core.errors import ConfigError
 from rotorkin.drives import get
 from rotorkin.io.output import to_toml
 from rotorkin.render import member_scene
-from rotorkin.render.scenes import fmt
+from rotorkin.render.scenes import Check, fmt
 from rotorkin.studies.published import paper_rows
 
 __all__ = ["write_report", "render_report", "FRAMES"]
@@ -93,7 +93,8 @@ def render_report(result, cfg, raw, meta, frames: int = FRAMES) -> str:
     mod = spec.scene or member_scene
     scene = mod.scene(result, cfg, frames)
     plots = mod.plots(result, cfg)
-    checks = mod.checks(result, cfg)
+    checks = [Check("warning", "Input", line) for line in result.warnings]
+    checks += mod.checks(result, cfg)
     papers = paper_rows(spec.published, spec.paper, cfg, result.summary)
     data = {
         "plots": [_plot_json(p) for p in plots],

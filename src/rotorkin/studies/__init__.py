@@ -54,6 +54,10 @@ class StudyResult:
     motion : rotorkin.core.motion.Motion, optional
         Both working members over one period (angles or travels and three
         derivatives); what :meth:`plot` and the generic report draw.
+    warnings : tuple of str
+        One line each: a model input that leaves a summary number without meaning
+        (e.g. no heat added, so no power), naming the key to set. The command line
+        prints them; the report lists them among its checks.
     """
 
     drive_type: str
@@ -64,6 +68,7 @@ class StudyResult:
     headline: dict | tuple
     write_figures: Callable[[Path], list[Path]] = field(default=lambda outdir: [])
     motion: Motion | None = None
+    warnings: tuple = ()
 
     def __post_init__(self):
         lengths = {np.shape(v) for v in self.columns.values()}
