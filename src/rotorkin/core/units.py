@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 
 from rotorkin.core.errors import ConfigError
 
@@ -71,9 +72,79 @@ def to_si(key: str, value, kind: str) -> float:
     return number
 
 
+#: Longest value string read [characters]; longer ones are refused before any parsing.
+MAX_TEXT = 64
+#: Largest exponent of a unit factor (``m^3``).
+MAX_POWER = 4
+_NUMBER = re.compile(r"([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d{1,3})?)\s*(.*)", re.S)
+_TOKEN = re.compile(r"\s*(?:(?P<name>[A-Za-z_\u00b5\u00b0][A-Za-z_0-9\u00b5\u00b0]*)"
+                    r"|(?P<op>\*\*|[*/^\u00b7])|(?P<int>[+-]?\d+)|(?P<bad>\S))")  # fmt: skip
+#: Units that say "angle" in a speed (rad/s, deg/s, rpm); a speed without one (Hz, 1/min)
+#: counts revolutions.
+_ANGULAR = {"radian", "degree", "turn", "arcminute", "arcsecond", "gradian",
+            "revolutions_per_minute", "revolutions_per_second"}  # fmt: skip
+
+
+def _unit_factors(text: str):
+    """``[(name, power)]`` of a unit expression, or a reason string.
+
+    The grammar is a product of unit names from pint's registry with small integer
+    powers: ``name[^n]`` joined by ``*``, ``/``, ``·`` or a space (``N*m``,
+    ``kg*m^2``, ``1/min``, ``rad/s``, ``cm^3``). Nothing is evaluated: no
+    parentheses, no arithmetic, no power beyond :data:`MAX_POWER`, no name twice.
+    """
+    ureg = _registry()
+    tokens = []
+    for m in _TOKEN.finditer(text):
+        if m.group("bad"):
+            return f"has a character a unit cannot have: {m.group('bad')!r}"
+        tokens.append((m.lastgroup, m.group(m.lastgroup)))
+    factors, sign, i, seen = [], 1, 0, set()
+    if tokens[:2] == [("int", "1"), ("op", "/")]:  # 1/min
+        i, sign = 2, -1
+    expect_factor = True
+    while i < len(tokens):
+        kind, tok = tokens[i]
+        if kind == "op" and tok in ("*", "\u00b7", "/") and not expect_factor:
+            sign = -1 if tok == "/" else 1
+            expect_factor, i = True, i + 1
+            continue
+        if kind != "name":
+            return "cannot be read as a number times a unit"
+        try:
+            canonical = ureg.parse_unit_name(tok)
+        except Exception:  # pint raises several kinds for a name it does not know
+            canonical = ()
+        if not canonical:
+            return f"has an unknown unit {tok!r}"
+        if canonical[0] in seen:
+            return f"names the unit {tok!r} twice"
+        seen.add(canonical[0])
+        power = 1
+        if i + 1 < len(tokens) and tokens[i + 1][1] in ("^", "**"):
+            if i + 2 >= len(tokens) or tokens[i + 2][0] != "int":
+                return "cannot be read as a number times a unit"
+            power = int(tokens[i + 2][1])
+            if not 1 <= abs(power) <= MAX_POWER:
+                return f"has a unit power {power} beyond +-{MAX_POWER}"
+            i += 2
+        factors.append((tok, canonical[0][1], sign * power))
+        sign, expect_factor, i = 1, False, i + 1
+    if expect_factor:
+        return "cannot be read as a number times a unit"
+    return factors
+
+
 def parse_quantity(value, kind: str) -> tuple[float, str]:
     """``(number_in_SI, "")`` or ``(nan, reason)`` where the reason completes
-    the sentence ``"<key> = <value> <reason>"``."""
+    the sentence ``"<key> = <value> <reason>"``.
+
+    A quantity is a decimal number followed by a unit expression (see
+    :func:`_unit_factors`); it is read without evaluating anything, so no input
+    can make it slow. A speed in a unit without an angle (``"50 Hz"``,
+    ``"3000 1/min"``) counts revolutions: 50 Hz = 3000 rpm. A temperature must be
+    above absolute zero.
+    """
     si, _ = KINDS[kind]
     bad = float("nan")
     if isinstance(value, bool) or not isinstance(value, (str, int, float)):
@@ -82,22 +153,42 @@ def parse_quantity(value, kind: str) -> tuple[float, str]:
         return bad, (
             f'has no unit: write it as a string with a unit, e.g. "{value} {_suggest_unit(kind)}"'
         )
+    text = value.strip()
+    if len(text) > MAX_TEXT:
+        return bad, f"is not admissible: longer than {MAX_TEXT} characters"
+    m = _NUMBER.fullmatch(text)
+    if m is None:
+        return bad, f"has no number: needs {describe_kind(kind)}"
+    number_text, unit_text = m.groups()
+    if not unit_text.strip():
+        return bad, f"has no unit: needs {describe_kind(kind)}"
+    factors = _unit_factors(unit_text)
+    if isinstance(factors, str):
+        return bad, f"{factors}: needs {describe_kind(kind)}"
+    number = float(number_text)
+    if not math.isfinite(number):
+        return bad, "is not admissible: needs a finite value"
     import pint
 
     ureg = _registry()
+    unit = ureg.dimensionless
+    for name, _, power in factors:
+        unit = unit * ureg.Unit(name) ** power
     try:
-        quantity = ureg.Quantity(value.strip())
-    except (pint.errors.PintError, ValueError, TypeError, AttributeError, SyntaxError):
-        return bad, f"cannot be read: needs {describe_kind(kind)}"
-    if not isinstance(quantity, ureg.Quantity) or quantity.unitless:
-        return bad, f"has no unit: needs {describe_kind(kind)}"
-    try:
-        number = float(quantity.to(si).magnitude)
-    except pint.errors.DimensionalityError:
+        quantity = ureg.Quantity(number, unit)
+        target = "1/s" if kind == "speed" else si
+        converted = float(quantity.to(target).magnitude)
+    except (pint.errors.DimensionalityError, pint.errors.OffsetUnitCalculusError):
         return bad, f"has the wrong unit: needs {describe_kind(kind)}"
-    if not math.isfinite(number):
+    if kind == "speed" and not any(canon in _ANGULAR for _, canon, _ in factors):
+        converted *= 2.0 * math.pi  # cycles per time (Hz, 1/min): revolutions
+    if kind in ("angle",) and not any(canon in _ANGULAR for _, canon, _ in factors):
+        return bad, f"has the wrong unit: needs {describe_kind(kind)}"
+    if not math.isfinite(converted):
         return bad, "is not admissible: needs a finite value"
-    return number, ""
+    if kind == "temperature" and converted <= 0.0:
+        return bad, "is not admissible: a temperature above absolute zero (0 K)"
+    return converted, ""
 
 
 def _suggest_unit(kind: str) -> str:
