@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.render.figures import BASELINE as _BASE
 from rotorkin.render.figures import SYNTHESIZED as _SYN
 from rotorkin.render.figures import degree_axis as _deg_axis
@@ -15,8 +16,6 @@ __all__ = ["plot_eccentric"]
 
 def plot_eccentric(outdir, base, synth, options, gap, length):
     """Gap change over a turn: baseline, synthesized design, the other options, the tolerance."""
-    from rotorkin.drives.eccentric_cam import kinematics as ec
-
     plt = _plt()
     beta = np.linspace(0.0, 2.0 * np.pi, 1441)
     x = np.degrees(beta)

@@ -22,14 +22,17 @@ import numpy as np
 
 from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import torque as tq
-from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import RunSection
+from rotorkin.drives.eccentric_cam import figures as figures_eccentric_cam
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.drives.eccentric_cam.reactor import opposed_piston, reactor_state
+from rotorkin.drives.eccentric_cam.schema import EccentricMachine
 from rotorkin.machines import opposed_piston as op
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain
 
-__all__ = ["evaluate", "drive_params", "HEADLINE"]
+__all__ = ["evaluate", "drive_params", "machine_params", "sections", "reactor_state", "HEADLINE"]
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {
@@ -152,11 +155,8 @@ _REACTOR_DOCS = {
 }
 
 
-def _defaults(cfg: dict):
+def sections(cfg: dict):
     """Machine and run sections with the schema's defaults for missing keys."""
-    from rotorkin.core.schema import RunSection
-    from rotorkin.drives.eccentric_cam.schema import EccentricMachine
-
     machine = {**EccentricMachine().model_dump(), **(cfg.get("machine") or {})}
     run = {**RunSection().model_dump(), **(cfg.get("run") or {})}
     return machine, run
@@ -172,52 +172,11 @@ def _inertias(machine: dict) -> tuple[float, tuple[float, float]]:
     return js, (m, m)
 
 
-def reactor_state(reactor: op.OpposedPiston, inertia, speed, beta) -> dict:
-    """Volume, pressure, piston forces and shaft torques at the shaft angles ``beta``.
-
-    Parameters
-    ----------
-    reactor : OpposedPiston
-    inertia : (float, (float, float))
-        ``J_shaft`` [kg*m^2] and the piston masses [kg].
-    speed : float or sequence of float
-        ``run.speed`` [rad/s].
-    beta : ndarray, shape (n,)
-        Shaft angles [rad].
-
-    Returns
-    -------
-    dict of ndarray
-        ``V``, ``dV``, ``p`` (1, n); ``F`` (2, n); ``shaft``, ``inertia``, ``net``,
-        ``J_eq``, ``omega``, ``omega_dot`` (n,).
-    """
-    _, dq, d2q, _ = ec.piston_travels(reactor.drive, beta)
-    V, dV, _, _ = op.enclosed_volume(reactor, beta)
-    p, _ = op.pressure(reactor, beta)
-    F = tq.member_torques(p, op.volume_derivatives_dq(reactor, beta))
-    shaft = tq.shaft_torque_from_members(F, dq)
-    omega, omega_dot, _ = shaft_speed(beta, speed, ec.period(reactor.drive))
-    js, masses = inertia
-    t_in = tq.inertia_torque(js, masses, dq, d2q, omega, omega_dot)
-    return {
-        "V": V,
-        "dV": dV,
-        "p": p,
-        "F": F,
-        "shaft": shaft,
-        "inertia": t_in,
-        "net": shaft - t_in,
-        "J_eq": tq.equivalent_inertia(js, masses, dq),
-        "omega": omega,
-        "omega_dot": omega_dot,
-    }
-
-
-def _reactor_summary(reactor: op.OpposedPiston, inertia, speed, coefficient) -> dict:
-    drive = reactor.drive
+def _reactor_summary(drive: ec.EccentricCam, reactor: op.OpposedPiston, inertia, speed,
+                     coefficient) -> dict:  # fmt: skip
     period = ec.period(drive)
     fine = np.linspace(0.0, period, _PEAK_SAMPLES)
-    st = reactor_state(reactor, inertia, speed, fine)
+    st = reactor_state(drive, reactor, inertia, speed, fine)
     vmin, vmax = op.volume_extremes(reactor)
     p0 = float(reactor.initial_pressure)
     p_at_vmax = float(op.pressure_from_volume(reactor, vmax))
@@ -266,8 +225,8 @@ def _reactor_summary(reactor: op.OpposedPiston, inertia, speed, coefficient) -> 
     return out
 
 
-def _reactor_columns(reactor, inertia, speed, beta) -> tuple[dict, dict]:
-    st = reactor_state(reactor, inertia, speed, beta)
+def _reactor_columns(drive, reactor, inertia, speed, beta) -> tuple[dict, dict]:
+    st = reactor_state(drive, reactor, inertia, speed, beta)
     cols = {
         "volume_cm3": st["V"][0] * 1e6,
         "dvolume_cm3_per_rad": st["dV"][0] * 1e6,
@@ -279,8 +238,8 @@ def _reactor_columns(reactor, inertia, speed, beta) -> tuple[dict, dict]:
         "shaft_torque_with_inertia_Nm": st["net"],
         "equivalent_inertia_kgm2": st["J_eq"],
     }
-    tcols, tdocs, _, _ = time_domain(ec.motion(reactor.drive, beta), speed, _SLUGS,
-                                     ec.period(reactor.drive))  # fmt: skip
+    tcols, tdocs, _, _ = time_domain(ec.motion(drive, beta), speed, _SLUGS,
+                                     ec.period(drive))  # fmt: skip
     cols.update(tcols)
     return cols, {**_REACTOR_DOCS, **tdocs}
 
@@ -299,6 +258,16 @@ def drive_params(cfg: dict) -> ec.EccentricCam:
         },
     )
     return params
+
+
+def machine_params(params: ec.EccentricCam, machine: dict) -> op.OpposedPiston:
+    """The reactor on the drive ``params`` from the machine section (SI, defaults filled);
+    errors name the config keys."""
+    keys = ("device_length", "bore", "fluid", "initial_pressure", "polytropic_exponent",
+            "bulk_modulus")  # fmt: skip
+    return build_params(
+        lambda **kw: opposed_piston(params, **kw), "machine", {k: machine[k] for k in keys}
+    )
 
 
 def evaluate(cfg: dict) -> StudyResult:
@@ -321,34 +290,23 @@ def evaluate(cfg: dict) -> StudyResult:
         ``docs/machines/opposed_piston.md``.
     """
     params = drive_params(cfg)
-    machine, run = _defaults(cfg)
-    reactor = build_params(
-        op.OpposedPiston,
-        "machine",
-        {
-            "drive": params,
-            "device_length": machine["device_length"],
-            "bore": machine["bore"],
-            "fluid": machine["fluid"],
-            "initial_pressure": machine["initial_pressure"],
-            "polytropic_exponent": machine["polytropic_exponent"],
-            "bulk_modulus": machine["bulk_modulus"],
-        },
-    )
+    machine, run = sections(cfg)
+    reactor = machine_params(params, machine)
     inertia = _inertias(machine)
     speed = run["speed"]
     summary = _summary(params, float(reactor.device_length))
-    summary.update(_reactor_summary(reactor, inertia, speed, float(machine["speed_fluctuation"])))
+    summary.update(
+        _reactor_summary(params, reactor, inertia, speed, float(machine["speed_fluctuation"]))
+    )
+    summary = {k: v.item() if isinstance(v, np.generic) else v for k, v in summary.items()}
     columns = _columns(params, run["points"])
     beta = angle_grid(ec.period(params), run["points"])
-    more, more_docs = _reactor_columns(reactor, inertia, speed, beta)
+    more, more_docs = _reactor_columns(params, reactor, inertia, speed, beta)
     columns.update(more)
 
     def plot(outdir: Path) -> list[Path]:
-        from rotorkin.drives.eccentric_cam import figures as figures_eccentric_cam
-
         grid = angle_grid(ec.period(params), 1441)
-        state = reactor_state(reactor, inertia, speed, grid)
+        state = reactor_state(params, reactor, inertia, speed, grid)
         return figures_eccentric_cam.plot_all(
             params, Path(outdir), reactor=reactor, beta=grid, state=state, summary=summary
         )
@@ -361,4 +319,5 @@ def evaluate(cfg: dict) -> StudyResult:
         column_docs={**_DOCS, **more_docs},
         headline=HEADLINE,
         write_figures=plot,
+        motion=ec.motion(params, beta),
     )

@@ -25,7 +25,15 @@ import numpy as np
 
 from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import validate_model
+from rotorkin.drives.eccentric_cam import figures_synthesis, schema, study
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.synthesis import (
+    SynthesisResult,
+    parse_fraction,
+    parse_quantity_arg,
+    synthesized_raw_config,
+)
 
 __all__ = [
     "gap_change_peak",
@@ -154,8 +162,6 @@ def default_gap_change(params: ec.EccentricCam) -> float:
 
 
 def _parse_gap(target, length):
-    from rotorkin.synthesis import parse_fraction, parse_quantity_arg
-
     try:
         ratio = parse_fraction(target)
         gap = ratio * length
@@ -175,10 +181,6 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
 
     Without a target, half the design's own peak gap change (:func:`default_gap_change`).
     """
-    from rotorkin.drives import evaluate
-    from rotorkin.io.config import validate_config
-    from rotorkin.synthesis import SynthesisResult, synthesized_raw_config
-
     if harmonics is not None:
         raise ParameterError("--harmonics", str(harmonics), "not used by the eccentric_cam drive")
     d = cfg["drive"]
@@ -205,8 +207,8 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     if chosen["follower"] == "roller":
         updates["drive"]["roller_radius"] = _format_length(chosen["roller_radius"])
     new_raw = synthesized_raw_config(raw, updates, objective)
-    res0 = evaluate(cfg)
-    res1 = evaluate(validate_config(new_raw))
+    res0 = study.evaluate(cfg)
+    res1 = study.evaluate(validate_model(schema.EccentricConfig, new_raw))
     gap_run = abs(float(res1.summary["gap_change_min_mm"])) * 1e-3
     rel_err = abs(gap_run - gap) / gap if gap > 0 else abs(gap_run)
     keys = (
@@ -273,8 +275,6 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     )
 
     def plot(outdir):
-        from rotorkin.drives.eccentric_cam import figures_synthesis
-
         feasible = [
             ec.EccentricCam(
                 o["disc_radius"],
