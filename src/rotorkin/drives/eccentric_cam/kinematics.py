@@ -60,6 +60,8 @@ __all__ = [
     "invalid_parameter",
     "harmonic_travel",
     "additional_travel",
+    "travels",
+    "travel_peaks",
     "piston_travels",
     "gap_change",
     "gap_change_ratio_eq6",
@@ -283,16 +285,20 @@ def additional_travel(contact_radius, eccentricity, beta):
     return tuple(np.where(finite, v, 0.0) for v in out)
 
 
-def piston_travels(params: EccentricCam, beta):
+def travels(contact_radius, eccentricity, beta):
     """Travels ``(z, z')`` of the left and right pistons and their derivatives.
 
-    Knife edge (eq. 1, 3): ``z = sqrt(R^2 - e^2 sin^2 beta) + e cos beta - R``,
-    ``z' = sqrt(R^2 - e^2 sin^2 beta) - R - e cos beta``; roller: ``R -> R + r``;
-    flat (eq. 7, 8): ``z = e cos beta``, ``z' = -e cos beta``.
+    ``z = A + e cos beta``, ``z' = A - e cos beta`` with the additional part
+    ``A = sqrt(Rc^2 - e^2 sin^2 beta) - Rc`` (:func:`additional_travel`,
+    :func:`harmonic_travel`); eq. 1, 3 for a knife edge (``Rc = R``), eq. 7, 8 for
+    a flat face (``Rc = inf``, ``A = 0``). Broadcasts.
 
     Parameters
     ----------
-    params : EccentricCam
+    contact_radius : array_like
+        Rc [m] (:func:`contact_radius`).
+    eccentricity : array_like
+        e [m].
     beta : array_like
         Shaft angle [rad].
 
@@ -302,10 +308,37 @@ def piston_travels(params: EccentricCam, beta):
         ``(z, z')`` [m], positive towards the reactor centre, and their
         1st-3rd derivatives with respect to beta [m/rad^n].
     """
-    beta = np.asarray(beta, dtype=float)
-    h = harmonic_travel(params.eccentricity, beta)
-    a = additional_travel(params.contact_radius, params.eccentricity, beta)
+    h = harmonic_travel(eccentricity, beta)
+    a = additional_travel(contact_radius, eccentricity, beta)
     return tuple(np.stack([ai + hi, ai - hi]) for ai, hi in zip(a, h, strict=True))
+
+
+def piston_travels(params: EccentricCam, beta):
+    """:func:`travels` of the drive ``params`` (eq. 1, 3; eq. 7, 8 for a flat face).
+
+    Returns ``(z, z')`` [m] and their 1st-3rd derivatives [m/rad^n], shape (2, ...).
+    """
+    return travels(params.contact_radius, params.eccentricity, beta)
+
+
+def travel_peaks(contact_radius, eccentricity, beta):
+    """Largest ``|d^k z/dbeta^k|`` of either piston over the angles ``beta`` (last axis).
+
+    Parameters
+    ----------
+    contact_radius, eccentricity : array_like
+        Rc, e [m]; shape (n, 1) against angles (m,) gives one peak per design.
+    beta : array_like
+        Shaft angles sampled over a period [rad].
+
+    Returns
+    -------
+    tuple of 3 ndarray
+        Peaks of the velocity, acceleration and jerk coefficients [m/rad^n].
+    """
+    q = travels(contact_radius, eccentricity, beta)
+    axes = (0, q[0].ndim - 1)
+    return tuple(np.abs(q[k]).max(axis=axes) for k in (1, 2, 3))
 
 
 def gap_change(params: EccentricCam, beta):

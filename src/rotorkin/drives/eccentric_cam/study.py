@@ -26,7 +26,7 @@ from rotorkin.core.errors import ParameterError
 from rotorkin.core.schema import RunSection
 from rotorkin.drives.eccentric_cam import figures as figures_eccentric_cam
 from rotorkin.drives.eccentric_cam import kinematics as ec
-from rotorkin.drives.eccentric_cam.reactor import opposed_piston, reactor_state
+from rotorkin.drives.eccentric_cam.reactor import closed_forms, opposed_piston, reactor_state
 from rotorkin.drives.eccentric_cam.schema import EccentricMachine
 from rotorkin.machines import opposed_piston as op
 from rotorkin.studies import StudyResult
@@ -57,30 +57,15 @@ HEADLINE = {
 _PEAK_SAMPLES = 20_001
 
 
-def _summary(params: ec.EccentricCam, device_length: float) -> dict:
-    e = float(params.eccentricity)
-    dmin, bmin = ec.gap_change_extreme(params)
-    knife = ec.EccentricCam(params.disc_radius, e, "knife_edge")
+def _summary(params: ec.EccentricCam, reactor: op.OpposedPiston) -> dict:
     fine = np.linspace(0.0, ec.period(params), _PEAK_SAMPLES)
-    _, d1, d2, d3 = ec.piston_travels(params, fine)
-    rc = params.contact_radius
-    return {
-        "follower": params.follower,
-        "lambda": params.lam,
-        "lambda_contact": e / rc,
-        "gap_change_min_mm": dmin * 1e3,
-        "gap_change_min_ratio": dmin / e,
-        "gap_change_min_angle_deg": float(np.degrees(bmin)),
-        "gap_change_to_length": abs(dmin) / device_length,
-        "gap_change_to_length_percent": 100.0 * abs(dmin) / device_length,
-        "gap_change_min_knife_edge_mm": ec.gap_change_extreme(knife)[0] * 1e3,
-        "piston_stroke_mm": ec.piston_stroke(params) * 1e3,
-        "piston_velocity_peak_mm_per_rad": float(np.max(np.abs(d1))) * 1e3,
-        "piston_accel_peak_mm_per_rad2": float(np.max(np.abs(d2))) * 1e3,
-        "piston_jerk_peak_mm_per_rad3": float(np.max(np.abs(d3))) * 1e3,
-        "pressure_angle_max_deg": float(np.degrees(ec.pressure_angle_max(params))),
-        "device_length_mm": device_length * 1e3,
-    }
+    v, a, j = ec.travel_peaks(params.contact_radius, params.eccentricity, fine)
+    out = {"follower": params.follower, "fluid": reactor.fluid}
+    out.update(closed_forms(params, reactor))
+    out["piston_velocity_peak_mm_per_rad"] = v * 1e3
+    out["piston_accel_peak_mm_per_rad2"] = a * 1e3
+    out["piston_jerk_peak_mm_per_rad3"] = j * 1e3
+    return out
 
 
 _DOCS = {
@@ -177,9 +162,6 @@ def _reactor_summary(drive: ec.EccentricCam, reactor: op.OpposedPiston, inertia,
     period = ec.period(drive)
     fine = np.linspace(0.0, period, _PEAK_SAMPLES)
     st = reactor_state(drive, reactor, inertia, speed, fine)
-    vmin, vmax = op.volume_extremes(reactor)
-    p0 = float(reactor.initial_pressure)
-    p_at_vmax = float(op.pressure_from_volume(reactor, vmax))
     omega_mean = float(np.mean(st["omega"][:-1]))
     _, dq, d2q, _ = ec.piston_travels(drive, fine)
     js, masses = inertia
@@ -189,22 +171,6 @@ def _reactor_summary(drive: ec.EccentricCam, reactor: op.OpposedPiston, inertia,
     cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
     work = float(tq.cycle_integral(st["shaft"], fine))
     out = {
-        "fluid": reactor.fluid,
-        "bore_mm": float(reactor.bore) * 1e3,
-        "piston_area_cm2": reactor.area * 1e4,
-        "enclosed_volume_min_cm3": vmin * 1e6,
-        "enclosed_volume_max_cm3": vmax * 1e6,
-        "chamber_volume_min_cm3": vmin * 1e6,
-        "chamber_volume_max_cm3": vmax * 1e6,
-        "volume_change_cm3": (vmax - vmin) * 1e6,
-        "volume_change_relative": (vmax - vmin) / vmin,
-        "compression_ratio_geometric": vmax / vmin,
-        "initial_pressure_bar": p0 / 1e5,
-        "pressure_max_bar": p0 / 1e5,
-        "pressure_min_bar": p_at_vmax / 1e5,
-        "pressure_ripple_bar": (p0 - p_at_vmax) / 1e5,
-        "pressure_ripple_relative": (p0 - p_at_vmax) / p0,
-        "cavitation": bool(p_at_vmax <= 0.0),
         "piston_force_peak_N": float(np.max(np.abs(st["F"]))),
         "indicated_work_J": work,
         "mean_torque_Nm": work / period,
@@ -294,7 +260,7 @@ def evaluate(cfg: dict) -> StudyResult:
     reactor = machine_params(params, machine)
     inertia = _inertias(machine)
     speed = run["speed"]
-    summary = _summary(params, float(reactor.device_length))
+    summary = _summary(params, reactor)
     summary.update(
         _reactor_summary(params, reactor, inertia, speed, float(machine["speed_fluctuation"]))
     )

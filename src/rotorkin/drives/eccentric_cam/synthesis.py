@@ -49,13 +49,10 @@ __all__ = [
 def gap_change_peak(contact_radius, eccentricity):
     """Largest gap change magnitude ``2 (Rc - sqrt(Rc^2 - e^2))`` [m] (eq. 5 at 90 deg).
 
-    Computed as ``2 e^2 / (Rc + sqrt(Rc^2 - e^2))`` (no cancellation); 0 for ``Rc = inf``.
+    Minus twice :func:`~rotorkin.drives.eccentric_cam.kinematics.additional_travel` at
+    90 deg; 0 for ``Rc = inf``. Broadcasts.
     """
-    Rc = np.asarray(contact_radius, dtype=float)
-    e = np.asarray(eccentricity, dtype=float)
-    with np.errstate(invalid="ignore"):
-        out = 2.0 * e * e / (Rc + np.sqrt(Rc * Rc - e * e))
-    return np.where(np.isinf(Rc), 0.0, out)
+    return -2.0 * ec.additional_travel(contact_radius, eccentricity, 0.5 * np.pi)[0]
 
 
 def eccentricity_for_gap_change(gap, contact_radius):
@@ -153,12 +150,9 @@ def default_gap_change(params: ec.EccentricCam) -> float:
     its 21.44 mm; always reachable by keeping the eccentricity (it is below ``2 e``).
     A flat follower's own gap change is zero, and so is the default (the flat follower).
     """
-    if params.follower == "flat":
-        return 0.0
-    rc = float(params.disc_radius) + (
-        float(params.roller_radius) if params.follower == "roller" else 0.0
+    return DEFAULT_GAP_SHARE * abs(
+        float(gap_change_peak(params.contact_radius, params.eccentricity))
     )
-    return DEFAULT_GAP_SHARE * float(gap_change_peak(rc, params.eccentricity))
 
 
 def _parse_gap(target, length):
