@@ -139,7 +139,7 @@ def design_options(params: ec.EccentricCam, gap: float) -> list[dict]:
     return out
 
 
-#: Without ``--target``: this fraction of the design's own peak gap change is tolerated.
+#: Without a ``target``: this fraction of the design's own peak gap change is tolerated.
 DEFAULT_GAP_SHARE = 0.5
 
 
@@ -157,12 +157,12 @@ def default_gap_change(params: ec.EccentricCam) -> float:
 
 def _parse_gap(target, length):
     try:
-        ratio = parse_fraction(target)
+        ratio = parse_fraction(target, "target")
         gap = ratio * length
     except ParameterError:
-        gap = parse_quantity_arg(target, "length")
+        gap = parse_quantity_arg(target, "length", "target")
     if not (np.isfinite(gap) and gap >= 0.0):
-        raise ParameterError("--target", repr(target), "a gap change |Delta| >= 0")
+        raise ParameterError("target", repr(target), "a gap change |Delta| >= 0")
     return abs(gap)
 
 
@@ -171,12 +171,12 @@ def _format_length(x: float) -> str:
 
 
 def synthesize(cfg, raw, objective, target, harmonics, options=None):
-    """Design for ``--target`` peak gap change (objective ``gap_change``); see the module doc.
+    """Design for the ``target`` peak gap change (objective ``gap_change``); see the module doc.
 
     Without a target, half the design's own peak gap change (:func:`default_gap_change`).
     """
     if harmonics is not None:
-        raise ParameterError("--harmonics", str(harmonics), "not used by the eccentric_cam drive")
+        raise ParameterError("harmonics", str(harmonics), "not used by the eccentric_cam drive")
     d = cfg["drive"]
     base = ec.EccentricCam(d["disc_radius"], d["eccentricity"], d["follower"], d["roller_radius"])
     length = float(cfg["machine"]["device_length"])
@@ -186,7 +186,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     if not chosen["feasible"]:
         hi = 2.0 * float(base.eccentricity)
         raise ParameterError(
-            "--target",
+            "target",
             f"{fmt_mm(gap)} (|Delta|/L = {gap / length:.4g})",
             f"0 <= |Delta| < {fmt_mm(hi)} (|Delta|/L < {hi / length:.4g}) at the eccentricity "
             f"{fmt_mm(base.eccentricity)}; with the disc kept instead: {options[1]['why'] or 'ok'}",
@@ -238,7 +238,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     notes = []
     if target is None:
         notes.append(
-            f"--target not given: |Delta| = {gap * 1e3:.6g} mm, half the design's own peak gap "
+            f"no target given: |Delta| = {gap * 1e3:.6g} mm, half the design's own peak gap "
             f"change {abs(float(res0.summary['gap_change_min_mm'])):.6g} mm"
         )
     notes.append(
@@ -279,7 +279,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
             for o in options
             if o["feasible"] and o["option"] != "flat"
         ]
-        return figures_synthesis.plot_eccentric(outdir, base, new_params, feasible, gap, length)
+        return figures_synthesis.plot_eccentric(base, new_params, feasible, gap, length, outdir)
 
     return SynthesisResult(
         drive_type="eccentric_cam",
