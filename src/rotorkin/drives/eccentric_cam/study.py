@@ -213,17 +213,8 @@ def _reactor_columns(drive, reactor, inertia, speed, beta) -> tuple[dict, dict]:
 def drive_params(cfg: dict) -> ec.EccentricCam:
     """The drive's parameters from a validated config (SI); errors name the config keys."""
     d = cfg["drive"]
-    params = build_params(
-        ec.EccentricCam,
-        "drive",
-        {
-            "disc_radius": d["disc_radius"],
-            "eccentricity": d["eccentricity"],
-            "follower": d.get("follower", "knife_edge"),
-            "roller_radius": d.get("roller_radius", 0.0),
-        },
-    )
-    return params
+    keys = ("disc_radius", "eccentricity", "follower", "roller_radius")
+    return build_params(ec.EccentricCam, "drive", {k: d[k] for k in keys if k in d})
 
 
 def machine_params(params: ec.EccentricCam, machine: dict) -> op.OpposedPiston:
