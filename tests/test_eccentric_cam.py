@@ -391,6 +391,7 @@ def test_study_errors_name_config_keys():
         evaluate(cfg)
 
 
+@pytest.mark.slow
 def test_study_plot_writes_pngs(tmp_path):
     res = evaluate(_cfg(follower="roller", roller_radius=0.01))
     paths = res.write_figures(tmp_path)

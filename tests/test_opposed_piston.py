@@ -469,6 +469,7 @@ def test_bad_inputs_name_the_key(machine, key, text):
     assert text in str(err.value)
 
 
+@pytest.mark.slow
 def test_plot_writes_reactor_figures(tmp_path):
     res = evaluate(_cfg(machine={"fluid": "gas"}, follower="roller", roller_radius=0.012))
     paths = res.write_figures(tmp_path)
