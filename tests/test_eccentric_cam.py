@@ -459,3 +459,15 @@ def test_drive_params_without_optional_keys_take_the_schema_defaults():
     want = _schema_defaults()
     p = drive_params({"drive": {"disc_radius": 0.08, "eccentricity": 0.04}})
     assert p.follower == want["follower"] and p.roller_radius == want["roller_radius"]
+
+
+def test_study_keeps_the_pistons_motion_on_the_column_grid():
+    res = evaluate(_cfg())
+    m = res.motion
+    assert isinstance(m, Motion)
+    assert m.members == ("left piston", "right piston") and m.unit == "m"
+    np.testing.assert_allclose(np.degrees(m.theta), res.columns["beta_deg"], rtol=0, atol=1e-12)
+    assert m.theta[-1] - m.theta[0] == pytest.approx(2 * np.pi, rel=1e-15)
+    np.testing.assert_array_equal(m.q[0] * 1e3, res.columns["z_left_mm"])
+    np.testing.assert_array_equal(m.q[1] * 1e3, res.columns["z_right_mm"])
+    np.testing.assert_array_equal(m.dq[0] * 1e3, res.columns["z_left_velocity_mm_per_rad"])
