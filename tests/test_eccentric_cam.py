@@ -141,7 +141,9 @@ def test_knife_edge_matches_paper_equations_1_to_6():
     np.testing.assert_allclose(d["x_right"], xr, atol=1e-13)
     np.testing.assert_allclose(ec.gap_change(p, b)[0], D, atol=1e-15)
     np.testing.assert_allclose(d["delta"], D / e, atol=1e-13)
-    np.testing.assert_allclose(ec.gap_change_ratio_eq6(lam, b), D / e, atol=1e-13)
+    # eq. 6 as printed: delta = (2/lambda)(sqrt(1 - lambda^2 sin^2 beta) - 1)
+    eq6 = (2.0 / lam) * (np.sqrt(1.0 - lam**2 * np.sin(b) ** 2) - 1.0)
+    np.testing.assert_allclose(d["delta"], eq6, atol=1e-13)
     np.testing.assert_allclose(d["xi"], np.cos(b), atol=1e-15)
     np.testing.assert_allclose(d["mu"], x - np.cos(b), atol=1e-13)
 

@@ -64,7 +64,6 @@ __all__ = [
     "travel_peaks",
     "piston_travels",
     "gap_change",
-    "gap_change_ratio_eq6",
     "decomposition",
     "gap_change_extreme",
     "piston_stroke",
@@ -350,26 +349,6 @@ def gap_change(params: EccentricCam, beta):
     """
     a = additional_travel(params.contact_radius, params.eccentricity, beta)
     return tuple(2.0 * v for v in a)
-
-
-def gap_change_ratio_eq6(lam, beta):
-    """``delta = Delta/e = (2/lambda)(sqrt(1 - lambda^2 sin^2 beta) - 1)`` as printed (eq. 6).
-
-    Parameters
-    ----------
-    lam : array_like
-        ``lambda = e/R`` (use ``e/(R + r)`` for a roller), ``0 < lambda < 1``.
-    beta : array_like
-        Shaft angle [rad].
-
-    Returns
-    -------
-    ndarray
-        delta [-].
-    """
-    lam = np.asarray(lam, dtype=float)
-    b = np.asarray(beta, dtype=float)
-    return (2.0 / lam) * (np.sqrt(1.0 - lam**2 * np.sin(b) ** 2) - 1.0)
 
 
 def decomposition(params: EccentricCam, beta):

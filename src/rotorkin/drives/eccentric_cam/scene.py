@@ -205,9 +205,8 @@ def scene(result, cfg, frames: int = 120):
             y=np.zeros((nf, 2)),
         )
     if params.follower != "flat":  # where a flat-faced piston's face would stand: +-e cos beta
-        hx = np.stack(
-            [-D + R + e * np.cos(beta) + rod + thick, D - R + e * np.cos(beta) - rod - thick]
-        )
+        harmonic = ec.harmonic_travel(e, beta)[0]
+        hx = np.stack([-D + R + harmonic + rod + thick, D - R + harmonic - rod - thick])
         h = np.broadcast_to([-0.5 * bore - 10, 0.5 * bore + 10], (nf, 2))
         b.animated_trace(
             trace(
