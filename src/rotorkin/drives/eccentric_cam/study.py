@@ -26,6 +26,7 @@ from rotorkin.core.errors import ParameterError
 from rotorkin.core.schema import RunSection
 from rotorkin.drives.eccentric_cam import figures as figures_eccentric_cam
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.drives.eccentric_cam.curves import drive_curves
 from rotorkin.drives.eccentric_cam.reactor import closed_forms, opposed_piston, reactor_state
 from rotorkin.drives.eccentric_cam.schema import EccentricMachine
 from rotorkin.machines import opposed_piston as op
@@ -94,25 +95,7 @@ _DOCS = {
 
 def _columns(params: ec.EccentricCam, points: int) -> dict:
     beta = angle_grid(ec.period(params), points)
-    q, d1, d2, d3 = ec.piston_travels(params, beta)
-    dec = ec.decomposition(params, beta)
-    cols = {
-        "beta_deg": np.degrees(beta),
-        "z_left_mm": q[0] * 1e3,
-        "z_right_mm": q[1] * 1e3,
-        "gap_change_mm": (q[0] + q[1]) * 1e3,
-        "x_left": dec["x"],
-        "x_right": dec["x_right"],
-        "xi": dec["xi"],
-        "mu": dec["mu"],
-        "delta": dec["delta"],
-    }
-    for name, arr in (("velocity", d1), ("accel", d2), ("jerk", d3)):
-        suffix = {"velocity": "mm_per_rad", "accel": "mm_per_rad2", "jerk": "mm_per_rad3"}[name]
-        cols[f"z_left_{name}_{suffix}"] = arr[0] * 1e3
-        cols[f"z_right_{name}_{suffix}"] = arr[1] * 1e3
-    cols["pressure_angle_left_deg"] = np.degrees(ec.pressure_angle(params, beta))
-    return cols
+    return {"beta_deg": np.degrees(beta), **drive_curves(params, beta)}
 
 
 # --------------------------------------------------------------------------------------------

@@ -16,6 +16,7 @@ import numpy as np
 
 from rotorkin.core.batch import flag, full, run_blocks, sample_grid
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.drives.eccentric_cam.curves import drive_curves
 from rotorkin.drives.eccentric_cam.reactor import closed_forms, opposed_piston
 from rotorkin.machines import opposed_piston as op
 
@@ -184,23 +185,5 @@ def _peaks(rc, e, samples, threads) -> dict:
 def curves(p, points: int):
     """The :data:`CURVES` of admissible designs over one turn: angle (points,), dict (n, points)."""
     beta = sample_grid(2.0 * np.pi, points)
-    drive = _drive(p, column=True)
-    q = ec.piston_travels(drive, beta)
-    dec = ec.decomposition(drive, beta)
-    shape = (p.n, points)
-    out = {
-        "z_left_mm": q[0][0] * 1e3,
-        "z_right_mm": q[0][1] * 1e3,
-        "gap_change_mm": (q[0][0] + q[0][1]) * 1e3,
-        "x_left": dec["x"],
-        "x_right": dec["x_right"],
-        "xi": dec["xi"],
-        "mu": dec["mu"],
-        "delta": dec["delta"],
-        "pressure_angle_left_deg": np.degrees(ec.pressure_angle(drive, beta)),
-    }
-    for k, (name, suffix) in enumerate((("velocity", "mm_per_rad"), ("accel", "mm_per_rad2"),
-                                        ("jerk", "mm_per_rad3")), start=1):  # fmt: skip
-        out[f"z_left_{name}_{suffix}"] = q[k][0] * 1e3
-        out[f"z_right_{name}_{suffix}"] = q[k][1] * 1e3
-    return beta, {k: np.array(np.broadcast_to(v, shape)) for k, v in out.items()}
+    out = drive_curves(_drive(p, column=True), beta)
+    return beta, {k: np.array(np.broadcast_to(v, (p.n, points))) for k, v in out.items()}
