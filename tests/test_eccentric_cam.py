@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from scipy.optimize import brentq, minimize_scalar
@@ -10,6 +12,9 @@ from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion
 from rotorkin.drives import evaluate
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.drives.eccentric_cam import schema
+from rotorkin.drives.eccentric_cam.study import drive_params
+from rotorkin.machines import opposed_piston as op
 from rotorkin.studies.helpers import build_params
 
 
@@ -136,7 +141,9 @@ def test_knife_edge_matches_paper_equations_1_to_6():
     np.testing.assert_allclose(d["x_right"], xr, atol=1e-13)
     np.testing.assert_allclose(ec.gap_change(p, b)[0], D, atol=1e-15)
     np.testing.assert_allclose(d["delta"], D / e, atol=1e-13)
-    np.testing.assert_allclose(ec.gap_change_ratio_eq6(lam, b), D / e, atol=1e-13)
+    # eq. 6 as printed: delta = (2/lambda)(sqrt(1 - lambda^2 sin^2 beta) - 1)
+    eq6 = (2.0 / lam) * (np.sqrt(1.0 - lam**2 * np.sin(b) ** 2) - 1.0)
+    np.testing.assert_allclose(d["delta"], eq6, atol=1e-13)
     np.testing.assert_allclose(d["xi"], np.cos(b), atol=1e-15)
     np.testing.assert_allclose(d["mu"], x - np.cos(b), atol=1e-13)
 
@@ -386,6 +393,7 @@ def test_study_errors_name_config_keys():
         evaluate(cfg)
 
 
+@pytest.mark.slow
 def test_study_plot_writes_pngs(tmp_path):
     res = evaluate(_cfg(follower="roller", roller_radius=0.01))
     paths = res.write_figures(tmp_path)
@@ -393,3 +401,75 @@ def test_study_plot_writes_pngs(tmp_path):
     for p in paths:
         assert p.exists() and p.suffix == ".png" and p.stat().st_size > 1000
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+# --------------------------------------------------------------------------------------------
+# one source of defaults: the schema
+# --------------------------------------------------------------------------------------------
+def _schema_defaults() -> dict:
+    """Every default of the [drive], [machine] and [cam] sections, parsed by the schema (SI)."""
+    required = {"type": "eccentric_cam", "disc_radius": "80 mm", "eccentricity": "40 mm"}
+    drive = schema.EccentricDrive.model_validate(required).model_dump()
+    out = {k: v for k, v in drive.items() if k not in required}
+    out.update(schema.EccentricMachine().model_dump())
+    out.update(schema.DiscCamSection().model_dump())
+    return out
+
+
+#: Dataclass fields that are not config keys (derived from the drive by the reactor module).
+_NOT_IN_SCHEMA = {"gap_change_min"}
+
+
+def _default_mismatches(classes, want) -> list:
+    """(class, field, dataclass default, schema default) for every defaulted field that
+    differs from the schema or has no schema key."""
+    out = []
+    for cls in classes:
+        for f in dataclasses.fields(cls):
+            if f.default is dataclasses.MISSING or f.name in _NOT_IN_SCHEMA:
+                continue
+            if f.name not in want or f.default != want[f.name]:
+                out.append((cls.__name__, f.name, f.default, want.get(f.name)))
+    return out
+
+
+def test_dataclass_defaults_equal_the_schema_defaults():
+    want = _schema_defaults()
+    assert _default_mismatches((ec.EccentricCam, op.OpposedPiston), want) == []
+    # every defaulted field was compared: follower, roller_radius and six reactor fields
+    compared = [
+        f.name
+        for cls in (ec.EccentricCam, op.OpposedPiston)
+        for f in dataclasses.fields(cls)
+        if f.default is not dataclasses.MISSING and f.name not in _NOT_IN_SCHEMA
+    ]
+    assert len(compared) == 8 and set(compared) <= set(want)
+
+
+def test_default_comparison_reports_a_mismatch():
+    @dataclasses.dataclass(frozen=True)
+    class Wrong:
+        bore: float = 0.04  # schema: 50 mm
+        fluid: str = "liquid"
+        unknown: float = 1.0  # no schema key
+
+    got = _default_mismatches((Wrong,), _schema_defaults())
+    assert got == [("Wrong", "bore", 0.04, 0.05), ("Wrong", "unknown", 1.0, None)]
+
+
+def test_drive_params_without_optional_keys_take_the_schema_defaults():
+    want = _schema_defaults()
+    p = drive_params({"drive": {"disc_radius": 0.08, "eccentricity": 0.04}})
+    assert p.follower == want["follower"] and p.roller_radius == want["roller_radius"]
+
+
+def test_study_keeps_the_pistons_motion_on_the_column_grid():
+    res = evaluate(_cfg())
+    m = res.motion
+    assert isinstance(m, Motion)
+    assert m.members == ("left piston", "right piston") and m.unit == "m"
+    np.testing.assert_allclose(np.degrees(m.theta), res.columns["beta_deg"], rtol=0, atol=1e-12)
+    assert m.theta[-1] - m.theta[0] == pytest.approx(2 * np.pi, rel=1e-15)
+    np.testing.assert_array_equal(m.q[0] * 1e3, res.columns["z_left_mm"])
+    np.testing.assert_array_equal(m.q[1] * 1e3, res.columns["z_right_mm"])
+    np.testing.assert_array_equal(m.dq[0] * 1e3, res.columns["z_left_velocity_mm_per_rad"])

@@ -8,6 +8,8 @@ here; work by Gauss quadrature and by closed-form integrals of p dV.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import pytest
 from numpy.polynomial.legendre import leggauss
@@ -17,7 +19,7 @@ from rotorkin.analysis import torque as tq
 from rotorkin.core.errors import ParameterError
 from rotorkin.drives import evaluate
 from rotorkin.drives.eccentric_cam import kinematics as ec
-from rotorkin.drives.eccentric_cam.study import reactor_state
+from rotorkin.drives.eccentric_cam.reactor import opposed_piston, reactor_state
 from rotorkin.machines import opposed_piston as op
 
 
@@ -85,7 +87,40 @@ def _reactor(
     n=1.0,
     K=1.5e9,
 ):
-    return op.OpposedPiston(ec.EccentricCam(R, e, follower, r), L, bore, fluid, p0, n, K)
+    drive = ec.EccentricCam(R, e, follower, r)
+    machine = opposed_piston(
+        drive,
+        device_length=L,
+        bore=bore,
+        fluid=fluid,
+        initial_pressure=p0,
+        polytropic_exponent=n,
+        bulk_modulus=K,
+    )
+    return _Rx(drive, machine)
+
+
+@dataclass(frozen=True)
+class _Rx:
+    """The drive and the reactor on it."""
+
+    drive: ec.EccentricCam
+    machine: op.OpposedPiston
+
+    def __getattr__(self, name):
+        return getattr(self.machine, name)
+
+
+def _V(rx, beta):
+    return op.enclosed_volume(rx.machine, ec.motion(rx.drive, beta))
+
+
+def _P(rx, beta):
+    return op.pressure(rx.machine, ec.motion(rx.drive, beta))
+
+
+def _dVdq(rx, beta):
+    return op.volume_derivatives_dq(rx.machine, ec.motion(rx.drive, beta))
 
 
 CASES = [
@@ -104,12 +139,12 @@ CASES = [
 def test_volume_against_face_positions(case):
     rx = _reactor(**case)
     beta = np.random.default_rng(5).uniform(0, 2 * np.pi, 60)
-    v = op.enclosed_volume(rx, beta)[0]
+    v = _V(rx, beta)[0]
     assert v.shape == (1, 60)
     np.testing.assert_allclose(v[0], _volume(rx, beta), rtol=1e-12)
     # the volume only grows from V0 (the paper: Delta <= 0, the pressure can only drop)
     assert np.all(v >= rx.volume_initial * (1 - 1e-15))
-    vmin, vmax = op.volume_extremes(rx)
+    vmin, vmax = op.volume_extremes(rx.machine)
     grid = np.linspace(0, 2 * np.pi, 3601)  # contains 0 and 90 deg
     vg = _volume(rx, grid)
     assert vmin == pytest.approx(vg.min(), rel=1e-12)
@@ -121,13 +156,13 @@ def test_flat_follower_keeps_volume_and_pressure_constant():
     for fluid in ("gas", "liquid"):
         rx = _reactor(follower="flat", fluid=fluid, n=1.3)
         beta = np.linspace(0, 2 * np.pi, 37)
-        v, dv, d2v, d3v = op.enclosed_volume(rx, beta)
+        v, dv, d2v, d3v = _V(rx, beta)
         np.testing.assert_allclose(v, rx.volume_initial, rtol=1e-15)
         assert np.all(dv == 0) and np.all(d2v == 0) and np.all(d3v == 0)
-        p, dp = op.pressure(rx, beta)
+        p, dp = _P(rx, beta)
         np.testing.assert_allclose(p, 1e5, rtol=1e-14)
         assert np.all(dp == 0)
-        st = reactor_state(rx, (0.0, (0.5, 0.5)), 60.0, beta)
+        st = reactor_state(rx.drive, rx.machine, (0.0, (0.5, 0.5)), 60.0, beta)
         assert np.all(st["shaft"] == 0)
     s = evaluate(_cfg(follower="flat")).summary
     assert s["pressure_ripple_bar"] == 0.0 and s["volume_change_cm3"] == 0.0
@@ -140,16 +175,16 @@ def test_volume_derivatives_against_finite_differences(case):
     rx = _reactor(**case)
     beta = np.linspace(0.05, 6.2, 31)
     h = 1e-4
-    v = [op.enclosed_volume(rx, beta + k * h)[0] for k in (-1, 0, 1)]
-    d = op.enclosed_volume(rx, beta)
+    v = [_V(rx, beta + k * h)[0] for k in (-1, 0, 1)]
+    d = _V(rx, beta)
     scale = rx.area * rx.drive.eccentricity
     np.testing.assert_allclose(d[1], (v[2] - v[0]) / (2 * h), atol=1e-8 * scale)
     np.testing.assert_allclose(d[2], (v[2] - 2 * v[1] + v[0]) / h**2, atol=1e-5 * scale)
     h = 2e-3
-    d1 = [op.enclosed_volume(rx, beta + k * h)[1] for k in (-1, 0, 1)]
+    d1 = [_V(rx, beta + k * h)[1] for k in (-1, 0, 1)]
     np.testing.assert_allclose(d[3], (d1[2] - 2 * d1[1] + d1[0]) / h**2, atol=1e-5 * scale)
     # dV/dq: moving one piston face by dz towards the centre shrinks V by A dz
-    dvdq = op.volume_derivatives_dq(rx, beta)
+    dvdq = _dVdq(rx, beta)
     assert dvdq.shape == (2, 1, 31)
     np.testing.assert_allclose(dvdq, -np.pi * rx.bore**2 / 4)
 
@@ -159,7 +194,7 @@ def test_pressure_laws(case):
     rx = _reactor(**case)
     beta = np.linspace(0, 2 * np.pi, 73)
     v = _volume(rx, beta)
-    p, dp = op.pressure(rx, beta)
+    p, dp = _P(rx, beta)
     if rx.fluid == "gas":
         want = _p_gas(rx.initial_pressure, rx.volume_initial, rx.polytropic_exponent, v)
     else:
@@ -167,7 +202,7 @@ def test_pressure_laws(case):
     np.testing.assert_allclose(p[0], want, rtol=1e-9, atol=1e-9 * rx.initial_pressure)
     # dp/dbeta against finite differences
     h = 1e-5
-    fd = (op.pressure(rx, beta + h)[0] - op.pressure(rx, beta - h)[0]) / (2 * h)
+    fd = (_P(rx, beta + h)[0] - _P(rx, beta - h)[0]) / (2 * h)
     np.testing.assert_allclose(dp, fd, rtol=1e-6, atol=1e-6 * np.max(np.abs(fd)) + 1e-9)
     # liquid: the bulk modulus is -V dp/dV (numerically on the pressure law)
     if rx.fluid == "liquid":
@@ -176,7 +211,10 @@ def test_pressure_laws(case):
         dv = 1e-6 * v0
         k = (
             -vv
-            * (op.pressure_from_volume(rx, vv + dv) - op.pressure_from_volume(rx, vv - dv))
+            * (
+                op.pressure_from_volume(rx.machine, vv + dv)
+                - op.pressure_from_volume(rx.machine, vv - dv)
+            )
             / (2 * dv)
         )
         np.testing.assert_allclose(k, rx.bulk_modulus, rtol=1e-6)
@@ -187,8 +225,8 @@ def test_pressure_laws(case):
 # --------------------------------------------------------------------------------------------
 def _drive_torque(rx, beta):
     """Fluid torque on the shaft through the drive: piston forces times dq/dbeta."""
-    p, _ = op.pressure(rx, beta)
-    forces = tq.member_torques(p, op.volume_derivatives_dq(rx, beta))
+    p, _ = _P(rx, beta)
+    forces = tq.member_torques(p, _dVdq(rx, beta))
     return tq.shaft_torque_from_members(forces, ec.piston_travels(rx.drive, beta)[1])
 
 
@@ -225,14 +263,14 @@ def test_instantaneous_power_balance_with_speed_profile():
     js, m = 0.02, 0.7
     speed = [60.0, 66.0, 63.0, 58.0]
     beta = np.linspace(0.03, 2 * np.pi - 0.03, 83)
-    st = reactor_state(rx, (js, (m, m)), speed, beta)
+    st = reactor_state(rx.drive, rx.machine, (js, (m, m)), speed, beta)
     omega = st["omega"]
     h = 1e-6
     dvdt = (_volume(rx, beta + h) - _volume(rx, beta - h)) / (2 * h) * omega
     fluid_power = st["p"][0] * dvdt
 
     def ke(b):
-        w = reactor_state(rx, (js, (m, m)), speed, b)["omega"]
+        w = reactor_state(rx.drive, rx.machine, (js, (m, m)), speed, b)["omega"]
         dq = ec.piston_travels(rx.drive, b)[1]
         return 0.5 * (js + m * dq[0] ** 2 + m * dq[1] ** 2) * w**2
 
@@ -246,7 +284,7 @@ def test_instantaneous_power_balance_with_speed_profile():
 def test_piston_forces_push_the_pistons_out():
     rx = _reactor(fluid="gas", p0=3e5)
     beta = np.linspace(0, 2 * np.pi, 9)
-    st = reactor_state(rx, (0.0, (0.0, 0.0)), 10.0, beta)
+    st = reactor_state(rx.drive, rx.machine, (0.0, (0.0, 0.0)), 10.0, beta)
     np.testing.assert_allclose(st["F"], -np.stack([st["p"][0]] * 2) * np.pi * 0.05**2 / 4)
 
 
@@ -400,14 +438,14 @@ def test_study_columns():
 def test_shapes_0d_1d_3d():
     rx = _reactor(fluid="gas")
     b3 = np.random.default_rng(2).uniform(0, 7, (3, 2, 4))
-    v3 = op.enclosed_volume(rx, b3)
-    p3, dp3 = op.pressure(rx, b3)
+    v3 = _V(rx, b3)
+    p3, dp3 = _P(rx, b3)
     assert v3[0].shape == p3.shape == dp3.shape == (1, 3, 2, 4)
-    v1 = op.enclosed_volume(rx, b3.ravel())
+    v1 = _V(rx, b3.ravel())
     np.testing.assert_array_equal(v3[1].reshape(1, -1), v1[1])
-    p0, _ = op.pressure(rx, b3[2, 1, 3])
+    p0, _ = _P(rx, b3[2, 1, 3])
     assert p0.shape == (1,) and p0[0] == p3[0, 2, 1, 3]
-    assert op.volume_derivatives_dq(rx, b3).shape == (2, 1, 3, 2, 4)
+    assert _dVdq(rx, b3).shape == (2, 1, 3, 2, 4)
 
 
 @pytest.mark.parametrize(
@@ -431,6 +469,7 @@ def test_bad_inputs_name_the_key(machine, key, text):
     assert text in str(err.value)
 
 
+@pytest.mark.slow
 def test_plot_writes_reactor_figures(tmp_path):
     res = evaluate(_cfg(machine={"fluid": "gas"}, follower="roller", roller_radius=0.012))
     paths = res.write_figures(tmp_path)

@@ -41,7 +41,8 @@ def test_delta_ratio_at_90_deg():
     delta = float(ec.decomposition(p, np.pi / 2)["delta"])
     assert delta == pytest.approx(-0.5359, abs=5e-5)
     assert f"{delta:.4f}" == "-0.5359"
-    assert float(ec.gap_change_ratio_eq6(LAM, np.pi / 2)) == pytest.approx(-0.5359, abs=5e-5)
+    # eq. 6 as printed, at 90 deg: (2/lambda)(sqrt(1 - lambda^2) - 1)
+    assert (2.0 / LAM) * (np.sqrt(1.0 - LAM**2) - 1.0) == pytest.approx(-0.5359, abs=5e-5)
 
 
 def test_gap_change_at_90_deg():

@@ -101,9 +101,9 @@ def test_roller_baseline_keeps_roller():
 @pytest.mark.parametrize(
     "target, words",
     [
-        ("9 %", ["--target", "|Delta| < 80 mm"]),
-        ("-1 %", ["--target", ">= 0"]),
-        ("lots", ["--target", "'lots'"]),
+        ("9 %", ["target = ", "|Delta| < 80 mm"]),
+        ("-1 %", ["target = ", ">= 0"]),
+        ("lots", ["target = ", "'lots'"]),
     ],
 )
 def test_errors(target, words):
@@ -111,7 +111,7 @@ def test_errors(target, words):
     with pytest.raises(ParameterError) as err:
         synthesize(cfg, raw, "gap_change", target)
     msg = str(err.value)
-    assert "\n" not in msg
+    assert "\n" not in msg and "--" not in msg and err.value.name == "target"
     for w in words:
         assert w in msg
 

@@ -1,23 +1,25 @@
-"""Opposed-piston reactor on the double eccentric-cam drive: enclosed volume, pressure, forces.
+"""Opposed-piston reactor: enclosed volume, pressure and forces from the pistons' motion.
 
-Source of the drive: Zhu Ruilin, Zhu Guolin, "Analysis of the motions of the
-double eccentric cams used in a process intensification equipment", Engineering
-Sciences (China) 14(10), 2012 (:mod:`rotorkin.drives.eccentric_cam.kinematics`). The paper
-stops at the gap change ``Delta``; it states that ``Delta <= 0``, "the inner
-faces move apart, the pressure can only drop", and gives no bore and no fluid.
-The volume, pressure, force and torque models below are derived here.
+Two pistons in one tube of bore ``b`` face each other; a drive moves them with
+travels ``z`` (left) and ``z'`` (right) from their balanced positions, positive
+towards the reactor centre (a :class:`~rotorkin.core.motion.Motion` of the two
+pistons, the travels and their derivatives over the shaft angle ``beta``). The
+drive this machine was built for (Zhu Ruilin, Zhu Guolin, Engineering Sciences
+(China) 14(10), 2012) is a pair of discs on one shaft; the paper stops at the
+gap change ``Delta = z + z'`` (its eq. 5), states that ``Delta <= 0``, "the
+inner faces move apart, the pressure can only drop", and gives no bore and no
+fluid. The volume, pressure, force and torque models below are derived here
+and need only the travels.
 
-One chamber: the tube of bore ``b`` between the inner faces of the two pistons.
-The drive's travels ``z`` (left) and ``z'`` (right) are positive towards the
-reactor centre, so the distance between the faces is ``L - (z + z') = L -
-Delta`` with ``L`` (``device_length``) the distance in the balanced position
-(``beta = 0``, where ``Delta = 0``), and
+One chamber: the tube between the inner faces of the two pistons. The distance
+between the faces is ``L - (z + z') = L - Delta`` with ``L``
+(``device_length``) the distance in the balanced position (``Delta = 0``), and
 
-    V(beta) = A (L - Delta(beta)),   A = pi b^2 / 4,   V0 = A L = V(0)
+    V(beta) = A (L - Delta(beta)),   A = pi b^2 / 4,   V0 = A L
 
-``Delta <= 0`` gives ``V >= V0``: the enclosed volume only grows from its value at
-``beta = 0`` (largest at 90 deg and 270 deg), so the pressure only drops - the
-paper's statement. ``dV/dz = dV/dz' = -A``; the flat follower keeps ``V = V0``.
+With ``Delta <= 0`` (``gap_change_min <= Delta <= 0``) the enclosed volume only
+grows from ``V0`` (largest where ``Delta = gap_change_min``), so the pressure
+only drops. ``dV/dz = dV/dz' = -A``; travels with ``z + z' = 0`` keep ``V = V0``.
 
 Pressure models (closed system, the fluid is neither added nor removed):
 
@@ -36,6 +38,10 @@ Forces: the absolute chamber pressure acts on each inner face (the outer faces
 are taken at zero pressure; an ambient pressure ``p_a`` there would add
 ``+p_a A`` to each piston force and ``-p_a dV/dbeta`` to the shaft torque, zero
 over a turn).
+
+Every parameter may be a float or an array; arrays broadcast against each other
+and against the angles of the motion (parameters of shape ``(n, 1)`` against
+angles ``(m,)``).
 """
 
 from __future__ import annotations
@@ -46,11 +52,12 @@ import numpy as np
 
 from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError
-from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.core.motion import Motion
 
 __all__ = [
     "FLUIDS",
     "OpposedPiston",
+    "invalid_parameter",
     "piston_area",
     "enclosed_volume",
     "volume_derivatives_dq",
@@ -62,18 +69,80 @@ __all__ = [
 #: Admissible working fluids.
 FLUIDS = ("gas", "liquid")
 
+#: Admissible range of each field, for the error message.
+_ADMISSIBLE = {
+    "device_length": "device_length > 0 mm",
+    "bore": "bore > 0 mm",
+    "fluid": "one of " + ", ".join(map(repr, FLUIDS)),
+    "initial_pressure": "initial_pressure > 0 bar (absolute)",
+    "polytropic_exponent": "polytropic_exponent > 0 (1 isothermal, 1.4 adiabatic air)",
+    "bulk_modulus": "bulk_modulus > 0 GPa",
+    "gap_change_min": "gap_change_min <= 0 mm",
+}
+
+
+def _shown(name: str, value) -> str:
+    if name == "fluid":
+        return repr(str(value))
+    v = float(value)
+    if name == "initial_pressure":
+        return f"{v / 1e5:.4g} bar"
+    if name == "bulk_modulus":
+        return f"{v / 1e9:.4g} GPa"
+    if name == "polytropic_exponent":
+        return f"{v:g}"
+    return fmt_mm(v)
+
+
+def invalid_parameter(
+    device_length, bore, fluid, initial_pressure, polytropic_exponent, bulk_modulus,
+    gap_change_min,
+):  # fmt: skip
+    """The first violated parameter of each design, ``""`` where all are admissible.
+
+    Checked in the order of :class:`OpposedPiston`'s fields: ``device_length``,
+    ``bore``, ``initial_pressure``, ``polytropic_exponent``, ``bulk_modulus``
+    finite and ``> 0``; ``fluid`` one of :data:`FLUIDS`; ``gap_change_min``
+    finite and ``<= 0``. Broadcasts.
+
+    Returns
+    -------
+    ndarray of str
+        A field name of :class:`OpposedPiston` per design, or ``""``.
+    """
+
+    def positive(x):
+        x = np.asarray(x, dtype=float)
+        with np.errstate(invalid="ignore"):
+            return ~(np.isfinite(x) & (x > 0.0))
+
+    dmin = np.asarray(gap_change_min, dtype=float)
+    with np.errstate(invalid="ignore"):
+        checks = (
+            ("device_length", positive(device_length)),
+            ("bore", positive(bore)),
+            ("fluid", ~np.isin(np.asarray(fluid), FLUIDS)),
+            ("initial_pressure", positive(initial_pressure)),
+            ("polytropic_exponent", positive(polytropic_exponent)),
+            ("bulk_modulus", positive(bulk_modulus)),
+            ("gap_change_min", ~(np.isfinite(dmin) & (dmin <= 0.0))),
+        )
+    shape = np.broadcast_shapes(*(bad.shape for _, bad in checks))
+    out = np.full(shape, "", dtype=f"<U{max(len(n) for n, _ in checks)}")
+    for name, bad in reversed(checks):
+        out[np.broadcast_to(bad, shape)] = name
+    return out
+
 
 @dataclass(frozen=True)
 class OpposedPiston:
-    """Geometry and fluid of the opposed-piston reactor (SI).
+    """Geometry and fluid of the opposed-piston reactor (SI); floats or broadcasting arrays.
 
     Parameters
     ----------
-    drive : rotorkin.drives.eccentric_cam.kinematics.EccentricCam
-        The drive (already validated).
     device_length : float, optional
-        ``L``, distance between the inner faces at ``beta = 0`` [m], ``L > 0``
-        (default 1000 mm, the paper's).
+        ``L``, distance between the inner faces in the balanced position
+        (``z = z' = 0``) [m], ``L > 0`` (default 1000 mm, the paper's).
     bore : float, optional
         Piston and tube bore ``b`` [m], ``b > 0`` (default 50 mm).
     fluid : {"gas", "liquid"}, optional
@@ -85,52 +154,47 @@ class OpposedPiston:
     bulk_modulus : float, optional
         ``K > 0`` of the liquid [Pa] (default 1.5 GPa; water is about 2.2 GPa,
         vegetable oils and methanol about 1-1.8 GPa).
+    gap_change_min : float, optional
+        Smallest (most negative) gap change ``Delta = z + z'`` of the drive over
+        a period [m], ``<= 0`` (default 0: travels that keep the gap). Only
+        :func:`volume_extremes` uses it.
+
+    Raises
+    ------
+    ParameterError
+        Naming the first violated field (:func:`invalid_parameter`).
     """
 
-    drive: ec.EccentricCam
     device_length: float = 1.0
     bore: float = 0.05
     fluid: str = "liquid"
     initial_pressure: float = 1.0e5
     polytropic_exponent: float = 1.0
     bulk_modulus: float = 1.5e9
+    gap_change_min: float = 0.0
 
     def __post_init__(self):
-        L = float(self.device_length)
-        if not (np.isfinite(L) and L > 0.0):
-            raise ParameterError("device_length", fmt_mm(L), "device_length > 0 mm")
-        b = float(self.bore)
-        if not (np.isfinite(b) and b > 0.0):
-            raise ParameterError("bore", fmt_mm(b), "bore > 0 mm")
-        if self.fluid not in FLUIDS:
-            raise ParameterError(
-                "fluid", repr(self.fluid), "one of " + ", ".join(map(repr, FLUIDS))
-            )
-        p0 = float(self.initial_pressure)
-        if not (np.isfinite(p0) and p0 > 0.0):
-            raise ParameterError(
-                "initial_pressure", f"{p0 / 1e5:.4g} bar", "initial_pressure > 0 bar (absolute)"
-            )
-        n = float(self.polytropic_exponent)
-        if not (np.isfinite(n) and n > 0.0):
-            raise ParameterError(
-                "polytropic_exponent",
-                f"{n:g}",
-                "polytropic_exponent > 0 (1 isothermal, 1.4 adiabatic air)",
-            )
-        K = float(self.bulk_modulus)
-        if not (np.isfinite(K) and K > 0.0):
-            raise ParameterError("bulk_modulus", f"{K / 1e9:.4g} GPa", "bulk_modulus > 0 GPa")
+        names = ("device_length", "bore", "fluid", "initial_pressure", "polytropic_exponent",
+                 "bulk_modulus", "gap_change_min")  # fmt: skip
+        bad = invalid_parameter(*(getattr(self, n) for n in names))
+        if not bad.any():
+            return
+        first = np.flatnonzero(np.ravel(bad) != "")[0]
+        name = str(np.ravel(bad)[first])
+        mask = bad == name
+        value, m = np.broadcast_arrays(np.asarray(getattr(self, name)), mask)
+        shown = value[m].flat[0] if value.ndim else value[()]
+        raise ParameterError(name, _shown(name, shown), _ADMISSIBLE[name])
 
     @property
-    def area(self) -> float:
+    def area(self):
         """Piston area ``A = pi b^2/4`` [m^2]."""
-        return float(piston_area(self.bore))
+        return np.asarray(piston_area(self.bore))[()]
 
     @property
-    def volume_initial(self) -> float:
-        """``V0 = A L``, the enclosed volume at ``beta = 0`` and its smallest [m^3]."""
-        return self.area * float(self.device_length)
+    def volume_initial(self):
+        """``V0 = A L``, the enclosed volume in the balanced position [m^3]."""
+        return np.asarray(self.area * np.asarray(self.device_length, dtype=float))[()]
 
 
 def piston_area(bore):
@@ -138,30 +202,31 @@ def piston_area(bore):
     return 0.25 * np.pi * np.asarray(bore, dtype=float) ** 2
 
 
-def enclosed_volume(reactor: OpposedPiston, beta):
-    """Enclosed volume ``V = A (L - Delta)`` and its derivatives with respect to beta.
+def enclosed_volume(reactor: OpposedPiston, motion: Motion):
+    """Enclosed volume ``V = A (L - (z + z'))`` and its derivatives with respect to beta.
 
     Parameters
     ----------
     reactor : OpposedPiston
-    beta : array_like
-        Shaft angle [rad].
+    motion : Motion
+        Travels ``q = (z, z')`` [m] of the two pistons, positive towards the
+        reactor centre, and their derivatives over the shaft angle, shape (2, ...).
 
     Returns
     -------
     tuple of 4 ndarray, shape (1, ...)
         ``V`` [m^3] and ``dV/dbeta``, ``d2V/dbeta2``, ``d3V/dbeta3`` [m^3/rad^n],
-        one chamber on the leading axis (``dV = -A dDelta``, exact).
+        one chamber on the leading axis (``dV = -A d(z + z')``, exact).
     """
-    A, L = reactor.area, float(reactor.device_length)
-    d = ec.gap_change(reactor.drive, beta)
+    A, L = reactor.area, np.asarray(reactor.device_length, dtype=float)
+    d = [v[0] + v[1] for v in (motion.q, motion.dq, motion.d2q, motion.d3q)]
     return (A * (L - d[0]))[None], *((-A * v)[None] for v in d[1:])
 
 
-def volume_derivatives_dq(reactor: OpposedPiston, beta):
+def volume_derivatives_dq(reactor: OpposedPiston, motion: Motion):
     """``dV/dq_i`` for the pistons ``q = (z, z')``: ``-A`` each [m^2], shape (2, 1, ...)."""
-    beta = np.asarray(beta, dtype=float)
-    return np.full((2, 1, *beta.shape), -reactor.area)
+    shape = np.broadcast_shapes(np.shape(motion.q)[1:], np.shape(reactor.area))
+    return np.broadcast_to(-reactor.area, (2, 1, *shape)).copy()
 
 
 def pressure_from_volume(reactor: OpposedPiston, volume):
@@ -170,13 +235,17 @@ def pressure_from_volume(reactor: OpposedPiston, volume):
     ``gas``: ``p0 (V0/V)^n``; ``liquid``: ``p0 - K ln(V/V0)``. Broadcasts.
     """
     v = np.asarray(volume, dtype=float)
-    p0, v0 = float(reactor.initial_pressure), reactor.volume_initial
-    if reactor.fluid == "gas":
-        return p0 * (v0 / v) ** float(reactor.polytropic_exponent)
-    return p0 - float(reactor.bulk_modulus) * np.log(v / v0)
+    p0, v0 = np.asarray(reactor.initial_pressure, dtype=float), reactor.volume_initial
+    gas = np.asarray(reactor.fluid) == "gas"
+    n = np.asarray(reactor.polytropic_exponent, dtype=float)
+    K = np.asarray(reactor.bulk_modulus, dtype=float)
+    if gas.ndim == 0:
+        return p0 * (v0 / v) ** n if gas else p0 - K * np.log(v / v0)
+    with np.errstate(all="ignore"):
+        return np.where(gas, p0 * (v0 / v) ** n, p0 - K * np.log(v / v0))
 
 
-def pressure(reactor: OpposedPiston, beta):
+def pressure(reactor: OpposedPiston, motion: Motion):
     """Chamber pressure and ``dp/dbeta`` over the shaft angle, shape (1, ...).
 
     ``dp/dbeta = (dp/dV) dV/dbeta`` with ``dp/dV = -n p/V`` (gas) or ``-K/V``
@@ -187,21 +256,20 @@ def pressure(reactor: OpposedPiston, beta):
     (p, dp) : tuple of ndarray, shape (1, ...)
         [Pa], [Pa/rad].
     """
-    v, dv, _, _ = enclosed_volume(reactor, beta)
+    v, dv, _, _ = enclosed_volume(reactor, motion)
     p = pressure_from_volume(reactor, v)
-    if reactor.fluid == "gas":
-        slope = -float(reactor.polytropic_exponent) * p / v
-    else:
-        slope = -float(reactor.bulk_modulus) / v
+    gas = np.asarray(reactor.fluid) == "gas"
+    n = np.asarray(reactor.polytropic_exponent, dtype=float)
+    K = np.asarray(reactor.bulk_modulus, dtype=float)
+    slope = np.where(gas, -n * p / v, -K / v)
     return p, slope * dv
 
 
-def volume_extremes(reactor: OpposedPiston) -> tuple[float, float]:
-    """Smallest and largest enclosed volume over a turn [m^3] (closed form).
+def volume_extremes(reactor: OpposedPiston):
+    """Smallest and largest enclosed volume over a period [m^3] (closed form).
 
-    ``V_min = A L`` at ``beta = 0`` (``Delta = 0``); ``V_max = A (L - Delta_min)`` at
-    90 deg, ``Delta_min`` from :func:`rotorkin.drives.eccentric_cam.kinematics.gap_change_extreme`.
+    ``V_min = A L`` where ``Delta = 0``; ``V_max = A (L - gap_change_min)``.
     """
-    A, L = reactor.area, float(reactor.device_length)
-    dmin = ec.gap_change_extreme(reactor.drive)[0]
-    return A * L, A * (L - dmin)
+    A, L = reactor.area, np.asarray(reactor.device_length, dtype=float)
+    dmin = np.asarray(reactor.gap_change_min, dtype=float)
+    return np.asarray(A * L)[()], np.asarray(A * (L - dmin))[()]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from rotorkin.drives.eccentric_cam import cam as eccentric
+from rotorkin.drives.eccentric_cam.study import drive_params
 from rotorkin.render.cad import check_thickness, check_tolerance
 
 __all__ = ["cad_parts"]
@@ -14,9 +16,6 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     :class:`ParameterError` named by config key (``cam.roller_radius``,
     ``cam.thickness``, ``export.tolerance``, drive and machine keys).
     """
-    from rotorkin.drives.eccentric_cam import cam as eccentric
-    from rotorkin.drives.eccentric_cam.study import drive_params
-
     params = drive_params(cfg)
     thickness = check_thickness(cfg, 2.0 * float(params.disc_radius), "the disc's diameter")
     tol = check_tolerance(cfg, float(params.disc_radius))

@@ -49,7 +49,8 @@ def disc_centres(params: ec.EccentricCam, beta):
     Left ``e (cos beta, sin beta)``, right ``-e (cos beta, sin beta)``.
     """
     b = np.asarray(beta, dtype=float)
-    u = float(params.eccentricity) * np.stack([np.cos(b), np.sin(b)])
+    e = np.asarray(params.eccentricity, dtype=float)
+    u = np.stack([e * np.cos(b), e * np.sin(b)])
     return np.stack([u, -u])
 
 
@@ -63,7 +64,7 @@ def follower_points(params: ec.EccentricCam, beta):
     b = np.asarray(beta, dtype=float)
     q = ec.piston_travels(params, b)[0]
     rc = params.contact_radius
-    x0 = float(params.disc_radius) if not np.isfinite(rc) else rc
+    x0 = np.where(np.isfinite(rc), rc, np.asarray(params.disc_radius, dtype=float))
     return np.stack([np.stack([x0 + q[k], np.zeros_like(q[k])]) for k in (0, 1)])
 
 
@@ -74,11 +75,7 @@ def pressure_angles(params: ec.EccentricCam, beta):
     axis: ``arcsin(e sin beta / Rc)`` for the left, its negative for the right;
     zero for a flat face (module docstring).
     """
-    b = np.asarray(beta, dtype=float)
-    if params.follower == "flat":
-        z = np.zeros_like(b)
-        return np.stack([z, z])
-    mu = ec.pressure_angle(params, b)
+    mu = ec.pressure_angle(params, beta)
     return np.stack([mu, -mu])
 
 

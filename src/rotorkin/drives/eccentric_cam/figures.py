@@ -1,7 +1,7 @@
 """Figures of the double eccentric-cam drive (Zhu & Zhu 2012, Fig. 6-8, and a follower comparison)
 and of the opposed-piston reactor on it (volume, pressure, forces, torques; derived here).
 
-matplotlib is imported lazily inside the functions (Agg backend).
+matplotlib is imported on first use (:func:`rotorkin.render.figures.pyplot`).
 """
 
 from __future__ import annotations
@@ -11,6 +11,9 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.machines import opposed_piston as op
+from rotorkin.render.figures import pyplot as _plt
+from rotorkin.render.figures import save as _save
 
 __all__ = [
     "LAMBDAS",
@@ -24,18 +27,8 @@ __all__ = [
     "fig_reactor_ripple_vs_lambda",
 ]
 
-_DPI = 120
 #: The eccentricity ratios drawn in Fig. 6 and 7 (besides the config's).
 LAMBDAS = (0.1, 0.3, 0.5, 0.7, 0.9)
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def _beta():
@@ -62,13 +55,6 @@ def _tag(params: ec.EccentricCam) -> str:
         f"R = {params.disc_radius * 1e3:.4g} mm, e = {params.eccentricity * 1e3:.4g} mm, "
         f"lambda = {params.lam:.3g}, {params.follower}{extra}"
     )
-
-
-def _save(fig, path: Path) -> Path:
-    fig.tight_layout()
-    fig.savefig(path, dpi=_DPI)
-    _plt().close(fig)
-    return path
 
 
 def fig_decomposition(params: ec.EccentricCam, path: Path) -> Path:
@@ -169,7 +155,7 @@ def fig_followers(params: ec.EccentricCam, path: Path) -> Path:
 # --------------------------------------------------------------------------------------------
 # the reactor (derived here)
 # --------------------------------------------------------------------------------------------
-def _reactor_tag(reactor) -> str:
+def _reactor_tag(params, reactor) -> str:
     fluid = (
         f"gas, n = {reactor.polytropic_exponent:.3g}"
         if reactor.fluid == "gas"
@@ -177,17 +163,17 @@ def _reactor_tag(reactor) -> str:
     )
     return (
         f"bore {reactor.bore * 1e3:.4g} mm, L = {reactor.device_length * 1e3:.5g} mm, {fluid}, "
-        f"p0 = {reactor.initial_pressure / 1e5:.4g} bar; " + _tag(reactor.drive)
+        f"p0 = {reactor.initial_pressure / 1e5:.4g} bar; " + _tag(params)
     )
 
 
-def fig_reactor_volume_pressure(reactor, beta, state, summary, path: Path) -> Path:
+def fig_reactor_volume_pressure(params, reactor, beta, state, summary, path: Path) -> Path:
     """Enclosed volume and pressure over a shaft turn, against the flat-follower ideal."""
     plt = _plt()
     b = np.degrees(beta)
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 7.5), sharex=True)
     v0 = reactor.volume_initial * 1e6
-    ax1.plot(b, state["V"][0] * 1e6, "C0", lw=2, label=f"{reactor.drive.follower} follower")
+    ax1.plot(b, state["V"][0] * 1e6, "C0", lw=2, label=f"{params.follower} follower")
     ax1.axhline(v0, color="C3", ls="--", label=f"flat follower: constant V0 = {v0:.5g} cm^3")
     ax1.annotate(f"V_max = {summary['enclosed_volume_max_cm3']:.5g} cm^3 "
                  f"(+{100 * summary['volume_change_relative']:.3g} %)",
@@ -196,8 +182,10 @@ def fig_reactor_volume_pressure(reactor, beta, state, summary, path: Path) -> Pa
     _axes_deg(ax1, "enclosed volume [cm^3]")
     ax1.set_xlabel("")
     ax1.legend(fontsize=8, loc="center right")
-    ax1.set_title("Enclosed volume and pressure over one shaft turn\n" + _reactor_tag(reactor),
-                  fontsize=9)  # fmt: skip
+    ax1.set_title(
+        "Enclosed volume and pressure over one shaft turn\n" + _reactor_tag(params, reactor),
+        fontsize=9,
+    )
     p = state["p"][0] / 1e5
     ax2.plot(b, p, "k", lw=2, label="pressure (absolute)")
     ax2.axhline(reactor.initial_pressure / 1e5, color="C3", ls="--", label="flat follower: p0")
@@ -214,7 +202,7 @@ def fig_reactor_volume_pressure(reactor, beta, state, summary, path: Path) -> Pa
     return _save(fig, path)
 
 
-def fig_reactor_torque(reactor, beta, state, summary, path: Path) -> Path:
+def fig_reactor_torque(params, reactor, beta, state, summary, path: Path) -> Path:
     """Shaft torque with and without inertia, and the piston forces, over a turn."""
     plt = _plt()
     b = np.degrees(beta)
@@ -229,7 +217,7 @@ def fig_reactor_torque(reactor, beta, state, summary, path: Path) -> Path:
     ax1.set_title(
         f"Torque on the shaft at {summary['shaft_speed_mean_rpm']:.5g} rpm (positive: drives the "
         f"shaft); flywheel for C_s = {summary['speed_fluctuation']:.3g}: "
-        f"{summary['flywheel_inertia_kgm2']:.3g} kg*m^2\n" + _reactor_tag(reactor),
+        f"{summary['flywheel_inertia_kgm2']:.3g} kg*m^2\n" + _reactor_tag(params, reactor),
         fontsize=9,
     )
     ax2.plot(b, state["F"][0] / 1e3, "C0", lw=2, label="fluid on the left piston")
@@ -239,20 +227,18 @@ def fig_reactor_torque(reactor, beta, state, summary, path: Path) -> Path:
     return _save(fig, path)
 
 
-def fig_reactor_ripple_vs_lambda(reactor, path: Path) -> Path:
+def fig_reactor_ripple_vs_lambda(params, reactor, path: Path) -> Path:
     """Design chart: pressure ripple vs lambda = e/R at the config's disc radius and fluid."""
-    from rotorkin.machines import opposed_piston as op
-
     plt = _plt()
-    R = float(reactor.drive.disc_radius)
+    R = float(params.disc_radius)
     lams = np.linspace(0.02, 0.95, 187)
     fig, ax = plt.subplots(figsize=(8, 5.2))
-    r_cfg = float(reactor.drive.roller_radius) if reactor.drive.follower == "roller" else 0.25 * R
+    r_cfg = float(params.roller_radius) if params.follower == "roller" else 0.25 * R
     A, L = reactor.area, float(reactor.device_length)
     for label, rc, colour in (("knife edge", R, "C0"),
                               (f"roller, r = {r_cfg * 1e3:.3g} mm", R + r_cfg, "C2")):  # fmt: skip
-        # Delta_min = 2 (sqrt(Rc^2 - e^2) - Rc) at 90 deg, for every lambda at once
-        dmin = 2.0 * ec.additional_travel(rc, lams * R, np.pi / 2.0)[0]
+        # Delta_min at 90 deg (eq. 5), for every lambda at once
+        dmin = ec.gap_change_extreme(ec.EccentricCam(rc, lams * R))[0]
         ripple = reactor.initial_pressure - op.pressure_from_volume(reactor, A * (L - dmin))
         ax.semilogy(lams, ripple / 1e5, color=colour, lw=2, label=label)
     if reactor.fluid == "liquid":
@@ -261,15 +247,15 @@ def fig_reactor_ripple_vs_lambda(reactor, path: Path) -> Path:
     vmax = op.volume_extremes(reactor)[1]
     own = (reactor.initial_pressure - float(op.pressure_from_volume(reactor, vmax))) / 1e5
     if own > 0.0:
-        ax.plot([reactor.drive.lam], [own], "k*", ms=12,
-                label=f"config: {own:.4g} bar ({reactor.drive.follower})")  # fmt: skip
+        ax.plot([params.lam], [own], "k*", ms=12,
+                label=f"config: {own:.4g} bar ({params.follower})")  # fmt: skip
     ax.set_xlabel("eccentricity ratio lambda = e/R [-]")
     ax.set_ylabel("pressure ripple p0 - p_min [bar]")
     ax.set_xlim(0.0, 1.0)
     ax.grid(True, which="both", alpha=0.4)
     ax.legend(fontsize=8, loc="lower right")
     ax.set_title("Pressure ripple vs eccentricity ratio (the flat follower gives none)\n"
-                 + _reactor_tag(reactor), fontsize=9)  # fmt: skip
+                 + _reactor_tag(params, reactor), fontsize=9)  # fmt: skip
     return _save(fig, path)
 
 
@@ -300,9 +286,10 @@ def plot_all(params: ec.EccentricCam, outdir: Path, reactor=None, beta=None, sta
     ]
     if reactor is not None:
         paths += [
-            fig_reactor_volume_pressure(reactor, beta, state, summary,
+            fig_reactor_volume_pressure(params, reactor, beta, state, summary,
                                         outdir / "reactor_volume_pressure.png"),
-            fig_reactor_torque(reactor, beta, state, summary, outdir / "reactor_torque.png"),
-            fig_reactor_ripple_vs_lambda(reactor, outdir / "reactor_ripple_vs_lambda.png"),
+            fig_reactor_torque(params, reactor, beta, state, summary,
+                               outdir / "reactor_torque.png"),
+            fig_reactor_ripple_vs_lambda(params, reactor, outdir / "reactor_ripple_vs_lambda.png"),
         ]  # fmt: skip
     return paths

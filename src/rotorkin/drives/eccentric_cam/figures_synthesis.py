@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.render.figures import BASELINE as _BASE
 from rotorkin.render.figures import SYNTHESIZED as _SYN
 from rotorkin.render.figures import degree_axis as _deg_axis
@@ -13,10 +14,26 @@ from rotorkin.render.figures import save_in as _save
 __all__ = ["plot_eccentric"]
 
 
-def plot_eccentric(outdir, base, synth, options, gap, length):
-    """Gap change over a turn: baseline, synthesized design, the other options, the tolerance."""
-    from rotorkin.drives.eccentric_cam import kinematics as ec
+def plot_eccentric(base, synth, options, gap, length, outdir):
+    """Gap change over a turn (eq. 5): baseline, synthesized design, other options, tolerance.
 
+    Parameters
+    ----------
+    base, synth : EccentricCam
+        The config's design and the synthesized one.
+    options : list of EccentricCam
+        The other feasible designs.
+    gap : float
+        Tolerated peak gap change |Delta| [m].
+    length : float
+        Device length L [m].
+    outdir : path
+        Folder of ``synthesis_gap_change.png``.
+
+    Returns
+    -------
+    list of Path
+    """
     plt = _plt()
     beta = np.linspace(0.0, 2.0 * np.pi, 1441)
     x = np.degrees(beta)

@@ -56,11 +56,14 @@ from rotorkin.core.motion import Motion, compose
 __all__ = [
     "FOLLOWERS",
     "EccentricCam",
+    "contact_radius",
+    "invalid_parameter",
     "harmonic_travel",
     "additional_travel",
+    "travels",
+    "travel_peaks",
     "piston_travels",
     "gap_change",
-    "gap_change_ratio_eq6",
     "decomposition",
     "gap_change_extreme",
     "piston_stroke",
@@ -74,22 +77,91 @@ __all__ = [
 FOLLOWERS = ("knife_edge", "flat", "roller")
 
 
-@dataclass(frozen=True)
-class EccentricCam:
-    """Parameters of the double eccentric-disc drive (SI).
+def contact_radius(disc_radius, follower, roller_radius):
+    """Radius ``Rc`` of the circle the follower point runs on, relative to the disc [m].
+
+    ``R`` for a knife edge, ``R + r`` for a roller (the roller centre), ``inf``
+    for a flat face (a straight line: the harmonic limit). Broadcasts.
 
     Parameters
     ----------
-    disc_radius : float
+    disc_radius : array_like
+        R [m].
+    follower : str or array_like of str
+        ``"knife_edge"``, ``"flat"`` or ``"roller"``.
+    roller_radius : array_like
+        r [m], used by ``"roller"`` only.
+
+    Returns
+    -------
+    ndarray
+        Rc [m].
+    """
+    R = np.asarray(disc_radius, dtype=float)
+    r = np.asarray(roller_radius, dtype=float)
+    f = np.asarray(follower)
+    return np.where(f == "knife_edge", R, np.where(f == "roller", R + r, np.inf))
+
+
+def invalid_parameter(disc_radius, eccentricity, follower, roller_radius):
+    """The first violated parameter of each design, ``""`` where all are admissible.
+
+    Checked in this order: ``disc_radius`` (finite, ``R > 0``), ``eccentricity``
+    (finite, ``0 < e < R``: ``lambda = e/R < 1``, or the disc would not contain
+    the shaft axis), ``follower`` (one of :data:`FOLLOWERS`), ``roller_radius``
+    (finite, ``r >= 0``; ``r > 0`` for a roller follower). Broadcasts.
+
+    Returns
+    -------
+    ndarray of str
+        A field name of :class:`EccentricCam` per design, or ``""``.
+    """
+    R = np.asarray(disc_radius, dtype=float)
+    e = np.asarray(eccentricity, dtype=float)
+    f = np.asarray(follower)
+    r = np.asarray(roller_radius, dtype=float)
+    with np.errstate(invalid="ignore"):
+        checks = (
+            ("disc_radius", ~(np.isfinite(R) & (R > 0.0))),
+            ("eccentricity", ~(np.isfinite(e) & (e > 0.0) & (e < R))),
+            ("follower", ~np.isin(f, FOLLOWERS)),
+            ("roller_radius", ~(np.isfinite(r) & (r >= 0.0)) | ((f == "roller") & ~(r > 0.0))),
+        )
+    shape = np.broadcast_shapes(*(bad.shape for _, bad in checks))
+    out = np.full(shape, "", dtype=f"<U{max(len(n) for n, _ in checks)}")
+    for name, bad in reversed(checks):
+        out[np.broadcast_to(bad, shape)] = name
+    return out
+
+
+def _first(values, mask):
+    """The first element of ``values`` where ``mask`` (both broadcast)."""
+    v, m = np.broadcast_arrays(np.asarray(values), np.asarray(mask))
+    return v[m].flat[0] if v.ndim else v[()]
+
+
+@dataclass(frozen=True)
+class EccentricCam:
+    """Parameters of the double eccentric-disc drive (SI); floats or broadcasting arrays.
+
+    Parameters
+    ----------
+    disc_radius : float or array_like
         Disc radius R [m], ``R > 0``. Paper: 80 mm.
-    eccentricity : float
+    eccentricity : float or array_like
         Eccentricity e of the disc centre from the shaft axis [m],
         ``0 < e < R``. Paper: 40 mm (``lambda = 0.5``).
-    follower : {"knife_edge", "flat", "roller"}, optional
+    follower : {"knife_edge", "flat", "roller"} or array_like of str, optional
         Piston follower (default ``"knife_edge"``, the paper's Fig. 2).
-    roller_radius : float, optional
+    roller_radius : float or array_like, optional
         Roller radius r [m] of a roller follower, ``r > 0`` for
         ``follower = "roller"``; ignored by the other followers (default 0).
+
+    Raises
+    ------
+    ParameterError
+        Naming the first violated field (:func:`invalid_parameter`), its value
+        and the admissible range.
     """
 
     disc_radius: float
@@ -98,46 +170,49 @@ class EccentricCam:
     roller_radius: float = 0.0
 
     def __post_init__(self):
-        R = float(self.disc_radius)
-        if not (np.isfinite(R) and R > 0.0):
-            raise ParameterError("disc_radius", fmt_mm(R), "disc_radius > 0 mm")
-        e = float(self.eccentricity)
-        if not (np.isfinite(e) and 0.0 < e < R):
+        bad = invalid_parameter(
+            self.disc_radius, self.eccentricity, self.follower, self.roller_radius
+        )
+        if not bad.any():
+            return
+        name = str(_first(bad, bad != ""))
+        mask = bad == name
+        value = _first(getattr(self, name), mask)
+        if name == "follower":
             raise ParameterError(
-                "eccentricity",
-                fmt_mm(e),
+                "follower", repr(str(value)), "one of " + ", ".join(map(repr, FOLLOWERS))
+            )
+        value = float(value)
+        if name == "disc_radius":
+            raise ParameterError(name, fmt_mm(value), "disc_radius > 0 mm")
+        if name == "eccentricity":
+            R = float(_first(self.disc_radius, mask))
+            raise ParameterError(
+                name,
+                fmt_mm(value),
                 f"0 mm < eccentricity < {fmt_mm(R)}: the eccentricity must be below "
                 "disc_radius (lambda = e/R < 1), or the disc would not contain the shaft axis",
             )
-        if self.follower not in FOLLOWERS:
-            raise ParameterError(
-                "follower", repr(self.follower), "one of " + ", ".join(map(repr, FOLLOWERS))
-            )
-        r = float(self.roller_radius)
-        if not (np.isfinite(r) and r >= 0.0):
-            raise ParameterError("roller_radius", fmt_mm(r), "roller_radius >= 0 mm")
-        if self.follower == "roller" and not r > 0.0:
-            raise ParameterError(
-                "roller_radius", fmt_mm(r), "roller_radius > 0 mm for follower = 'roller'"
-            )
+        if not (np.isfinite(value) and value >= 0.0):
+            raise ParameterError(name, fmt_mm(value), "roller_radius >= 0 mm")
+        raise ParameterError(name, fmt_mm(value), "roller_radius > 0 mm for follower = 'roller'")
 
     @property
-    def lam(self) -> float:
+    def lam(self):
         """Eccentricity ratio ``lambda = e/R`` [-] (paper, section 2)."""
-        return float(self.eccentricity) / float(self.disc_radius)
+        return _value(
+            np.asarray(self.eccentricity, dtype=float) / np.asarray(self.disc_radius, dtype=float)
+        )
 
     @property
-    def contact_radius(self) -> float:
-        """Radius of the circle the follower point runs on [m].
+    def contact_radius(self):
+        """Radius ``Rc`` of the circle the follower point runs on [m] (:func:`contact_radius`)."""
+        return _value(contact_radius(self.disc_radius, self.follower, self.roller_radius))
 
-        ``R`` for a knife edge, ``R + r`` for a roller (the roller centre),
-        ``inf`` for a flat face (a straight line: the harmonic limit).
-        """
-        if self.follower == "knife_edge":
-            return float(self.disc_radius)
-        if self.follower == "roller":
-            return float(self.disc_radius) + float(self.roller_radius)
-        return float("inf")
+
+def _value(x):
+    """A NumPy scalar for a 0-d result, the array otherwise."""
+    return np.asarray(x)[()]
 
 
 # --------------------------------------------------------------------------------------------
@@ -209,16 +284,20 @@ def additional_travel(contact_radius, eccentricity, beta):
     return tuple(np.where(finite, v, 0.0) for v in out)
 
 
-def piston_travels(params: EccentricCam, beta):
+def travels(contact_radius, eccentricity, beta):
     """Travels ``(z, z')`` of the left and right pistons and their derivatives.
 
-    Knife edge (eq. 1, 3): ``z = sqrt(R^2 - e^2 sin^2 beta) + e cos beta - R``,
-    ``z' = sqrt(R^2 - e^2 sin^2 beta) - R - e cos beta``; roller: ``R -> R + r``;
-    flat (eq. 7, 8): ``z = e cos beta``, ``z' = -e cos beta``.
+    ``z = A + e cos beta``, ``z' = A - e cos beta`` with the additional part
+    ``A = sqrt(Rc^2 - e^2 sin^2 beta) - Rc`` (:func:`additional_travel`,
+    :func:`harmonic_travel`); eq. 1, 3 for a knife edge (``Rc = R``), eq. 7, 8 for
+    a flat face (``Rc = inf``, ``A = 0``). Broadcasts.
 
     Parameters
     ----------
-    params : EccentricCam
+    contact_radius : array_like
+        Rc [m] (:func:`contact_radius`).
+    eccentricity : array_like
+        e [m].
     beta : array_like
         Shaft angle [rad].
 
@@ -228,10 +307,37 @@ def piston_travels(params: EccentricCam, beta):
         ``(z, z')`` [m], positive towards the reactor centre, and their
         1st-3rd derivatives with respect to beta [m/rad^n].
     """
-    beta = np.asarray(beta, dtype=float)
-    h = harmonic_travel(params.eccentricity, beta)
-    a = additional_travel(params.contact_radius, params.eccentricity, beta)
+    h = harmonic_travel(eccentricity, beta)
+    a = additional_travel(contact_radius, eccentricity, beta)
     return tuple(np.stack([ai + hi, ai - hi]) for ai, hi in zip(a, h, strict=True))
+
+
+def piston_travels(params: EccentricCam, beta):
+    """:func:`travels` of the drive ``params`` (eq. 1, 3; eq. 7, 8 for a flat face).
+
+    Returns ``(z, z')`` [m] and their 1st-3rd derivatives [m/rad^n], shape (2, ...).
+    """
+    return travels(params.contact_radius, params.eccentricity, beta)
+
+
+def travel_peaks(contact_radius, eccentricity, beta):
+    """Largest ``|d^k z/dbeta^k|`` of either piston over the angles ``beta`` (last axis).
+
+    Parameters
+    ----------
+    contact_radius, eccentricity : array_like
+        Rc, e [m]; shape (n, 1) against angles (m,) gives one peak per design.
+    beta : array_like
+        Shaft angles sampled over a period [rad].
+
+    Returns
+    -------
+    tuple of 3 ndarray
+        Peaks of the velocity, acceleration and jerk coefficients [m/rad^n].
+    """
+    q = travels(contact_radius, eccentricity, beta)
+    axes = (0, q[0].ndim - 1)
+    return tuple(np.abs(q[k]).max(axis=axes) for k in (1, 2, 3))
 
 
 def gap_change(params: EccentricCam, beta):
@@ -243,26 +349,6 @@ def gap_change(params: EccentricCam, beta):
     """
     a = additional_travel(params.contact_radius, params.eccentricity, beta)
     return tuple(2.0 * v for v in a)
-
-
-def gap_change_ratio_eq6(lam, beta):
-    """``delta = Delta/e = (2/lambda)(sqrt(1 - lambda^2 sin^2 beta) - 1)`` as printed (eq. 6).
-
-    Parameters
-    ----------
-    lam : array_like
-        ``lambda = e/R`` (use ``e/(R + r)`` for a roller), ``0 < lambda < 1``.
-    beta : array_like
-        Shaft angle [rad].
-
-    Returns
-    -------
-    ndarray
-        delta [-].
-    """
-    lam = np.asarray(lam, dtype=float)
-    b = np.asarray(beta, dtype=float)
-    return (2.0 / lam) * (np.sqrt(1.0 - lam**2 * np.sin(b) ** 2) - 1.0)
 
 
 def decomposition(params: EccentricCam, beta):
@@ -277,9 +363,9 @@ def decomposition(params: EccentricCam, beta):
         Keys ``"xi"``, ``"mu"``, ``"x"``, ``"x_right"``, ``"delta"`` [-].
     """
     beta = np.asarray(beta, dtype=float)
-    e = float(params.eccentricity)
-    xi = np.cos(beta)
+    e = np.asarray(params.eccentricity, dtype=float)
     mu = additional_travel(params.contact_radius, e, beta)[0] / e
+    xi = np.broadcast_to(np.cos(beta), mu.shape)
     return {"xi": xi, "mu": mu, "x": xi + mu, "x_right": mu - xi, "delta": 2.0 * mu}
 
 
@@ -291,19 +377,19 @@ def gap_change_extreme(params: EccentricCam) -> tuple[float, float]:
 
     Returns
     -------
-    (Delta_min, beta) : tuple of float
-        [m], [rad].
+    (Delta_min, beta) : tuple
+        [m] (a NumPy scalar, or an array for array parameters), [rad].
     """
-    return float(gap_change(params, np.pi / 2.0)[0]), np.pi / 2.0
+    return _value(gap_change(params, np.pi / 2.0)[0]), np.pi / 2.0
 
 
-def piston_stroke(params: EccentricCam) -> float:
+def piston_stroke(params: EccentricCam):
     """Stroke of each piston, ``z(0) - z(pi) = 2 e`` [m], for every follower.
 
     ``z`` falls monotonically from ``+e`` to ``-e`` on ``[0, pi]``: ``dz/dbeta =
     -e sin beta (1 + e cos beta / S)`` and ``S > e |cos beta|`` since ``Rc > e``.
     """
-    return 2.0 * float(params.eccentricity)
+    return _value(2.0 * np.asarray(params.eccentricity, dtype=float))
 
 
 def pressure_angle(params: EccentricCam, beta):
@@ -315,13 +401,13 @@ def pressure_angle(params: EccentricCam, beta):
     ``+sin beta``. The right piston's is the negative of this.
     """
     b = np.asarray(beta, dtype=float)
-    Rc = params.contact_radius
-    return np.arcsin(float(params.eccentricity) * np.sin(b) / Rc)
+    e = np.asarray(params.eccentricity, dtype=float)
+    return np.arcsin(e * np.sin(b) / params.contact_radius)
 
 
-def pressure_angle_max(params: EccentricCam) -> float:
+def pressure_angle_max(params: EccentricCam):
     """Largest pressure angle over a turn, ``arcsin(e / Rc)`` at 90 deg [rad]."""
-    return float(np.arcsin(float(params.eccentricity) / params.contact_radius))
+    return _value(pressure_angle(params, np.pi / 2.0))
 
 
 # --------------------------------------------------------------------------------------------

@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.drives.eccentric_cam.study import drive_params, machine_params, sections
 from rotorkin.machines import opposed_piston as op
 from rotorkin.render.scenes import (
     COLOR_1,
@@ -39,7 +40,6 @@ from rotorkin.render.scenes import (
     trace,
     xy_figure,
 )
-from rotorkin.studies.helpers import build_params
 
 __all__ = ["scene", "plots", "checks"]
 
@@ -47,22 +47,9 @@ _FLUID = "#c6dbef"
 
 
 def _models(cfg):
-    from rotorkin.drives.eccentric_cam.study import drive_params
-
-    m = cfg["machine"]
     params = drive_params(cfg)
-    keys = (
-        "device_length",
-        "bore",
-        "fluid",
-        "initial_pressure",
-        "polytropic_exponent",
-        "bulk_modulus",
-    )
-    reactor = build_params(
-        op.OpposedPiston, "machine", {"drive": params, **{k: m[k] for k in keys if k in m}}
-    )
-    return params, reactor
+    machine, _ = sections(cfg)
+    return params, machine_params(params, machine)
 
 
 def _rect(x0, x1, h):
@@ -218,9 +205,8 @@ def scene(result, cfg, frames: int = 120):
             y=np.zeros((nf, 2)),
         )
     if params.follower != "flat":  # where a flat-faced piston's face would stand: +-e cos beta
-        hx = np.stack(
-            [-D + R + e * np.cos(beta) + rod + thick, D - R + e * np.cos(beta) - rod - thick]
-        )
+        harmonic = ec.harmonic_travel(e, beta)[0]
+        hx = np.stack([-D + R + harmonic + rod + thick, D - R + harmonic - rod - thick])
         h = np.broadcast_to([-0.5 * bore - 10, 0.5 * bore + 10], (nf, 2))
         b.animated_trace(
             trace(
@@ -233,8 +219,9 @@ def scene(result, cfg, frames: int = 120):
             x=join(*[np.stack([hx[k], hx[k]], 1) for k in (0, 1)]),
             y=join(h, h),
         )
-    vol = op.enclosed_volume(reactor, beta)[0][0] * 1e6
-    pres = op.pressure(reactor, beta)[0][0] / 1e5
+    motion = ec.motion(params, beta)
+    vol = op.enclosed_volume(reactor, motion)[0][0] * 1e6
+    pres = op.pressure(reactor, motion)[0][0] / 1e5
     delta = z[0] + z[1]
     length = fmt(reactor.device_length * 1e3)
     b.animated_trace(

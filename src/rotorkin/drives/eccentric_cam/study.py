@@ -22,14 +22,18 @@ import numpy as np
 
 from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import torque as tq
-from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import RunSection
+from rotorkin.drives.eccentric_cam import figures as figures_eccentric_cam
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.drives.eccentric_cam.curves import drive_curves
+from rotorkin.drives.eccentric_cam.reactor import closed_forms, opposed_piston, reactor_state
+from rotorkin.drives.eccentric_cam.schema import EccentricMachine
 from rotorkin.machines import opposed_piston as op
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain
 
-__all__ = ["evaluate", "drive_params", "HEADLINE"]
+__all__ = ["evaluate", "drive_params", "machine_params", "sections", "reactor_state", "HEADLINE"]
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {
@@ -54,30 +58,15 @@ HEADLINE = {
 _PEAK_SAMPLES = 20_001
 
 
-def _summary(params: ec.EccentricCam, device_length: float) -> dict:
-    e = float(params.eccentricity)
-    dmin, bmin = ec.gap_change_extreme(params)
-    knife = ec.EccentricCam(params.disc_radius, e, "knife_edge")
+def _summary(params: ec.EccentricCam, reactor: op.OpposedPiston) -> dict:
     fine = np.linspace(0.0, ec.period(params), _PEAK_SAMPLES)
-    _, d1, d2, d3 = ec.piston_travels(params, fine)
-    rc = params.contact_radius
-    return {
-        "follower": params.follower,
-        "lambda": params.lam,
-        "lambda_contact": e / rc,
-        "gap_change_min_mm": dmin * 1e3,
-        "gap_change_min_ratio": dmin / e,
-        "gap_change_min_angle_deg": float(np.degrees(bmin)),
-        "gap_change_to_length": abs(dmin) / device_length,
-        "gap_change_to_length_percent": 100.0 * abs(dmin) / device_length,
-        "gap_change_min_knife_edge_mm": ec.gap_change_extreme(knife)[0] * 1e3,
-        "piston_stroke_mm": ec.piston_stroke(params) * 1e3,
-        "piston_velocity_peak_mm_per_rad": float(np.max(np.abs(d1))) * 1e3,
-        "piston_accel_peak_mm_per_rad2": float(np.max(np.abs(d2))) * 1e3,
-        "piston_jerk_peak_mm_per_rad3": float(np.max(np.abs(d3))) * 1e3,
-        "pressure_angle_max_deg": float(np.degrees(ec.pressure_angle_max(params))),
-        "device_length_mm": device_length * 1e3,
-    }
+    v, a, j = ec.travel_peaks(params.contact_radius, params.eccentricity, fine)
+    out = {"follower": params.follower, "fluid": reactor.fluid}
+    out.update(closed_forms(params, reactor))
+    out["piston_velocity_peak_mm_per_rad"] = v * 1e3
+    out["piston_accel_peak_mm_per_rad2"] = a * 1e3
+    out["piston_jerk_peak_mm_per_rad3"] = j * 1e3
+    return out
 
 
 _DOCS = {
@@ -106,25 +95,7 @@ _DOCS = {
 
 def _columns(params: ec.EccentricCam, points: int) -> dict:
     beta = angle_grid(ec.period(params), points)
-    q, d1, d2, d3 = ec.piston_travels(params, beta)
-    dec = ec.decomposition(params, beta)
-    cols = {
-        "beta_deg": np.degrees(beta),
-        "z_left_mm": q[0] * 1e3,
-        "z_right_mm": q[1] * 1e3,
-        "gap_change_mm": (q[0] + q[1]) * 1e3,
-        "x_left": dec["x"],
-        "x_right": dec["x_right"],
-        "xi": dec["xi"],
-        "mu": dec["mu"],
-        "delta": dec["delta"],
-    }
-    for name, arr in (("velocity", d1), ("accel", d2), ("jerk", d3)):
-        suffix = {"velocity": "mm_per_rad", "accel": "mm_per_rad2", "jerk": "mm_per_rad3"}[name]
-        cols[f"z_left_{name}_{suffix}"] = arr[0] * 1e3
-        cols[f"z_right_{name}_{suffix}"] = arr[1] * 1e3
-    cols["pressure_angle_left_deg"] = np.degrees(ec.pressure_angle(params, beta))
-    return cols
+    return {"beta_deg": np.degrees(beta), **drive_curves(params, beta)}
 
 
 # --------------------------------------------------------------------------------------------
@@ -152,11 +123,8 @@ _REACTOR_DOCS = {
 }
 
 
-def _defaults(cfg: dict):
+def sections(cfg: dict):
     """Machine and run sections with the schema's defaults for missing keys."""
-    from rotorkin.core.schema import RunSection
-    from rotorkin.drives.eccentric_cam.schema import EccentricMachine
-
     machine = {**EccentricMachine().model_dump(), **(cfg.get("machine") or {})}
     run = {**RunSection().model_dump(), **(cfg.get("run") or {})}
     return machine, run
@@ -172,55 +140,11 @@ def _inertias(machine: dict) -> tuple[float, tuple[float, float]]:
     return js, (m, m)
 
 
-def reactor_state(reactor: op.OpposedPiston, inertia, speed, beta) -> dict:
-    """Volume, pressure, piston forces and shaft torques at the shaft angles ``beta``.
-
-    Parameters
-    ----------
-    reactor : OpposedPiston
-    inertia : (float, (float, float))
-        ``J_shaft`` [kg*m^2] and the piston masses [kg].
-    speed : float or sequence of float
-        ``run.speed`` [rad/s].
-    beta : ndarray, shape (n,)
-        Shaft angles [rad].
-
-    Returns
-    -------
-    dict of ndarray
-        ``V``, ``dV``, ``p`` (1, n); ``F`` (2, n); ``shaft``, ``inertia``, ``net``,
-        ``J_eq``, ``omega``, ``omega_dot`` (n,).
-    """
-    _, dq, d2q, _ = ec.piston_travels(reactor.drive, beta)
-    V, dV, _, _ = op.enclosed_volume(reactor, beta)
-    p, _ = op.pressure(reactor, beta)
-    F = tq.member_torques(p, op.volume_derivatives_dq(reactor, beta))
-    shaft = tq.shaft_torque_from_members(F, dq)
-    omega, omega_dot, _ = shaft_speed(beta, speed, ec.period(reactor.drive))
-    js, masses = inertia
-    t_in = tq.inertia_torque(js, masses, dq, d2q, omega, omega_dot)
-    return {
-        "V": V,
-        "dV": dV,
-        "p": p,
-        "F": F,
-        "shaft": shaft,
-        "inertia": t_in,
-        "net": shaft - t_in,
-        "J_eq": tq.equivalent_inertia(js, masses, dq),
-        "omega": omega,
-        "omega_dot": omega_dot,
-    }
-
-
-def _reactor_summary(reactor: op.OpposedPiston, inertia, speed, coefficient) -> dict:
-    drive = reactor.drive
+def _reactor_summary(drive: ec.EccentricCam, reactor: op.OpposedPiston, inertia, speed,
+                     coefficient) -> dict:  # fmt: skip
     period = ec.period(drive)
     fine = np.linspace(0.0, period, _PEAK_SAMPLES)
-    st = reactor_state(reactor, inertia, speed, fine)
-    vmin, vmax = op.volume_extremes(reactor)
-    p0 = float(reactor.initial_pressure)
-    p_at_vmax = float(op.pressure_from_volume(reactor, vmax))
+    st = reactor_state(drive, reactor, inertia, speed, fine)
     omega_mean = float(np.mean(st["omega"][:-1]))
     _, dq, d2q, _ = ec.piston_travels(drive, fine)
     js, masses = inertia
@@ -230,22 +154,6 @@ def _reactor_summary(reactor: op.OpposedPiston, inertia, speed, coefficient) -> 
     cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
     work = float(tq.cycle_integral(st["shaft"], fine))
     out = {
-        "fluid": reactor.fluid,
-        "bore_mm": float(reactor.bore) * 1e3,
-        "piston_area_cm2": reactor.area * 1e4,
-        "enclosed_volume_min_cm3": vmin * 1e6,
-        "enclosed_volume_max_cm3": vmax * 1e6,
-        "chamber_volume_min_cm3": vmin * 1e6,
-        "chamber_volume_max_cm3": vmax * 1e6,
-        "volume_change_cm3": (vmax - vmin) * 1e6,
-        "volume_change_relative": (vmax - vmin) / vmin,
-        "compression_ratio_geometric": vmax / vmin,
-        "initial_pressure_bar": p0 / 1e5,
-        "pressure_max_bar": p0 / 1e5,
-        "pressure_min_bar": p_at_vmax / 1e5,
-        "pressure_ripple_bar": (p0 - p_at_vmax) / 1e5,
-        "pressure_ripple_relative": (p0 - p_at_vmax) / p0,
-        "cavitation": bool(p_at_vmax <= 0.0),
         "piston_force_peak_N": float(np.max(np.abs(st["F"]))),
         "indicated_work_J": work,
         "mean_torque_Nm": work / period,
@@ -266,8 +174,8 @@ def _reactor_summary(reactor: op.OpposedPiston, inertia, speed, coefficient) -> 
     return out
 
 
-def _reactor_columns(reactor, inertia, speed, beta) -> tuple[dict, dict]:
-    st = reactor_state(reactor, inertia, speed, beta)
+def _reactor_columns(drive, reactor, inertia, speed, beta) -> tuple[dict, dict]:
+    st = reactor_state(drive, reactor, inertia, speed, beta)
     cols = {
         "volume_cm3": st["V"][0] * 1e6,
         "dvolume_cm3_per_rad": st["dV"][0] * 1e6,
@@ -279,8 +187,8 @@ def _reactor_columns(reactor, inertia, speed, beta) -> tuple[dict, dict]:
         "shaft_torque_with_inertia_Nm": st["net"],
         "equivalent_inertia_kgm2": st["J_eq"],
     }
-    tcols, tdocs, _, _ = time_domain(ec.motion(reactor.drive, beta), speed, _SLUGS,
-                                     ec.period(reactor.drive))  # fmt: skip
+    tcols, tdocs, _, _ = time_domain(ec.motion(drive, beta), speed, _SLUGS,
+                                     ec.period(drive))  # fmt: skip
     cols.update(tcols)
     return cols, {**_REACTOR_DOCS, **tdocs}
 
@@ -288,17 +196,18 @@ def _reactor_columns(reactor, inertia, speed, beta) -> tuple[dict, dict]:
 def drive_params(cfg: dict) -> ec.EccentricCam:
     """The drive's parameters from a validated config (SI); errors name the config keys."""
     d = cfg["drive"]
-    params = build_params(
-        ec.EccentricCam,
-        "drive",
-        {
-            "disc_radius": d["disc_radius"],
-            "eccentricity": d["eccentricity"],
-            "follower": d.get("follower", "knife_edge"),
-            "roller_radius": d.get("roller_radius", 0.0),
-        },
+    keys = ("disc_radius", "eccentricity", "follower", "roller_radius")
+    return build_params(ec.EccentricCam, "drive", {k: d[k] for k in keys if k in d})
+
+
+def machine_params(params: ec.EccentricCam, machine: dict) -> op.OpposedPiston:
+    """The reactor on the drive ``params`` from the machine section (SI, defaults filled);
+    errors name the config keys."""
+    keys = ("device_length", "bore", "fluid", "initial_pressure", "polytropic_exponent",
+            "bulk_modulus")  # fmt: skip
+    return build_params(
+        lambda **kw: opposed_piston(params, **kw), "machine", {k: machine[k] for k in keys}
     )
-    return params
 
 
 def evaluate(cfg: dict) -> StudyResult:
@@ -321,34 +230,23 @@ def evaluate(cfg: dict) -> StudyResult:
         ``docs/machines/opposed_piston.md``.
     """
     params = drive_params(cfg)
-    machine, run = _defaults(cfg)
-    reactor = build_params(
-        op.OpposedPiston,
-        "machine",
-        {
-            "drive": params,
-            "device_length": machine["device_length"],
-            "bore": machine["bore"],
-            "fluid": machine["fluid"],
-            "initial_pressure": machine["initial_pressure"],
-            "polytropic_exponent": machine["polytropic_exponent"],
-            "bulk_modulus": machine["bulk_modulus"],
-        },
-    )
+    machine, run = sections(cfg)
+    reactor = machine_params(params, machine)
     inertia = _inertias(machine)
     speed = run["speed"]
-    summary = _summary(params, float(reactor.device_length))
-    summary.update(_reactor_summary(reactor, inertia, speed, float(machine["speed_fluctuation"])))
+    summary = _summary(params, reactor)
+    summary.update(
+        _reactor_summary(params, reactor, inertia, speed, float(machine["speed_fluctuation"]))
+    )
+    summary = {k: v.item() if isinstance(v, np.generic) else v for k, v in summary.items()}
     columns = _columns(params, run["points"])
     beta = angle_grid(ec.period(params), run["points"])
-    more, more_docs = _reactor_columns(reactor, inertia, speed, beta)
+    more, more_docs = _reactor_columns(params, reactor, inertia, speed, beta)
     columns.update(more)
 
     def plot(outdir: Path) -> list[Path]:
-        from rotorkin.drives.eccentric_cam import figures as figures_eccentric_cam
-
         grid = angle_grid(ec.period(params), 1441)
-        state = reactor_state(reactor, inertia, speed, grid)
+        state = reactor_state(params, reactor, inertia, speed, grid)
         return figures_eccentric_cam.plot_all(
             params, Path(outdir), reactor=reactor, beta=grid, state=state, summary=summary
         )
@@ -361,4 +259,5 @@ def evaluate(cfg: dict) -> StudyResult:
         column_docs={**_DOCS, **more_docs},
         headline=HEADLINE,
         write_figures=plot,
+        motion=ec.motion(params, beta),
     )

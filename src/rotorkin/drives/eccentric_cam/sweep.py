@@ -16,6 +16,9 @@ import numpy as np
 
 from rotorkin.core.batch import flag, full, run_blocks, sample_grid
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.drives.eccentric_cam.curves import drive_curves
+from rotorkin.drives.eccentric_cam.reactor import closed_forms, opposed_piston
+from rotorkin.machines import opposed_piston as op
 
 __all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "unsupported", "metric_names", "reasons",
            "metrics", "curves", "period"]  # fmt: skip
@@ -104,28 +107,46 @@ def period(p) -> float:
     return 2.0 * np.pi
 
 
-def _contact_radius(p):
-    """``Rc``: R (knife edge), R + r (roller), inf (flat) [m], per design."""
-    follower = np.asarray(p["drive.follower"])
-    R, r = p.float("drive.disc_radius"), p.float("drive.roller_radius")
-    return np.where(follower == "knife_edge", R, np.where(follower == "roller", R + r, np.inf))
+def _drive(p, column: bool = False) -> ec.EccentricCam:
+    """The drives of the designs ``p``: fields (n,), or (n, 1) with ``column``."""
+
+    def col(v):
+        v = np.asarray(v)
+        return v[:, None] if column and v.ndim else v
+
+    return ec.EccentricCam(
+        col(p.float("drive.disc_radius")),
+        col(p.float("drive.eccentricity")),
+        col(p["drive.follower"]),
+        col(p.float("drive.roller_radius")),
+    )
+
+
+_MACHINE = ("device_length", "bore", "fluid", "initial_pressure", "polytropic_exponent",
+            "bulk_modulus")  # fmt: skip
+
+
+def _machine_values(p) -> dict:
+    return {k: p[f"machine.{k}"] if k == "fluid" else p.float(f"machine.{k}") for k in _MACHINE}
 
 
 def reasons(p, code: dict) -> np.ndarray:
-    """Reason code per design (0: admissible), in the order of the study's checks."""
+    """Reason code per design (0: admissible), in the order of the study's checks.
+
+    The drive's :func:`~rotorkin.drives.eccentric_cam.kinematics.invalid_parameter`,
+    then the reactor's :func:`~rotorkin.machines.opposed_piston.invalid_parameter`.
+    """
     r = np.zeros(p.n, dtype=np.int16)
-    with np.errstate(all="ignore"):
-        R, e = p.float("drive.disc_radius"), p.float("drive.eccentricity")
-        flag(r, ~(np.isfinite(R) & (R > 0.0)), code["drive.disc_radius"])
-        flag(r, ~(np.isfinite(e) & (e > 0.0) & (e < R)), code["drive.eccentricity"])
-        rr = p.float("drive.roller_radius")
-        flag(r, ~(np.isfinite(rr) & (rr >= 0.0)), code["drive.roller_radius"])
-        roller = np.asarray(p["drive.follower"]) == "roller"
-        flag(r, roller & ~(rr > 0.0), code["drive.roller_radius"])
-        for key in ("device_length", "bore", "initial_pressure", "polytropic_exponent",
-                    "bulk_modulus"):  # fmt: skip
-            v = p.float(f"machine.{key}")
-            flag(r, ~(np.isfinite(v) & (v > 0.0)), code[f"machine.{key}"])
+    drive = ec.invalid_parameter(
+        p.float("drive.disc_radius"),
+        p.float("drive.eccentricity"),
+        p["drive.follower"],
+        p.float("drive.roller_radius"),
+    )
+    machine = op.invalid_parameter(**_machine_values(p), gap_change_min=0.0)
+    for section, bad in (("drive", drive), ("machine", machine)):
+        for name in np.unique(bad[bad != ""]):
+            flag(r, bad == name, code.get(f"{section}.{name}", code["other"]))
     return r
 
 
@@ -133,52 +154,16 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
     """Summary metrics of admissible designs ``p``, arrays (n,)."""
     names = set(names)
     n = p.n
-    R, e = p.float("drive.disc_radius"), p.float("drive.eccentricity")
-    rc = _contact_radius(p)
-    L = p.float("machine.device_length")
-    dmin = 2.0 * ec.additional_travel(rc, e, np.pi / 2.0)[0]
-    knife = 2.0 * ec.additional_travel(R, e, np.pi / 2.0)[0]
-    bore = p.float("machine.bore")
-    area = 0.25 * np.pi * bore**2
-    vmin, vmax = area * L, area * (L - dmin)
-    p0 = p.float("machine.initial_pressure")
-    gas = np.asarray(p["machine.fluid"]) == "gas"
-    with np.errstate(divide="ignore", invalid="ignore"):
-        p_gas = p0 * (vmin / vmax) ** p.float("machine.polytropic_exponent")
-        p_liq = p0 - p.float("machine.bulk_modulus") * np.log(vmax / vmin)
-    p_end = np.where(gas, p_gas, p_liq)
-    val = {
-        "lambda": e / R,
-        "lambda_contact": e / rc,
-        "gap_change_min_mm": dmin * 1e3,
-        "gap_change_min_ratio": dmin / e,
-        "gap_change_min_angle_deg": np.degrees(np.pi / 2.0),
-        "gap_change_to_length": np.abs(dmin) / L,
-        "gap_change_to_length_percent": 100.0 * np.abs(dmin) / L,
-        "gap_change_min_knife_edge_mm": knife * 1e3,
-        "piston_stroke_mm": 2.0 * e * 1e3,
-        "pressure_angle_max_deg": np.degrees(np.arcsin(e / rc)),
-        "device_length_mm": L * 1e3,
-        "bore_mm": bore * 1e3,
-        "piston_area_cm2": area * 1e4,
-        "enclosed_volume_min_cm3": vmin * 1e6,
-        "enclosed_volume_max_cm3": vmax * 1e6,
-        "chamber_volume_min_cm3": vmin * 1e6,
-        "chamber_volume_max_cm3": vmax * 1e6,
-        "volume_change_cm3": (vmax - vmin) * 1e6,
-        "volume_change_relative": (vmax - vmin) / vmin,
-        "compression_ratio_geometric": vmax / vmin,
-        "initial_pressure_bar": p0 / 1e5,
-        "pressure_max_bar": p0 / 1e5,
-        "pressure_min_bar": p_end / 1e5,
-        "pressure_ripple_bar": (p0 - p_end) / 1e5,
-        "pressure_ripple_relative": (p0 - p_end) / p0,
-        "cavitation": (p_end <= 0.0).astype(float),
-    }
+    drive = _drive(p)
+    rx = opposed_piston(drive, **_machine_values(p))
+    val = closed_forms(drive, rx)
+    val["cavitation"] = val["cavitation"].astype(float)
     peaks = {"piston_velocity_peak_mm_per_rad", "piston_accel_peak_mm_per_rad2",
              "piston_jerk_peak_mm_per_rad3"}  # fmt: skip
     if names & peaks:
-        val.update(_peaks(full(rc, n), full(e, n), samples, threads))
+        val.update(
+            _peaks(full(drive.contact_radius, n), full(drive.eccentricity, n), samples, threads)
+        )
     return {name: full(val[name], n) for name in names}
 
 
@@ -186,13 +171,8 @@ def _peaks(rc, e, samples, threads) -> dict:
     beta = sample_grid(2.0 * np.pi, samples)
 
     def fn(lo, hi):
-        h = ec.harmonic_travel(e[lo:hi, None], beta)
-        a = ec.additional_travel(rc[lo:hi, None], e[lo:hi, None], beta)
-        out = {}
-        for k, name in ((1, "v"), (2, "a"), (3, "j")):
-            left, right = np.abs(a[k] + h[k]), np.abs(a[k] - h[k])
-            out[name] = np.maximum(left.max(axis=1), right.max(axis=1))
-        return out
+        peaks = ec.travel_peaks(rc[lo:hi, None], e[lo:hi, None], beta)
+        return dict(zip(("v", "a", "j"), peaks, strict=True))
 
     res = run_blocks(fn, e.size, samples, threads)
     return {
@@ -205,26 +185,5 @@ def _peaks(rc, e, samples, threads) -> dict:
 def curves(p, points: int):
     """The :data:`CURVES` of admissible designs over one turn: angle (points,), dict (n, points)."""
     beta = sample_grid(2.0 * np.pi, points)
-    e = full(p.float("drive.eccentricity"), p.n)[:, None]
-    rc = full(_contact_radius(p), p.n)[:, None]
-    h = ec.harmonic_travel(e, beta)
-    a = ec.additional_travel(rc, e, beta)
-    q = [np.stack([ai + hi, ai - hi]) for ai, hi in zip(a, h, strict=True)]
-    xi = np.broadcast_to(np.cos(beta), (p.n, points))
-    mu = a[0] / e
-    out = {
-        "z_left_mm": q[0][0] * 1e3,
-        "z_right_mm": q[0][1] * 1e3,
-        "gap_change_mm": (q[0][0] + q[0][1]) * 1e3,
-        "x_left": xi + mu,
-        "x_right": mu - xi,
-        "xi": np.array(xi),
-        "mu": mu,
-        "delta": 2.0 * mu,
-        "pressure_angle_left_deg": np.degrees(np.arcsin(e * np.sin(beta) / rc)),
-    }
-    for k, (name, suffix) in enumerate((("velocity", "mm_per_rad"), ("accel", "mm_per_rad2"),
-                                        ("jerk", "mm_per_rad3")), start=1):  # fmt: skip
-        out[f"z_left_{name}_{suffix}"] = q[k][0] * 1e3
-        out[f"z_right_{name}_{suffix}"] = q[k][1] * 1e3
-    return beta, out
+    out = drive_curves(_drive(p, column=True), beta)
+    return beta, {k: np.array(np.broadcast_to(v, (p.n, points))) for k, v in out.items()}

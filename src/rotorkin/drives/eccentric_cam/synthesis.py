@@ -25,7 +25,15 @@ import numpy as np
 
 from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import validate_model
+from rotorkin.drives.eccentric_cam import figures_synthesis, schema, study
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.synthesis import (
+    SynthesisResult,
+    parse_fraction,
+    parse_quantity_arg,
+    synthesized_raw_config,
+)
 
 __all__ = [
     "gap_change_peak",
@@ -41,13 +49,10 @@ __all__ = [
 def gap_change_peak(contact_radius, eccentricity):
     """Largest gap change magnitude ``2 (Rc - sqrt(Rc^2 - e^2))`` [m] (eq. 5 at 90 deg).
 
-    Computed as ``2 e^2 / (Rc + sqrt(Rc^2 - e^2))`` (no cancellation); 0 for ``Rc = inf``.
+    Minus twice :func:`~rotorkin.drives.eccentric_cam.kinematics.additional_travel` at
+    90 deg; 0 for ``Rc = inf``. Broadcasts.
     """
-    Rc = np.asarray(contact_radius, dtype=float)
-    e = np.asarray(eccentricity, dtype=float)
-    with np.errstate(invalid="ignore"):
-        out = 2.0 * e * e / (Rc + np.sqrt(Rc * Rc - e * e))
-    return np.where(np.isinf(Rc), 0.0, out)
+    return -2.0 * ec.additional_travel(contact_radius, eccentricity, 0.5 * np.pi)[0]
 
 
 def eccentricity_for_gap_change(gap, contact_radius):
@@ -134,7 +139,7 @@ def design_options(params: ec.EccentricCam, gap: float) -> list[dict]:
     return out
 
 
-#: Without ``--target``: this fraction of the design's own peak gap change is tolerated.
+#: Without a ``target``: this fraction of the design's own peak gap change is tolerated.
 DEFAULT_GAP_SHARE = 0.5
 
 
@@ -145,24 +150,19 @@ def default_gap_change(params: ec.EccentricCam) -> float:
     its 21.44 mm; always reachable by keeping the eccentricity (it is below ``2 e``).
     A flat follower's own gap change is zero, and so is the default (the flat follower).
     """
-    if params.follower == "flat":
-        return 0.0
-    rc = float(params.disc_radius) + (
-        float(params.roller_radius) if params.follower == "roller" else 0.0
+    return DEFAULT_GAP_SHARE * abs(
+        float(gap_change_peak(params.contact_radius, params.eccentricity))
     )
-    return DEFAULT_GAP_SHARE * float(gap_change_peak(rc, params.eccentricity))
 
 
 def _parse_gap(target, length):
-    from rotorkin.synthesis import parse_fraction, parse_quantity_arg
-
     try:
-        ratio = parse_fraction(target)
+        ratio = parse_fraction(target, "target")
         gap = ratio * length
     except ParameterError:
-        gap = parse_quantity_arg(target, "length")
+        gap = parse_quantity_arg(target, "length", "target")
     if not (np.isfinite(gap) and gap >= 0.0):
-        raise ParameterError("--target", repr(target), "a gap change |Delta| >= 0")
+        raise ParameterError("target", repr(target), "a gap change |Delta| >= 0")
     return abs(gap)
 
 
@@ -171,16 +171,12 @@ def _format_length(x: float) -> str:
 
 
 def synthesize(cfg, raw, objective, target, harmonics, options=None):
-    """Design for ``--target`` peak gap change (objective ``gap_change``); see the module doc.
+    """Design for the ``target`` peak gap change (objective ``gap_change``); see the module doc.
 
     Without a target, half the design's own peak gap change (:func:`default_gap_change`).
     """
-    from rotorkin.drives import evaluate
-    from rotorkin.io.config import validate_config
-    from rotorkin.synthesis import SynthesisResult, synthesized_raw_config
-
     if harmonics is not None:
-        raise ParameterError("--harmonics", str(harmonics), "not used by the eccentric_cam drive")
+        raise ParameterError("harmonics", str(harmonics), "not used by the eccentric_cam drive")
     d = cfg["drive"]
     base = ec.EccentricCam(d["disc_radius"], d["eccentricity"], d["follower"], d["roller_radius"])
     length = float(cfg["machine"]["device_length"])
@@ -190,7 +186,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     if not chosen["feasible"]:
         hi = 2.0 * float(base.eccentricity)
         raise ParameterError(
-            "--target",
+            "target",
             f"{fmt_mm(gap)} (|Delta|/L = {gap / length:.4g})",
             f"0 <= |Delta| < {fmt_mm(hi)} (|Delta|/L < {hi / length:.4g}) at the eccentricity "
             f"{fmt_mm(base.eccentricity)}; with the disc kept instead: {options[1]['why'] or 'ok'}",
@@ -205,8 +201,8 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     if chosen["follower"] == "roller":
         updates["drive"]["roller_radius"] = _format_length(chosen["roller_radius"])
     new_raw = synthesized_raw_config(raw, updates, objective)
-    res0 = evaluate(cfg)
-    res1 = evaluate(validate_config(new_raw))
+    res0 = study.evaluate(cfg)
+    res1 = study.evaluate(validate_model(schema.EccentricConfig, new_raw))
     gap_run = abs(float(res1.summary["gap_change_min_mm"])) * 1e-3
     rel_err = abs(gap_run - gap) / gap if gap > 0 else abs(gap_run)
     keys = (
@@ -242,7 +238,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     notes = []
     if target is None:
         notes.append(
-            f"--target not given: |Delta| = {gap * 1e3:.6g} mm, half the design's own peak gap "
+            f"no target given: |Delta| = {gap * 1e3:.6g} mm, half the design's own peak gap "
             f"change {abs(float(res0.summary['gap_change_min_mm'])):.6g} mm"
         )
     notes.append(
@@ -273,8 +269,6 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     )
 
     def plot(outdir):
-        from rotorkin.drives.eccentric_cam import figures_synthesis
-
         feasible = [
             ec.EccentricCam(
                 o["disc_radius"],
@@ -285,7 +279,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
             for o in options
             if o["feasible"] and o["option"] != "flat"
         ]
-        return figures_synthesis.plot_eccentric(outdir, base, new_params, feasible, gap, length)
+        return figures_synthesis.plot_eccentric(base, new_params, feasible, gap, length, outdir)
 
     return SynthesisResult(
         drive_type="eccentric_cam",
