@@ -21,13 +21,13 @@ def test_the_library_names_its_parameter():
     ("args", "line"),
     [
         (["sweep", "--vary", "drive.plate_tilt=30deg:40deg:3", "--angles", "2"],
-         "--angles = 2 is not admissible: --angles >= 3"),
+         "--angles = 2 is not admissible: 3 <= --angles <= 1000001"),
         (["sweep", "--vary", "drive.plate_tilt=30deg:40deg:3", "--chunk", "0"],
          "--chunk = 0 is not admissible: --chunk >= 1"),
         (["tolerance", "--tol", "drive.plate_tilt=0.1deg", "--samples", "1"],
-         "--samples = 1 is not admissible: --samples >= 2"),
+         "--samples = 1 is not admissible: 2 <= --samples <= 10000000"),
         (["tolerance", "--tol", "drive.plate_tilt=0.1deg", "--angles", "0"],
-         "--angles = 0 is not admissible: --angles >= 3"),
+         "--angles = 0 is not admissible: 3 <= --angles <= 1000001"),
         (["synthesize", "--objective", "nope"], "--objective = 'nope' is not admissible"),
     ],
 )  # fmt: skip

@@ -518,7 +518,7 @@ def test_sampled_extremes_of_a_corrected_spin_law_take_the_library_path():
     ("args", "words"),
     [
         (["--vary", "drive.plate_tilt=20deg:65deg:10000000000000"],
-         "N = 10000000000000; N <= 1e+08"),
+         "N = 10000000000000; N <= 1e+06"),
         (["--vary", "drive.plate_tilt=20deg:65deg:20000", "--vary",
           "drive.roller_axis_angle=80deg:100deg:10000"], "2e+08 designs is not admissible"),
         (["--vary", "drive.plate_tilt=20deg:65deg:1000", "--vary",

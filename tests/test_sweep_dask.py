@@ -19,6 +19,30 @@ def client():
         yield c
 
 
+def _dashboard_hosts(client) -> set:
+    """The addresses the dashboard's sockets are bound to (tornado's listening sockets)."""
+    server = client.cluster.scheduler.http_server
+    return {sock.getsockname()[0] for sock in server._sockets.values()}
+
+
+def test_the_local_cluster_listens_on_loopback_only(client):
+    assert _dashboard_hosts(client) == {"127.0.0.1"}
+    assert client.scheduler_info()["address"].startswith("inproc://")  # no socket at all
+
+
+@pytest.mark.slow
+def test_a_process_cluster_listens_on_loopback_only():
+    from urllib.parse import urlparse
+
+    from rotorkin.sweep.dask import local_client
+
+    with local_client(1, processes=True) as c:
+        info = c.scheduler_info()
+        assert urlparse(info["address"]).hostname == "127.0.0.1"
+        assert _dashboard_hosts(c) == {"127.0.0.1"}
+        assert all(urlparse(w).hostname == "127.0.0.1" for w in info["workers"])
+
+
 def test_dask_sweep_equals_the_local_sweep(client):
     _, raw, _ = load_config(None, "guide-bar-pump")
     vary = {"drive.lambda": "0.2:0.8:7", "drive.driver": "crank,guide",

@@ -35,7 +35,7 @@ from rotorkin.core.errors import ConfigError, ParameterError, RotorkinError
 from rotorkin.core.units import parse_quantity
 from rotorkin.drives import evaluate, get
 from rotorkin.io.config import validate_config
-from rotorkin.sweep import Designs, evaluate_designs, resolve_metrics
+from rotorkin.sweep import MAX_SAMPLES, MAX_WORK, Designs, evaluate_designs, resolve_metrics
 from rotorkin.sweep.engine import (
     SweepFallbackWarning,
     coverage,
@@ -51,6 +51,9 @@ __all__ = ["Tolerance", "parse_tol", "draw", "run_tolerance", "summarize", "PERC
 PERCENTILES = (1, 5, 50, 95, 99)
 _CHUNK = 65_536
 _DISTRIBUTIONS = ("uniform", "normal")
+
+#: Most Monte-Carlo samples of one analysis.
+MAX_TOLERANCE_SAMPLES = 10_000_000
 
 
 @dataclass(frozen=True)
@@ -158,10 +161,14 @@ def run_tolerance(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int 
     dup = next((k for k in keys if keys.count(k) > 1), None)
     if dup:
         raise ConfigError(f"--tol {dup} is not admissible: the key is given twice")
-    if int(samples) < 2:
-        raise ParameterError("samples", samples, "samples >= 2")
-    if angles is not None and int(angles) < 3:
-        raise ParameterError("angles", angles, "angles >= 3")
+    if not 2 <= int(samples) <= MAX_TOLERANCE_SAMPLES:
+        raise ParameterError("samples", samples, f"2 <= samples <= {MAX_TOLERANCE_SAMPLES}")
+    if not 0 <= int(seed) < 2**63:
+        raise ParameterError("seed", seed, "0 <= seed < 2**63")
+    if angles is not None and not 3 <= int(angles) <= MAX_SAMPLES:
+        raise ParameterError("angles", angles, f"3 <= angles <= {MAX_SAMPLES}")
+    if int(samples) * (DEFAULT_SAMPLES if angles is None else int(angles)) > MAX_WORK:
+        raise ParameterError("samples", samples, f"samples x angles <= {MAX_WORK:.0e}")
     names = resolve_metrics(cfg, metrics)
     angles = DEFAULT_SAMPLES if angles is None else int(angles)
     try:

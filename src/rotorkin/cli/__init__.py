@@ -1,12 +1,15 @@
 """The ``rotorkin`` command: thin; parses, calls the library, prints, sets the exit code.
 
 Exit codes: 0 success, 2 bad input (one line on stderr, no traceback, no
-output files), 1 an internal error (one line; ``ROTORKIN_DEBUG=1`` shows the
-traceback).
+output files), 3 the machine failed us (disk full, no permission: one line saying
+what to do, no output files), 1 an internal error (one line; ``ROTORKIN_DEBUG=1``
+shows the traceback).
 """
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import math
 import os
 import sys
@@ -20,7 +23,7 @@ from rotorkin.cli import export as cli_export
 from rotorkin.cli import report as cli_report
 from rotorkin.cli import sweep as cli_sweep
 from rotorkin.cli import synthesize as cli_synthesize
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, out_folder
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import REGISTRY, evaluate
 from rotorkin.io.config import example_names, example_path, glossary, load_config, read_toml
@@ -58,7 +61,9 @@ def run(
     set_: SetOpt = None,
     out: Annotated[
         Path | None,
-        typer.Option("--out", "-o", help="Output folder; default ./rotorkin-out/<name>."),
+        typer.Option(
+            "--out", "-o", parser=out_folder, help="Output folder; default ./rotorkin-out/<name>."
+        ),
     ] = None,
     quiet: QuietOpt = False,
     report: Annotated[
@@ -111,7 +116,7 @@ def _print_summary(result, name, outdir, written):
     from rich.console import Console
     from rich.table import Table
 
-    console = Console()
+    console = Console(markup=False, highlight=False)
     console.print(f"{name}: {result.title}", highlight=False, soft_wrap=True)
     table = Table()
     table.add_column("metric", no_wrap=True)
@@ -142,6 +147,26 @@ for _module in (cli_export, cli_synthesize, cli_report, cli_sweep):
     _module.register(app)
 
 
+#: Exit code of a failure of the machine rather than the input (disk full, no permission).
+ENVIRONMENT_ERROR = 3
+
+_WHAT_TO_DO = {
+    errno.ENOSPC: "the disk is full: free some space or write elsewhere with --out",
+    errno.EDQUOT: "the disk quota is used up: free some space or write elsewhere with --out",
+    errno.EACCES: "permission denied: write elsewhere with --out, or fix the folder's permissions",
+    errno.EPERM: "operation not permitted: write elsewhere with --out",
+    errno.EROFS: "the file system is read-only: write elsewhere with --out",
+    errno.ENOMEM: "out of memory: ask for fewer points, designs or samples",
+}
+
+
+def _environment_message(exc: OSError) -> str:
+    """One line: what failed and what to do; nothing was left behind."""
+    what = _WHAT_TO_DO.get(exc.errno, "the system refused; check the output folder and retry")
+    where = f" ({exc.filename})" if getattr(exc, "filename", None) else ""
+    return f"cannot finish: {exc.strerror or exc}{where}; {what}; no output was written"
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit code."""
     # figures are files here: matplotlib draws off screen unless the user chose a backend
@@ -162,6 +187,13 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("rotorkin: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # the reader of our output went away (e.g. "| head"): say nothing
+        with contextlib.suppress(OSError):
+            sys.stderr.close()
+        return ENVIRONMENT_ERROR
+    except OSError as exc:  # the machine, not the input: disk full, permission, ...
+        print(f"rotorkin: {_environment_message(exc)}", file=sys.stderr)
+        return ENVIRONMENT_ERROR
     except Exception as exc:
         if hasattr(exc, "format_message") and hasattr(exc, "exit_code"):  # a usage error
             print(f"rotorkin: error: {exc.format_message()}", file=sys.stderr)

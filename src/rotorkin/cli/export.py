@@ -12,7 +12,7 @@ from typing import Annotated
 
 import typer
 
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names, out_folder
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import get
 from rotorkin.io.config import load_config
@@ -75,7 +75,12 @@ def register(app) -> None:
         ] = "dxf",
         out: Annotated[
             Path | None,
-            typer.Option("--out", "-o", help="Output folder; default ./rotorkin-out/<name>/cad."),
+            typer.Option(
+                "--out",
+                "-o",
+                parser=out_folder,
+                help="Output folder; default ./rotorkin-out/<name>/cad.",
+            ),
         ] = None,
         quiet: QuietOpt = False,
     ):
@@ -98,7 +103,7 @@ def _print(name, kind, fmt, outdir, written, rows) -> None:
     from rich.console import Console
     from rich.table import Table
 
-    console = Console()
+    console = Console(markup=False, highlight=False)
     what = "file(s) in every format" if fmt == "all" else f"{fmt} file(s)"
     console.print(f"{name} ({kind}): wrote {len(written)} {what} to {outdir}/",
                   highlight=False, soft_wrap=True)  # fmt: skip

@@ -12,7 +12,7 @@ import typer
 from rotorkin.core.errors import ParameterError
 from rotorkin.drives import DEFAULT_EXAMPLE
 
-__all__ = ["ConfigArg", "ExampleOpt", "SetOpt", "QuietOpt", "flag_names"]
+__all__ = ["ConfigArg", "ExampleOpt", "SetOpt", "QuietOpt", "out_folder", "flag_names"]
 
 #: The config file (positional).
 ConfigArg = Annotated[
@@ -27,6 +27,15 @@ SetOpt = Annotated[
     list[str] | None,
     typer.Option("--set", "-s", help="Override a key: section.key=VALUE (repeatable)."),
 ]
+
+
+def out_folder(text: str) -> Path:
+    """``--out``: a folder name; an empty one (which would mean the current folder) is refused."""
+    if not str(text).strip():
+        raise typer.BadParameter("an empty folder name is not admissible", param_hint="--out")
+    return Path(text)
+
+
 #: ``--quiet``.
 QuietOpt = Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing on success.")]
 

@@ -12,7 +12,7 @@ from typing import Annotated
 import typer
 
 from rotorkin import __version__
-from rotorkin.cli.options import ConfigArg, ExampleOpt, SetOpt
+from rotorkin.cli.options import ConfigArg, ExampleOpt, SetOpt, out_folder
 from rotorkin.core.errors import ConfigError
 from rotorkin.drives import evaluate
 from rotorkin.io.config import load_config
@@ -29,7 +29,12 @@ def register(app) -> None:
         set_: SetOpt = None,
         out: Annotated[
             Path | None,
-            typer.Option("--out", "-o", help="Output folder; default ./rotorkin-out/<name>."),
+            typer.Option(
+                "--out",
+                "-o",
+                parser=out_folder,
+                help="Output folder; default ./rotorkin-out/<name>.",
+            ),
         ] = None,
     ):
         """Write report.html: summary vs the paper, checks, animated mechanism, plots (offline)."""

@@ -20,7 +20,7 @@ from typing import Annotated
 
 import typer
 
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names, out_folder
 from rotorkin.core.errors import ConfigError
 from rotorkin.drives import REGISTRY, get
 from rotorkin.io.config import apply_sets, load_config
@@ -105,7 +105,8 @@ def register(app) -> None:
         chunk: Annotated[int | None, typer.Option(
             "--chunk", help="Designs per chunk (default: from a 64 MiB budget).")] = None,
         out: Annotated[Path | None, typer.Option(
-            "--out", "-o", help="Output folder; default ./rotorkin-out/<name>-sweep.")] = None,
+            "--out", "-o", parser=out_folder,
+            help="Output folder; default ./rotorkin-out/<name>-sweep.")] = None,
         paper_figures: Annotated[bool, typer.Option(
             "--paper-figures", help="Also run the sweeps of the paper's figures and draw them."
         )] = False,
@@ -197,7 +198,7 @@ def register(app) -> None:
             _print_sweep(name, specs, main_ds, outdir, written, time.perf_counter() - t0)
 
     @app.command()
-    @flag_names(samples="--samples", angles="--angles", metrics="--metrics")
+    @flag_names(samples="--samples", angles="--angles", metrics="--metrics", seed="--seed")
     def tolerance(
         config: ConfigArg = None,
         example: ExampleOpt = None,
@@ -214,7 +215,8 @@ def register(app) -> None:
             "--angles", help="Shaft angles per period of the sampled peaks (default 20001).")]
         = None,
         out: Annotated[Path | None, typer.Option(
-            "--out", "-o", help="Output folder; default ./rotorkin-out/<name>-tolerance.")]
+            "--out", "-o", parser=out_folder,
+            help="Output folder; default ./rotorkin-out/<name>-tolerance.")]
         = None,
         quiet: QuietOpt
         = False,
@@ -278,7 +280,7 @@ def _print_sweep(name, specs, ds, outdir, written, seconds) -> None:
     from rich.console import Console
     from rich.table import Table
 
-    console = Console()
+    console = Console(markup=False, highlight=False)
     for recipe, spec in specs:
         what = "sweep" if recipe is None else f"paper {recipe.key}"
         dims = " x ".join(f"{v.key}[{len(v)}]" for v in spec.varies)
@@ -304,7 +306,7 @@ def _print_tolerance(name, ds, stats, drawn, outdir) -> None:
     from rich.console import Console
     from rich.table import Table
 
-    console = Console()
+    console = Console(markup=False, highlight=False)
     console.print(f"{name}: {ds.attrs['samples']} samples, seed {ds.attrs['seed']}: "
                   f"{ds.attrs['tolerances']}", highlight=False, soft_wrap=True)  # fmt: skip
     table = Table()

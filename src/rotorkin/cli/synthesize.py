@@ -19,7 +19,7 @@ import numpy as np
 import typer
 
 from rotorkin import __version__
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names, out_folder
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import REGISTRY
 from rotorkin.drives import synthesize as run_synthesis
@@ -105,7 +105,10 @@ def register(app) -> None:
         out: Annotated[
             Path | None,
             typer.Option(
-                "--out", "-o", help="Output folder; default ./rotorkin-out/<name>-<objective>."
+                "--out",
+                "-o",
+                parser=out_folder,
+                help="Output folder; default ./rotorkin-out/<name>-<objective>.",
             ),
         ] = None,
         quiet: QuietOpt = False,
@@ -194,7 +197,7 @@ def _print(result, outdir, written):
     from rich.markup import escape
     from rich.table import Table
 
-    console = Console()
+    console = Console(markup=False, highlight=False)
     console.print(escape(result.title), highlight=False, soft_wrap=True)
     table = Table()
     table.add_column("metric")

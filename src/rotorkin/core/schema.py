@@ -62,8 +62,16 @@ Temperature = Annotated[float, _unit("temperature")]
 Modulus = Annotated[float, _unit("modulus")]
 
 
+#: Most input angles of a run (run.points) and entries of a speed profile: 0.0036 deg apart.
+MAX_POINTS = 100_001
+
+
 def _speeds(value):
     values = value if isinstance(value, list) else [value]
+    if len(values) > MAX_POINTS:
+        raise PydanticCustomError(
+            "rotorkin_unit", f"is not admissible: a speed profile of at most {MAX_POINTS} values"
+        )
     out = []
     for item in values:
         number, reason = parse_quantity(item, "speed")
@@ -93,7 +101,7 @@ class Section(BaseModel):
 
 class RunSection(Section):
     points: int = Field(
-        721, ge=3, le=10_000_000, description="input angles sampled over one period, ends included"
+        721, ge=3, le=MAX_POINTS, description="input angles sampled over one period, ends included"
     )
     speed: Speed = Field(
         "3000 rpm",

@@ -45,21 +45,44 @@ def example_names() -> list[str]:
 
 
 def example_path(name: str) -> Path:
-    """Path of a built-in example; :class:`ConfigError` naming the choices if unknown."""
-    path = EXAMPLES_DIR / f"{name}.toml"
-    if not path.is_file():
+    """Path of a built-in example; :class:`ConfigError` naming the choices if unknown.
+
+    Only the names :func:`example_names` lists are accepted (never a path).
+    """
+    names = example_names()
+    if name not in names:
         raise ConfigError(
-            f"--example = {name!r} is not admissible: choose one of {', '.join(example_names())}"
+            f"--example = {name!r} is not admissible: choose one of {', '.join(names)}"
         )
-    return path
+    return EXAMPLES_DIR / f"{name}.toml"
+
+
+#: Largest config file read [bytes]; a config is a few hundred bytes.
+MAX_CONFIG_BYTES = 1 << 20
+#: Deepest nesting of tables and arrays in a config (a config has sections and lists: 3).
+MAX_CONFIG_DEPTH = 8
+#: Most keys and list entries in a whole config.
+MAX_CONFIG_ITEMS = 10_000
 
 
 def read_toml(path: str | Path) -> dict:
-    """Read a TOML file; any failure becomes one :class:`ConfigError` line."""
+    """Read a TOML file; any failure becomes one :class:`ConfigError` line.
+
+    Only a regular file of at most :data:`MAX_CONFIG_BYTES` is read (a pipe, a
+    device or ``/dev/zero`` is refused before reading), and the result may nest at
+    most :data:`MAX_CONFIG_DEPTH` deep with at most :data:`MAX_CONFIG_ITEMS` entries.
+    """
     path = Path(path)
     try:
+        if path.exists() and not path.is_dir() and not path.is_file():
+            raise ConfigError(f"config file {str(path)!r} is not a regular file")
+        if path.is_file() and path.stat().st_size > MAX_CONFIG_BYTES:
+            raise ConfigError(
+                f"config file {str(path)!r} is not admissible: larger than "
+                f"{MAX_CONFIG_BYTES // 1024} KiB"
+            )
         with path.open("rb") as fh:
-            return tomllib.load(fh)
+            data = tomllib.loads(fh.read(MAX_CONFIG_BYTES + 1).decode("utf-8"))
     except FileNotFoundError:
         raise ConfigError(f"config file {str(path)!r} does not exist") from None
     except IsADirectoryError:
@@ -68,6 +91,30 @@ def read_toml(path: str | Path) -> dict:
         raise ConfigError(f"config file {str(path)!r} cannot be read: {exc}") from None
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"config file {str(path)!r} is not valid TOML: {exc}") from None
+    except RecursionError:
+        raise ConfigError(
+            f"config file {str(path)!r} is not admissible: nested deeper than {MAX_CONFIG_DEPTH}"
+        ) from None
+    check_size(data, f"config file {str(path)!r}")
+    return data
+
+
+def check_size(data, what: str) -> None:
+    """Refuse a config nested deeper than :data:`MAX_CONFIG_DEPTH` or with too many entries."""
+    count, stack = 0, [(data, 1)]
+    while stack:
+        node, depth = stack.pop()
+        if depth > MAX_CONFIG_DEPTH:
+            raise ConfigError(f"{what} is not admissible: nested deeper than {MAX_CONFIG_DEPTH}")
+        children = node.values() if isinstance(node, dict) else node
+        for child in children:
+            count += 1
+            if count > MAX_CONFIG_ITEMS:
+                raise ConfigError(
+                    f"{what} is not admissible: more than {MAX_CONFIG_ITEMS} keys and entries"
+                )
+            if isinstance(child, (dict, list)):
+                stack.append((child, depth + 1))
 
 
 def parse_set(item: str) -> tuple[list[str], object]:
@@ -76,7 +123,7 @@ def parse_set(item: str) -> tuple[list[str], object]:
         raise ConfigError(f"--set {item!r} is not admissible: write it as section.key=VALUE")
     key, _, text = item.partition("=")
     parts = [p.strip() for p in key.strip().split(".")]
-    if len(parts) < 2 or not all(parts):
+    if len(parts) < 2 or len(parts) > 3 or not all(parts):
         raise ConfigError(
             f"--set {item!r} is not admissible: the key must be section.key, e.g. drive.plate_tilt"
         )
@@ -102,6 +149,7 @@ def apply_sets(raw: dict, sets: list[str]) -> dict:
                 raise ConfigError(f"--set {item!r} is not admissible: {part} is not a section")
             node = child
         node[parts[-1]] = value
+    check_size(out, "the config with its --set overrides")
     return out
 
 
@@ -147,7 +195,7 @@ def load_config(
     if path is not None and example is not None:
         raise ConfigError("give either a CONFIG file or --example NAME, not both")
     if path is None:
-        name = example or drives.DEFAULT_EXAMPLE
+        name = drives.DEFAULT_EXAMPLE if example is None else example
         path = example_path(name)
     else:
         name = Path(path).stem

@@ -61,6 +61,8 @@ __all__ = [
     "reason_text",
     "result_bytes",
     "MAX_DESIGNS",
+    "MAX_SAMPLES",
+    "MAX_WORK",
     "MAX_RESULT_BYTES",
 ]
 
@@ -69,7 +71,11 @@ MEMORY_BUDGET = 64 * 2**20
 #: Largest chunk (designs), so that progress and resumption stay fine-grained.
 MAX_CHUNK = 65_536
 #: Most designs in one sweep (the grid's size); beyond, split the sweep.
-MAX_DESIGNS = 100_000_000
+MAX_DESIGNS = 20_000_000
+#: Most shaft angles per period of the sampled peaks.
+MAX_SAMPLES = 1_000_001
+#: Most design x angle evaluations of one sweep (1e6 x 360 take about 15 s on 2 cores).
+MAX_WORK = 2e10
 #: Most memory the whole result may take (metrics, reasons and, with curves, the curves),
 #: as estimated before anything runs [bytes]: the result is assembled in memory.
 MAX_RESULT_BYTES = 8 * 2**30
@@ -173,12 +179,19 @@ def build_spec(base_cfg_raw: dict, vary, *, keep_curves=False, chunk_size=None, 
     varies = _varies(base_cfg_raw, vary)
     names = resolve_metrics(cfg, metrics)
     samples = DEFAULT_SAMPLES if samples is None else int(samples)
-    if samples < 3:
-        raise ParameterError("samples", samples, "samples >= 3")
+    if not 3 <= samples <= MAX_SAMPLES:
+        raise ParameterError("samples", samples, f"3 <= samples <= {MAX_SAMPLES}")
     points = int(cfg["run"]["points"])
     size = math.prod(len(v) for v in varies)
     n_curves = len(kernel_of(cfg["drive"]["type"]).CURVES) if keep_curves else 0
     _check_size(varies, size, len(names), n_curves, points)
+    if size * samples > MAX_WORK:
+        raise ParameterError(
+            "samples",
+            samples,
+            f"designs x samples <= {MAX_WORK:.0e} ({size} designs here: samples <= "
+            f"{int(MAX_WORK // size)}); fewer designs or samples",
+        )
     if chunk_size is None:
         chunk_size = _chunk_size(len(names), n_curves, points, size, memory_budget)
     elif int(chunk_size) < 1:
@@ -366,7 +379,8 @@ class _Progress:
 
             self.bar = Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
                                 TextColumn("designs"), TimeElapsedColumn(), TimeRemainingColumn(),
-                                console=Console(stderr=True), transient=True)  # fmt: skip
+                                console=Console(stderr=True, markup=False),
+                                transient=True)  # fmt: skip
             self.bar.start()
             self.task = self.bar.add_task("sweep", total=self.total, completed=self.done)
         return self

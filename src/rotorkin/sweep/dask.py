@@ -18,7 +18,10 @@ import logging
 from rotorkin.core.errors import ConfigError, ParameterError
 from rotorkin.sweep.engine import compute_chunk
 
-__all__ = ["local_client", "connect", "run_chunks"]
+__all__ = ["LOOPBACK", "local_client", "connect", "run_chunks"]
+
+#: The only address a local cluster listens on: its dashboard has no authentication.
+LOOPBACK = "127.0.0.1"
 
 
 def _distributed():
@@ -41,7 +44,8 @@ def local_client(workers: int, processes: bool = True):
         n_workers=int(workers),
         threads_per_worker=1,
         processes=processes,
-        dashboard_address=":0",  # a free port: the scheduler serves HTTP anyway
+        host=LOOPBACK if processes else None,  # scheduler and workers: this machine only
+        dashboard_address=f"{LOOPBACK}:0",  # a free port, on loopback only (no authentication)
         silence_logs=logging.ERROR,
     )
     try:

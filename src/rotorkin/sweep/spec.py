@@ -26,7 +26,7 @@ __all__ = ["Vary", "Field", "DISPLAY_UNITS", "parse_vary", "parse_item", "field_
 
 #: Most values of one ``--vary`` range (``N``); the whole grid is capped by
 #: :data:`rotorkin.sweep.MAX_DESIGNS` and the result's memory by ``MAX_RESULT_BYTES``.
-MAX_VALUES = 100_000_000
+MAX_VALUES = 1_000_000
 
 #: quantity kind -> (unit shown in coordinates and messages, factor from SI)
 DISPLAY_UNITS = {
@@ -296,7 +296,7 @@ def parse_vary(item: str, base_raw: dict) -> Vary:
             raise ConfigError(f"{option} is not admissible: empty range (N = {count}; N >= 1)")
         if count > MAX_VALUES:
             raise ConfigError(f"{option} is not admissible: N = {count}; N <= {MAX_VALUES:.0e} "
-                              "(and at most 1e+08 designs per sweep)")  # fmt: skip
+                              "(and at most 2e+07 designs per sweep)")  # fmt: skip
         if field.kind == "choice":
             raise ConfigError(f"{option} is not admissible: {key} takes one of "
                               f"{', '.join(field.choices)}; list them: {key}=a,b")  # fmt: skip
