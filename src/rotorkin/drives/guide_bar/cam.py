@@ -18,6 +18,7 @@ import numpy as np
 from rotorkin.cams import planar
 from rotorkin.cams.planar import Curve, Part
 from rotorkin.core.angles import fmt_deg, fmt_mm
+from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.machines import vane_pump as vp
 
 __all__ = ["impeller_outline", "impeller_area", "impeller_parts"]
@@ -62,12 +63,12 @@ def impeller_area(vanes, vane_angle, hub_radius, casing_radius):
     return np.pi * rh * rh + int(vanes) * float(vane_angle) * 0.5 * (rc * rc - rh * rh)
 
 
-def impeller_parts(pump: vp.VanePump, tolerance) -> list[Part]:
+def impeller_parts(params: gb.GuideBar, pump: vp.VanePump, tolerance) -> list[Part]:
     """Both impellers as :class:`~rotorkin.cams.planar.Part` s, extruded to ``axial_width``.
 
     Curves: ``profile`` (PROFILE) and, for reference, the ``casing`` circle (CASING).
     """
-    v = vp.vane_angles(pump, 0.0)  # (2, Z)
+    v = vp.vane_angles(pump, gb.motion(params, 0.0))  # (2, Z)
     rh, rc = float(pump.hub_radius), float(pump.casing_radius)
     casing = planar.circle_curve("casing", "CASING", (0.0, 0.0), rc, tolerance)
     parts = []

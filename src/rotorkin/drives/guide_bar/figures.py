@@ -1,7 +1,7 @@
 """Figures of the guide-bar + gear drive of a differential vane pump (JHIT 2012, Fig. 3, 5, 9-11)
 and of the pump itself (chambers, cross-sections, flow, torques; derived here).
 
-matplotlib is imported lazily inside the functions (Agg backend).
+pyplot comes from :func:`rotorkin.render.figures.pyplot` (the command line chooses the backend).
 """
 
 from __future__ import annotations
@@ -10,8 +10,13 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+from matplotlib.patches import Patch, Wedge
 
 from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.machines import vane_pump as vp
+from rotorkin.render.figures import pyplot as _plt
+from rotorkin.render.figures import save as _save
+from rotorkin.render.figures import save_in
 
 __all__ = [
     "TORQUE_LAMBDAS",
@@ -26,27 +31,10 @@ __all__ = [
     "fig_pump_torque",
 ]
 
-_DPI = 120
 #: The lambdas of Fig. 10 and 11 (besides the config's).
 TORQUE_LAMBDAS = (0.3, 0.5, 0.7)
 _LABEL = {"crank": "crank-driven", "guide": "guide-driven"}
 _EQ = {"crank": 5, "guide": 6}
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def _save(fig, path: Path) -> Path:
-    fig.tight_layout()
-    fig.savefig(path, dpi=_DPI)
-    _plt().close(fig)
-    return path
 
 
 def _tag(p: gb.GuideBar) -> str:
@@ -220,14 +208,9 @@ def _shade_strokes(ax, theta, dv_a):
                     transform=ax.get_xaxis_transform(), lw=0)  # fmt: skip
 
 
-def fig_pump_sections(pump, ports, path: Path) -> Path:
+def fig_pump_sections(drive: gb.GuideBar, pump, ports, path: Path) -> Path:
     """Cross-sections of the pump at four input angles: vanes and chambers by port."""
-    from matplotlib.patches import Wedge
-
-    from rotorkin.machines import vane_pump as vp
-
     plt = _plt()
-    drive = pump.drive
     i12 = float(drive.input_gear_ratio)
     t_a, t_b = sorted(float(np.mod(t, 2.0 * np.pi)) for t in gb.equal_speed_angles(drive.phase))
     period = gb.period(drive)
@@ -236,8 +219,9 @@ def fig_pump_sections(pump, ports, path: Path) -> Path:
     )
     names = np.array(["equal speed", "between", "equal speed", "between"])[np.argsort(thetas)]
     thetas = np.sort(thetas)
-    vanes = vp.vane_angles(pump, thetas)  # (2, Z, 4)
-    phi, dphi, _, _ = vp.chamber_angles(pump, thetas)
+    motion = gb.motion(drive, thetas)
+    vanes = vp.vane_angles(pump, motion)  # (2, Z, 4)
+    phi, dphi, _, _ = vp.chamber_angles(pump, motion)
     k = pump.volume_per_angle * 1e6
     z = int(pump.vanes_per_impeller)
     rh, rc, g = pump.hub_radius * 1e3, pump.casing_radius * 1e3, float(pump.vane_angle)
@@ -272,8 +256,6 @@ def fig_pump_sections(pump, ports, path: Path) -> Path:
                      fontsize=9)  # fmt: skip
         ax.grid(True, alpha=0.3)
     axes[0].set_ylabel("y [mm]")
-    from matplotlib.patches import Patch
-
     handles = [Patch(color="k", label="impeller 1 vanes"),
                Patch(color="C2", label="impeller 2 vanes"),
                Patch(color=_DISCHARGE, alpha=0.35, label="chamber shrinking: discharge port"),
@@ -283,9 +265,7 @@ def fig_pump_sections(pump, ports, path: Path) -> Path:
     fig.suptitle("Pump cross-sections (sense of rotation counter-clockwise)\n"
                  + _pump_tag(pump, ports), fontsize=10)  # fmt: skip
     fig.tight_layout(rect=(0, 0.07, 1, 1))
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save_in(fig, path.parent, path.name)
 
 
 def fig_pump_chambers(pump, ports, theta, state, path: Path) -> Path:
@@ -408,7 +388,7 @@ def plot_all(params: gb.GuideBar, m7: float, m8: float, outdir: Path, pump=None,
     ]
     if pump is not None:
         paths += [
-            fig_pump_sections(pump, ports, outdir / "pump_sections.png"),
+            fig_pump_sections(params, pump, ports, outdir / "pump_sections.png"),
             fig_pump_chambers(pump, ports, theta, state, outdir / "pump_chambers.png"),
             fig_pump_flow(pump, ports, theta, state, summary, outdir / "pump_flow.png"),
             fig_pump_torque(pump, ports, theta, state, summary, outdir / "pump_torque.png"),

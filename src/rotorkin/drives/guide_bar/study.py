@@ -29,12 +29,16 @@ from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import torque as tq
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import RunSection
+from rotorkin.drives.guide_bar import figures as figures_guide_bar
 from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.drives.guide_bar import pump as gb_pump
+from rotorkin.drives.guide_bar.schema import GuideBarLoads, VanePumpMachine
 from rotorkin.machines import vane_pump as vp
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain
 
-__all__ = ["evaluate", "drive_params", "HEADLINE"]
+__all__ = ["evaluate", "drive_params", "pump_params", "pump_state", "HEADLINE"]
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {
@@ -192,9 +196,6 @@ def _nonnegative(key: str, value: float, unit: str) -> float:
 
 def _defaults(cfg: dict):
     """Machine, loads and run sections with the schema's defaults for missing keys."""
-    from rotorkin.core.schema import RunSection
-    from rotorkin.drives.guide_bar.schema import GuideBarLoads, VanePumpMachine
-
     machine = {**VanePumpMachine().model_dump(), **(cfg.get("machine") or {})}
     loads = {**GuideBarLoads().model_dump(), **(cfg.get("loads") or {})}
     run = {**RunSection().model_dump(), **(cfg.get("run") or {})}
@@ -208,11 +209,15 @@ def _inertias(machine: dict) -> tuple[float, tuple[float, float]]:
     return js, (j1, j2)
 
 
-def pump_state(pump: vp.VanePump, ports: vp.PortPressures, inertia, speed, theta) -> dict:
+def pump_state(
+    params: gb.GuideBar, pump: vp.VanePump, ports: vp.PortPressures, inertia, speed, theta
+) -> dict:
     """Chambers, pressures, flow and torques of the pump at the input angles ``theta``.
 
     Parameters
     ----------
+    params : GuideBar
+        The drive of the pump.
     pump : VanePump
     ports : PortPressures
     inertia : (float, (float, float))
@@ -228,11 +233,12 @@ def pump_state(pump: vp.VanePump, ports: vp.PortPressures, inertia, speed, theta
         ``V``, ``dV``, ``p`` (2 Z, n); ``M`` (2, n); ``shaft``, ``inertia``,
         ``net``, ``J_eq``, ``flow``, ``omega``, ``omega_dot`` (n,).
     """
-    period = gb.period(pump.drive)
-    _, dq, d2q, _ = gb.impeller_angles(pump.drive, theta)
-    V, dV = vp.chamber_volumes(pump, theta)
+    period = gb.period(params)
+    motion = gb.motion(params, theta)
+    dq, d2q = motion.dq, motion.d2q
+    V, dV = vp.chamber_volumes(pump, motion)
     p = vp.chamber_pressures(dV, ports)
-    M = tq.member_torques(p, vp.volume_derivatives_dq(pump, theta))
+    M = tq.member_torques(p, vp.volume_derivatives_dq(pump, motion))
     shaft = tq.shaft_torque_from_members(M, dq)
     omega, omega_dot, _ = shaft_speed(theta, speed, period)
     js, jm = inertia
@@ -246,19 +252,18 @@ def pump_state(pump: vp.VanePump, ports: vp.PortPressures, inertia, speed, theta
         "inertia": t_in,
         "net": shaft - t_in,
         "J_eq": tq.equivalent_inertia(js, jm, dq),
-        "flow": vp.flow_rate(pump, theta, omega),
+        "flow": vp.flow_rate(pump, motion, omega),
         "omega": omega,
         "omega_dot": omega_dot,
     }
 
 
-def _pump_summary(pump, ports, inertia, speed, coefficient) -> dict:
-    drive = pump.drive
+def _pump_summary(drive, pump, ports, inertia, speed, coefficient) -> dict:
     period = gb.period(drive)
     i12 = float(drive.input_gear_ratio)
     fine = np.linspace(0.0, period, _PEAK_SAMPLES)
-    st = pump_state(pump, ports, inertia, speed, fine)
-    disp = vp.displacement(pump)
+    st = pump_state(drive, pump, ports, inertia, speed, fine)
+    disp = gb_pump.displacement(drive, pump)
     k = pump.volume_per_angle
     phi_min, phi_max = pump.chamber_angle_range
     dp = float(ports.discharge_pressure) - float(ports.suction_pressure)
@@ -281,9 +286,7 @@ def _pump_summary(pump, ports, inertia, speed, coefficient) -> dict:
         "vanes_per_impeller": int(pump.vanes_per_impeller),
         "chambers": pump.n_chambers,
         "pump_vane_angle_deg": float(np.degrees(pump.vane_angle)),
-        "pump_vane_angle_max_deg": float(
-            np.degrees(vp.vane_angle_max(drive, pump.vanes_per_impeller))
-        ),
+        "pump_vane_angle_max_deg": float(np.degrees(pump.vane_angle_max)),
         "chamber_angle_min_deg": float(np.degrees(phi_min)),
         "chamber_angle_max_deg": float(np.degrees(phi_max)),
         "chamber_volume_min_cm3": k * phi_min * 1e6,
@@ -319,8 +322,8 @@ def _pump_summary(pump, ports, inertia, speed, coefficient) -> dict:
     return out
 
 
-def _pump_columns(pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
-    st = pump_state(pump, ports, inertia, speed, theta)
+def _pump_columns(drive, pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
+    st = pump_state(drive, pump, ports, inertia, speed, theta)
     cols = {}
     for j, tag in ((0, "a"), (1, "b")):
         cols[f"chamber_{tag}_volume_cm3"] = st["V"][j] * 1e6
@@ -333,8 +336,8 @@ def _pump_columns(pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
     cols["inertia_torque_Nm"] = st["inertia"]
     cols["shaft_torque_with_inertia_Nm"] = st["net"]
     cols["equivalent_inertia_kgm2"] = st["J_eq"]
-    tcols, tdocs, _, _ = time_domain(gb.motion(pump.drive, theta), speed,
-                                     ("impeller1", "impeller2"), gb.period(pump.drive))  # fmt: skip
+    tcols, tdocs, _, _ = time_domain(gb.motion(drive, theta), speed,
+                                     ("impeller1", "impeller2"), gb.period(drive))  # fmt: skip
     cols.update(tcols)
     return cols, {**_PUMP_DOCS, **tdocs}
 
@@ -355,6 +358,19 @@ def drive_params(cfg: dict) -> gb.GuideBar:
         aliases={"lam": "lambda"},
     )
     return params
+
+
+def pump_params(cfg: dict, params: gb.GuideBar | None = None) -> vp.VanePump:
+    """The pump from a validated config (SI; missing machine keys take the schema's defaults).
+
+    Errors name the config keys (``machine.vane_angle``, ...).
+    """
+    params = drive_params(cfg) if params is None else params
+    machine = _defaults(cfg)[0]
+    keys = ("vanes_per_impeller", "vane_angle", "hub_radius", "casing_radius", "axial_width")
+    return build_params(
+        gb_pump.vane_pump, "machine", {"params": params, **{k: machine[k] for k in keys}}
+    )
 
 
 def evaluate(cfg: dict) -> StudyResult:
@@ -380,18 +396,7 @@ def evaluate(cfg: dict) -> StudyResult:
     machine, loads, run = _defaults(cfg)
     m7 = float(loads["impeller_torque_1"])
     m8 = float(loads["impeller_torque_2"])
-    pump = build_params(
-        vp.VanePump,
-        "machine",
-        {
-            "drive": params,
-            "vanes_per_impeller": machine["vanes_per_impeller"],
-            "vane_angle": machine["vane_angle"],
-            "hub_radius": machine["hub_radius"],
-            "casing_radius": machine["casing_radius"],
-            "axial_width": machine["axial_width"],
-        },
-    )
+    pump = pump_params(cfg, params)
     ports = build_params(
         vp.PortPressures,
         "loads",
@@ -403,17 +408,17 @@ def evaluate(cfg: dict) -> StudyResult:
     inertia = _inertias(machine)
     speed = run["speed"]
     summary = _summary(params, m7, m8)
-    summary.update(_pump_summary(pump, ports, inertia, speed, float(machine["speed_fluctuation"])))
+    summary.update(
+        _pump_summary(params, pump, ports, inertia, speed, float(machine["speed_fluctuation"]))
+    )
     columns = _columns(params, m7, m8, run["points"])
     theta = angle_grid(gb.period(params), run["points"])
-    pump_cols, pump_docs = _pump_columns(pump, ports, inertia, speed, theta)
+    pump_cols, pump_docs = _pump_columns(params, pump, ports, inertia, speed, theta)
     columns.update(pump_cols)
 
     def plot(outdir: Path) -> list[Path]:
-        from rotorkin.drives.guide_bar import figures as figures_guide_bar
-
         grid = angle_grid(gb.period(params), 1441)
-        state = pump_state(pump, ports, inertia, speed, grid)
+        state = pump_state(params, pump, ports, inertia, speed, grid)
         return figures_guide_bar.plot_all(
             params, m7, m8, Path(outdir), pump=pump, ports=ports, theta=grid, state=state,
             summary=summary,
@@ -427,4 +432,5 @@ def evaluate(cfg: dict) -> StudyResult:
         column_docs={**_DOCS, **pump_docs},
         headline=HEADLINE,
         write_figures=plot,
+        motion=gb.motion(params, theta),
     )

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorkin.core.batch import flag, full, run_blocks, sample_grid
+from rotorkin.core.batch import Designs, flag, full, run_blocks, sample_grid
 from rotorkin.drives.guide_bar import kinematics as gb
 
 __all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "unsupported", "metric_names", "reasons",
@@ -357,8 +357,6 @@ def curves(p, points: int):
 
 def tolerance_hold(cfg: dict) -> tuple[dict, dict]:
     """Hold the vane angle at its nominal value (the drive's gamma_0) in a tolerance analysis."""
-    from rotorkin.core.batch import Designs
-
     if cfg["machine"].get("vane_angle") is None:
         g0 = metrics(Designs(cfg, {}, 1), ["vane_angle_deg"], 3)["vane_angle_deg"][0]
         cfg["machine"]["vane_angle"] = float(np.radians(g0))

@@ -20,7 +20,12 @@ import numpy as np
 
 from rotorkin.core.angles import fmt_deg
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import validate_model
+from rotorkin.drives.guide_bar import figures_synthesis
 from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.drives.guide_bar.schema import GuideBarConfig
+from rotorkin.drives.guide_bar.study import evaluate
+from rotorkin.synthesis import SynthesisResult, parse_quantity_arg, synthesized_raw_config
 
 __all__ = [
     "vane_angle_range",
@@ -149,10 +154,6 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     unit (``"60 deg"``); None: :func:`default_vane_angle` (60 deg where reachable).
     The round trip evaluates the synthesized config.
     """
-    from rotorkin.drives import evaluate
-    from rotorkin.io.config import validate_config
-    from rotorkin.synthesis import SynthesisResult, parse_quantity_arg, synthesized_raw_config
-
     if harmonics is not None:
         raise ParameterError("--harmonics", str(harmonics), "not used by the guide_bar drive")
     d = cfg["drive"]
@@ -183,7 +184,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     updates = {"drive": {"lambda": lam}}
     new_raw = synthesized_raw_config(raw, updates, objective)
     res0 = evaluate(cfg)
-    res1 = evaluate(validate_config(new_raw))
+    res1 = evaluate(validate_model(GuideBarConfig, new_raw))
     g0 = float(gb.vane_angle(lam0, u, phase, driver))
     g1 = float(gb.vane_angle(lam, u, phase, driver))
     g1_run = float(np.radians(res1.summary["vane_angle_deg"]))
@@ -228,8 +229,6 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
         ) + notes
 
     def plot(outdir):
-        from rotorkin.drives.guide_bar import figures_synthesis
-
         return figures_synthesis.plot_guide_bar(
             outdir, (lam0, lam), u, phase, driver, gamma, float(d["input_gear_ratio"])
         )
