@@ -59,6 +59,11 @@ from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion
 
 __all__ = [
+    "CHECKS",
+    "PORT_FIELDS",
+    "inadmissible",
+    "ports_inadmissible",
+    "vanes_that_fit",
     "VanePump",
     "PortPressures",
     "vane_angle_max",
@@ -95,9 +100,97 @@ def vane_angle_max(vanes_per_impeller, swing):
     return np.pi / np.asarray(vanes_per_impeller) - 0.5 * np.asarray(swing, dtype=float)
 
 
+#: What :func:`inadmissible` checks, in order; its codes are index + 1. Entry k names the
+#: field that check k charges.
+CHECKS = (
+    "hub_radius",  # > 0
+    "hub_radius",  # < casing_radius
+    "axial_width",  # > 0
+    "vanes_per_impeller",  # an integer >= 1
+    "relative_angle_max",  # finite, >= relative_angle_min
+    "vanes_per_impeller",  # Z (2 gamma + s) <= 2 pi for some gamma > 0
+    "vane_angle",  # 0 < gamma <= pi/Z - s/2
+)
+
+
+def _is_count(z):
+    """Whether each ``z`` is an integer >= 1 (booleans and strings are not)."""
+    if isinstance(z, bool) or (np.ndim(z) == 0 and not isinstance(z, (int, np.integer))):
+        return np.zeros((), dtype=bool)
+    z = np.asarray(z)
+    if not np.issubdtype(z.dtype, np.integer):
+        return np.zeros(z.shape, dtype=bool)
+    return z >= 1
+
+
+def vanes_that_fit(swing):
+    """Most vanes per impeller that fit a relative-angle swing ``s``: ``floor(2 pi / s)`` [-].
+
+    The vanes fit with some width ``gamma > 0`` iff ``Z s < 2 pi`` (allowing
+    ``Z s = 2 pi`` within 1e-12 relative); unlimited (inf) at ``s = 0``.
+    """
+    s = np.asarray(swing, dtype=float)
+    with np.errstate(divide="ignore"):
+        return np.floor(2.0 * np.pi / s * (1.0 + 1e-12))
+
+
+def inadmissible(
+    relative_angle_min,
+    relative_angle_max,
+    vane_angle,
+    vanes_per_impeller=2,
+    hub_radius=0.030,
+    casing_radius=0.080,
+    axial_width=0.040,
+):
+    """The first check of :data:`CHECKS` each design fails, as index + 1 (0: admissible).
+
+    Parameters
+    ----------
+    relative_angle_min, relative_angle_max, vane_angle, vanes_per_impeller, hub_radius, \
+casing_radius, axial_width : array_like
+        As :class:`VanePump`; broadcast together.
+
+    Returns
+    -------
+    ndarray of int16
+    """
+    lo, hi, g, rh, rc, w = (np.asarray(v, dtype=float) for v in (
+        relative_angle_min, relative_angle_max, vane_angle, hub_radius, casing_radius,
+        axial_width))  # fmt: skip
+    count = _is_count(vanes_per_impeller)
+    zr = np.asarray(vanes_per_impeller)
+    integer = np.issubdtype(zr.dtype, np.integer)
+    z = np.where(count, zr, 1).astype(float) if integer else np.ones(count.shape)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        swing = hi - lo
+        bad = (
+            ~(np.isfinite(rh) & (rh > 0.0)),
+            ~(np.isfinite(rc) & (rc > rh)),
+            ~(np.isfinite(w) & (w > 0.0)),
+            ~count,
+            ~(np.isfinite(lo) & np.isfinite(hi) & (hi >= lo)),
+            (swing > 0.0) & (z > vanes_that_fit(swing)),
+            ~(np.isfinite(g) & (g > 0.0) & (g <= vane_angle_max(z, swing) + 1e-12)),
+        )
+    bad = np.broadcast_arrays(*bad)
+    reason = np.zeros(bad[0].shape, dtype=np.int16)
+    for k in range(len(bad) - 1, -1, -1):  # the first failed check wins
+        reason[bad[k]] = k + 1
+    return reason
+
+
+def _scalar(x):
+    """A 0-d result as a Python float; arrays unchanged."""
+    return float(x) if np.ndim(x) == 0 else x
+
+
 @dataclass(frozen=True)
 class VanePump:
     """Geometry of a differential vane pump (SI).
+
+    The fields may be arrays (one value per design, broadcasting together) for the
+    closed-form properties; the functions of the angle need one ``vanes_per_impeller``.
 
     Parameters
     ----------
@@ -107,7 +200,7 @@ class VanePump:
     vane_angle : float
         Angular width gamma of one vane [rad], ``0 < gamma <= pi/Z - s/2``.
     vanes_per_impeller : int, optional
-        ``Z >= 1`` vanes on each impeller (default 2).
+        ``Z >= 1`` vanes on each impeller (default 2), ``Z s <= 2 pi``.
     hub_radius : float, optional
         Hub radius ``R_h`` [m], ``0 < R_h < R_c`` (default 30 mm).
     casing_radius : float, optional
@@ -118,10 +211,8 @@ class VanePump:
     Raises
     ------
     ParameterError
-        Named by field: ``hub_radius``, ``axial_width``, ``vanes_per_impeller``
-        (not an integer >= 1, or too many to fit), ``relative_angle_max`` (not
-        finite or below ``relative_angle_min``) or ``vane_angle`` (not in
-        ``(0, vane_angle_max]``).
+        Named by the field of the first failed check (:func:`inadmissible`), with
+        its value and the admissible range.
     """
 
     relative_angle_min: float
@@ -133,89 +224,125 @@ class VanePump:
     axial_width: float = 0.040
 
     def __post_init__(self):
-        rh, rc, w = float(self.hub_radius), float(self.casing_radius), float(self.axial_width)
-        if not (np.isfinite(rh) and rh > 0.0):
-            raise ParameterError("hub_radius", fmt_mm(rh), "hub_radius > 0 mm")
-        if not (np.isfinite(rc) and rc > rh):
-            raise ParameterError(
+        values = (self.relative_angle_min, self.relative_angle_max, self.vane_angle,
+                  self.vanes_per_impeller, self.hub_radius, self.casing_radius,
+                  self.axial_width)  # fmt: skip
+        reason = inadmissible(*values)
+        if reason.any():
+            i = int(np.flatnonzero(reason)[0])
+            raise self._error(int(reason.flat[i]) - 1, i, reason.shape)
+        object.__setattr__(self, "vane_angle", _scalar(np.asarray(self.vane_angle, dtype=float)))
+
+    def _error(self, check: int, i: int, shape) -> ParameterError:
+        """The :class:`ParameterError` of check ``check`` at design ``i`` (flat index)."""
+
+        def at(name):
+            v = np.broadcast_to(np.asarray(getattr(self, name)), shape).flat[i]
+            return v.item() if hasattr(v, "item") else v
+
+        rh, rc, lo, hi = (at(n) for n in ("hub_radius", "casing_radius", "relative_angle_min",
+                                          "relative_angle_max"))  # fmt: skip
+        if check == 0:
+            return ParameterError("hub_radius", fmt_mm(rh), "hub_radius > 0 mm")
+        if check == 1:
+            return ParameterError(
                 "hub_radius",
                 fmt_mm(rh),
                 f"hub_radius < casing_radius = {fmt_mm(rc)} (the vanes span the annulus between)",
             )
-        if not (np.isfinite(w) and w > 0.0):
-            raise ParameterError("axial_width", fmt_mm(w), "axial_width > 0 mm")
-        z = self.vanes_per_impeller
-        if isinstance(z, bool) or not isinstance(z, (int, np.integer)) or z < 1:
-            raise ParameterError("vanes_per_impeller", repr(z), "an integer >= 1")
-        lo, hi = float(self.relative_angle_min), float(self.relative_angle_max)
-        if not (np.isfinite(lo) and np.isfinite(hi) and hi >= lo):
-            raise ParameterError(
+        if check == 2:
+            return ParameterError("axial_width", fmt_mm(at("axial_width")), "axial_width > 0 mm")
+        z = at("vanes_per_impeller")
+        if check == 3:
+            return ParameterError("vanes_per_impeller", repr(z), "an integer >= 1")
+        if check == 4:
+            return ParameterError(
                 "relative_angle_max", fmt_deg(hi), f"finite, >= relative_angle_min {fmt_deg(lo)}"
             )
-        swing = self.swing
-        if swing > 0.0:
-            z_fit = int(np.floor(2.0 * np.pi / swing * (1.0 + 1e-12)))
-            if z > z_fit:
-                raise ParameterError(
-                    "vanes_per_impeller",
-                    str(z),
-                    f"1 <= vanes_per_impeller <= {z_fit}: the relative angle of the impellers "
-                    f"swings by {fmt_deg(swing)}, and Z (2 vane_angle + swing) <= 360 deg",
-                )
-        gmax = self.vane_angle_max
-        g = float(self.vane_angle)
-        if not (np.isfinite(g) and 0.0 < g <= gmax + 1e-12):
-            raise ParameterError(
-                "vane_angle",
-                fmt_deg(g),
-                f"0 deg < vane_angle <= {fmt_deg(gmax)} (the widest vane that fits with "
-                f"vanes_per_impeller = {z}: pi/Z - swing/2, swing {fmt_deg(swing)}; wider vanes "
-                "would make a chamber negative)",
+        swing = hi - lo
+        if check == 5:
+            return ParameterError(
+                "vanes_per_impeller",
+                str(z),
+                f"1 <= vanes_per_impeller <= {int(vanes_that_fit(swing))}: the relative angle of "
+                f"the impellers swings by {fmt_deg(swing)}, and Z (2 vane_angle + swing) "
+                "<= 360 deg",
             )
-        object.__setattr__(self, "vane_angle", g)
+        gmax = float(vane_angle_max(z, swing))
+        return ParameterError(
+            "vane_angle",
+            fmt_deg(at("vane_angle")),
+            f"0 deg < vane_angle <= {fmt_deg(gmax)} (the widest vane that fits with "
+            f"vanes_per_impeller = {z}: pi/Z - swing/2, swing {fmt_deg(swing)}; wider vanes "
+            "would make a chamber negative)",
+        )
 
     @property
-    def swing(self) -> float:
+    def swing(self):
         """Swing ``s = r_max - r_min`` of the relative angle over a period [rad]."""
-        return float(self.relative_angle_max) - float(self.relative_angle_min)
+        lo, hi = (np.asarray(v, dtype=float) for v in (self.relative_angle_min,
+                                                         self.relative_angle_max))  # fmt: skip
+        return _scalar(hi - lo)
 
     @property
-    def vane_angle_max(self) -> float:
+    def vane_angle_max(self):
         """Widest vane that fits, ``pi/Z - s/2`` [rad] (:func:`vane_angle_max`)."""
-        return float(vane_angle_max(int(self.vanes_per_impeller), self.swing))
+        return _scalar(vane_angle_max(self.vanes_per_impeller, self.swing))
 
     @property
-    def n_chambers(self) -> int:
+    def n_chambers(self):
         """Number of chambers, ``2 Z``."""
-        return 2 * int(self.vanes_per_impeller)
+        z = self.vanes_per_impeller
+        return 2 * int(z) if np.ndim(z) == 0 else 2 * np.asarray(z)
 
     @property
-    def volume_per_angle(self) -> float:
+    def volume_per_angle(self):
         """``k = (R_c^2 - R_h^2) w / 2`` [m^3/rad]: chamber volume per radian of chamber angle."""
-        rh, rc = float(self.hub_radius), float(self.casing_radius)
-        return 0.5 * (rc * rc - rh * rh) * float(self.axial_width)
+        rh, rc, w = (np.asarray(v, dtype=float) for v in (self.hub_radius, self.casing_radius,
+                                                            self.axial_width))  # fmt: skip
+        return _scalar(0.5 * (rc * rc - rh * rh) * w)
 
     @property
-    def relative_angle_mid(self) -> float:
+    def relative_angle_mid(self):
         """``r_mid``, the middle of the range of ``q_2 - q_1`` [rad]."""
-        return 0.5 * (float(self.relative_angle_min) + float(self.relative_angle_max))
+        lo, hi = (np.asarray(v, dtype=float) for v in (self.relative_angle_min,
+                                                         self.relative_angle_max))  # fmt: skip
+        return _scalar(0.5 * (lo + hi))
 
     @property
-    def vane_offset(self) -> float:
+    def vane_offset(self):
         """Mounting offset ``c = pi/Z - r_mid`` of impeller 2's vanes from its zero [rad]."""
-        return np.pi / int(self.vanes_per_impeller) - self.relative_angle_mid
+        return _scalar(np.pi / np.asarray(self.vanes_per_impeller) - self.relative_angle_mid)
 
     @property
-    def chamber_angle_range(self) -> tuple[float, float]:
+    def chamber_angle_range(self):
         """Smallest and largest chamber angle over a period [rad] (closed form).
 
         ``phi_min = pi/Z - s/2 - gamma`` (set to 0 within 1e-12 rad: chambers that
         close completely), ``phi_max = phi_min + s``.
         """
         s = self.swing
-        lo = np.pi / int(self.vanes_per_impeller) - 0.5 * s - float(self.vane_angle)
-        lo = 0.0 if abs(lo) < 1e-12 else lo
-        return lo, lo + s
+        lo = np.pi / np.asarray(self.vanes_per_impeller) - 0.5 * s - self.vane_angle
+        lo = np.where(np.abs(lo) < 1e-12, 0.0, lo)
+        return _scalar(lo), _scalar(lo + s)
+
+
+#: Fields of :class:`PortPressures`, in the order they are checked (codes index + 1).
+PORT_FIELDS = ("suction_pressure", "discharge_pressure")
+
+
+def ports_inadmissible(suction_pressure, discharge_pressure):
+    """The first port pressure each design gets wrong (not > 0), index + 1 into :data:`PORT_FIELDS`.
+
+    Returns
+    -------
+    ndarray of int16
+        0 where both are admissible.
+    """
+    ps, pd = (np.asarray(v, dtype=float) for v in (suction_pressure, discharge_pressure))
+    with np.errstate(invalid="ignore"):
+        bad = np.broadcast_arrays(~(np.isfinite(ps) & (ps > 0.0)), ~(np.isfinite(pd) & (pd > 0.0)))
+    return np.where(bad[0], 1, np.where(bad[1], 2, 0)).astype(np.int16)
 
 
 @dataclass(frozen=True)
@@ -230,10 +357,12 @@ class PortPressures:
     discharge_pressure: float = 1.0e5
 
     def __post_init__(self):
-        for name in ("suction_pressure", "discharge_pressure"):
-            v = float(getattr(self, name))
-            if not (np.isfinite(v) and v > 0.0):
-                raise ParameterError(name, f"{v / 1e5:.4g} bar", f"{name} > 0 bar (absolute)")
+        reason = ports_inadmissible(self.suction_pressure, self.discharge_pressure)
+        if reason.any():
+            i = int(np.flatnonzero(reason)[0])
+            name = PORT_FIELDS[int(reason.flat[i]) - 1]
+            v = float(np.broadcast_to(np.asarray(getattr(self, name)), reason.shape).flat[i])
+            raise ParameterError(name, f"{v / 1e5:.4g} bar", f"{name} > 0 bar (absolute)")
 
 
 # --------------------------------------------------------------------------------------------

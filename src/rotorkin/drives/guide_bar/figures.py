@@ -23,6 +23,7 @@ __all__ = [
     "plot_all",
     "fig_speed_ratios",
     "fig_vane_angle",
+    "fig9_axes",
     "fig_input_torque",
     "fig_relative_angle",
     "fig_pump_sections",
@@ -97,13 +98,18 @@ def fig_vane_angle(params: gb.GuideBar, path: Path) -> Path:
     g_cfg = gb.vane_angle(params.lam, params.gear_ratio, params.phase, params.driver)
     ax.plot([np.degrees(g_cfg)], [params.lam], "k*", ms=12,
             label=f"config ({_LABEL[params.driver]}): {np.degrees(g_cfg):.2f} deg")  # fmt: skip
+    fig9_axes(ax, "Fig. 9  lambda vs vane angle gamma_0, Sigma = 180 deg")
+    return _save(fig, path)
+
+
+def fig9_axes(ax, title: str) -> None:
+    """Axes, grid, legend and title of Fig. 9 (lambda over the vane angle gamma_0 [deg])."""
     ax.set_xlabel("theoretical vane angle gamma_0 [deg]")
     ax.set_ylabel("mechanism coefficient lambda = d/a [-]")
     ax.set_ylim(0.0, 1.0)
     ax.grid(True, alpha=0.4)
     ax.legend(fontsize=8, loc="lower left")
-    ax.set_title("Fig. 9  lambda vs vane angle gamma_0, Sigma = 180 deg")
-    return _save(fig, path)
+    ax.set_title(title)
 
 
 def _torques(m7: float, m8: float):

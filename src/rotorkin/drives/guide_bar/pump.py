@@ -21,13 +21,14 @@ from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar.schema import VanePumpMachine
 from rotorkin.machines import vane_pump as vp
 
-__all__ = ["relative_angle_extremes", "vane_pump", "displacement"]
+__all__ = ["CHECKS", "relative_angle_extremes", "default_vane_angle", "inadmissible", "vane_pump",
+           "displacement"]  # fmt: skip
 
 #: The machine section's defaults (SI), the one source of the pump's defaults.
 _MACHINE = VanePumpMachine().model_dump()
 
 
-def relative_angle_extremes(params: gb.GuideBar) -> tuple[float, float]:
+def relative_angle_extremes(params: gb.GuideBar):
     """Smallest and largest relative angle ``r = q_2 - q_1`` over a period [rad].
 
     ``r`` is stationary exactly at the two equal-speed points of the drive
@@ -37,16 +38,57 @@ def relative_angle_extremes(params: gb.GuideBar) -> tuple[float, float]:
     Parameters
     ----------
     params : GuideBar
+        Floats or arrays (one value per design).
 
     Returns
     -------
-    (r_min, r_max) : tuple of float
-        [rad]; ``r_max - r_min = 2 pi/u - 2 gamma_0``.
+    (r_min, r_max) : tuple of float or ndarray
+        [rad], the broadcast shape of the parameters; ``r_max - r_min = 2 pi/u - 2 gamma_0``.
     """
-    t = np.array(gb.equal_speed_angles(params.phase), dtype=float)
-    q = gb.impeller_angles(params, t * float(params.input_gear_ratio))[0]
-    r = q[1] - q[0]
-    return float(np.min(r)), float(np.max(r))
+    shape = np.broadcast_shapes(*(np.shape(getattr(params, f)) for f in gb.FIELDS))
+    t = np.stack([np.broadcast_to(v, shape) for v in gb.equal_speed_angles(params.phase)])
+    q = gb.impeller_angles(params, t * np.asarray(params.input_gear_ratio, dtype=float))[0]
+    r = q[1] - q[0]  # (2 points, ...)
+    lo, hi = np.min(r, axis=0), np.max(r, axis=0)
+    return (float(lo), float(hi)) if np.ndim(lo) == 0 else (lo, hi)
+
+
+def default_vane_angle(params: gb.GuideBar):
+    """The pump's default vane angle: the drive's theoretical gamma_0 (section 3) [rad]."""
+    return gb.vane_angle(params.lam, params.gear_ratio, params.phase, params.driver)
+
+
+#: The checks of :func:`inadmissible`: the pump's (:data:`rotorkin.machines.vane_pump.CHECKS`)
+#: and, last, the default vane angle gamma_0 too wide for ``vanes_per_impeller``.
+CHECKS = (*vp.CHECKS, "vanes_per_impeller")
+
+
+def inadmissible(
+    params: gb.GuideBar,
+    vanes_per_impeller=_MACHINE["vanes_per_impeller"],
+    vane_angle=_MACHINE["vane_angle"],
+    hub_radius=_MACHINE["hub_radius"],
+    casing_radius=_MACHINE["casing_radius"],
+    axial_width=_MACHINE["axial_width"],
+):
+    """The first check of :data:`CHECKS` each design fails, as index + 1 (0: admissible).
+
+    ``vane_angle = None`` takes :func:`default_vane_angle`; where that is too wide
+    for the vanes the fault is ``vanes_per_impeller`` (the last check).
+
+    Returns
+    -------
+    ndarray of int16
+        The broadcast shape of the drive's and the pump's parameters.
+    """
+    r_min, r_max = relative_angle_extremes(params)
+    default = vane_angle is None
+    gamma = default_vane_angle(params) if default else vane_angle
+    reason = vp.inadmissible(r_min, r_max, gamma, vanes_per_impeller, hub_radius, casing_radius,
+                             axial_width)  # fmt: skip
+    if default:
+        reason[reason == vp.CHECKS.index("vane_angle") + 1] = len(CHECKS)
+    return reason
 
 
 def vane_pump(
@@ -69,34 +111,28 @@ def vane_pump(
     Raises
     ------
     ParameterError
-        Named by field, as the pump's; with the default vane angle, a
-        ``vanes_per_impeller`` too large for gamma_0 names ``vanes_per_impeller``.
+        Named by field (:func:`inadmissible`): the pump's, and with the default vane
+        angle a ``vanes_per_impeller`` too large for gamma_0.
     """
     r_min, r_max = relative_angle_extremes(params)
-    geometry = {
-        "vanes_per_impeller": vanes_per_impeller,
-        "hub_radius": hub_radius,
-        "casing_radius": casing_radius,
-        "axial_width": axial_width,
-    }
-    if vane_angle is not None:
-        return vp.VanePump(r_min, r_max, vane_angle, **geometry)
-    g0 = float(gb.vane_angle(params.lam, params.gear_ratio, params.phase, params.driver))
-    try:
-        return vp.VanePump(r_min, r_max, g0, **geometry)
-    except ParameterError as exc:
-        if exc.name != "vane_angle":
-            raise
-    swing = r_max - r_min
-    gmax = float(vp.vane_angle_max(vanes_per_impeller, swing))
-    z_max = int(np.floor(2.0 * np.pi / (2.0 * g0 + swing) * (1.0 + 1e-12)))
-    raise ParameterError(
-        "vanes_per_impeller",
-        str(vanes_per_impeller),
-        f"1 <= vanes_per_impeller <= {z_max} with the default vane_angle = gamma_0 "
-        f"= {fmt_deg(g0)} (Z (2 vane_angle + swing {fmt_deg(swing)}) <= 360 deg); "
-        f"or give vane_angle <= {fmt_deg(gmax)}",
-    )
+    reason = inadmissible(params, vanes_per_impeller, vane_angle, hub_radius, casing_radius,
+                          axial_width)  # fmt: skip
+    gamma = default_vane_angle(params) if vane_angle is None else vane_angle
+    if np.any(reason == len(CHECKS)):
+        g0 = float(np.ravel(gamma)[0])
+        swing = float(np.ravel(np.subtract(r_max, r_min))[0])
+        gmax = float(vp.vane_angle_max(vanes_per_impeller, swing))
+        z_max = int(np.floor(2.0 * np.pi / (2.0 * g0 + swing) * (1.0 + 1e-12)))
+        raise ParameterError(
+            "vanes_per_impeller",
+            str(vanes_per_impeller),
+            f"1 <= vanes_per_impeller <= {z_max} with the default vane_angle = gamma_0 "
+            f"= {fmt_deg(g0)} (Z (2 vane_angle + swing {fmt_deg(swing)}) <= 360 deg); "
+            f"or give vane_angle <= {fmt_deg(gmax)}",
+        )
+    gamma = float(gamma) if np.ndim(gamma) == 0 else gamma
+    return vp.VanePump(r_min, r_max, gamma, vanes_per_impeller, hub_radius, casing_radius,
+                       axial_width)  # fmt: skip
 
 
 def displacement(params: gb.GuideBar, pump: vp.VanePump) -> dict:
@@ -112,8 +148,9 @@ def displacement(params: gb.GuideBar, pump: vp.VanePump) -> dict:
         ``"per_period"``, ``"per_input_turn"``, ``"per_impeller_rev"`` [m^3].
     """
     per_period = vp.displacement(pump)
-    return {
+    out = {
         "per_period": per_period,
-        "per_input_turn": per_period / float(params.input_gear_ratio),
-        "per_impeller_rev": per_period * float(params.gear_ratio),
+        "per_input_turn": per_period / np.asarray(params.input_gear_ratio, dtype=float),
+        "per_impeller_rev": per_period * np.asarray(params.gear_ratio, dtype=float),
     }
+    return {k: float(v) if np.ndim(v) == 0 else v for k, v in out.items()}

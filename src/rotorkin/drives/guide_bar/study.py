@@ -33,6 +33,7 @@ from rotorkin.core.schema import RunSection
 from rotorkin.drives.guide_bar import figures as figures_guide_bar
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar import pump as gb_pump
+from rotorkin.drives.guide_bar import summary as closed_forms
 from rotorkin.drives.guide_bar.schema import GuideBarLoads, VanePumpMachine
 from rotorkin.machines import vane_pump as vp
 from rotorkin.studies import StudyResult
@@ -67,53 +68,16 @@ def _deg(x) -> float:
 
 
 def _summary(params: gb.GuideBar, m7: float, m8: float) -> dict:
-    lam, u, i12, phase = (
-        float(params.lam),
-        float(params.gear_ratio),
-        float(params.input_gear_ratio),
-        float(params.phase),
-    )
-    other = "guide" if params.driver == "crank" else "crank"
-    rmin, rmax = (float(v) for v in gb.speed_ratio_range(lam, u, params.driver))
-    # the two equal-speed points, as driving angles of mechanism 1 in [0, 2 pi), ascending
-    t_a, t_b = sorted(float(np.mod(t, 2.0 * np.pi)) for t in gb.equal_speed_angles(phase))
-    ratio_a = float(gb.driven_angle(lam, t_a, params.driver)[1]) / u
-    ratio_b = float(gb.driven_angle(lam, t_b, params.driver)[1]) / u
     fine = np.linspace(0.0, gb.period(params), _PEAK_SAMPLES)
-    _, d1, d2, d3 = gb.impeller_angles(params, fine)
+    d1, d2, d3 = gb.impeller_rates(params, fine)
     torque = m7 * d1[0] + m8 * d1[1]
-    mean = (m7 + m8) / (u * i12)  # each impeller's speed ratio averages 1/(u i12)
-    tmin, tmax = float(np.min(torque)), float(np.max(torque))
-    return {
-        "driver": params.driver,
-        "lambda": lam,
-        "gear_ratio": u,
-        "input_gear_ratio": i12,
-        "phase_deg": _deg(phase),
-        "vane_angle_deg": _deg(gb.vane_angle(lam, u, phase, params.driver)),
-        "vane_angle_crank_driven_deg": _deg(gb.vane_angle(lam, u, phase, "crank")),
-        "vane_angle_guide_driven_deg": _deg(gb.vane_angle(lam, u, phase, "guide")),
-        "vane_angle_other_driver_deg": _deg(gb.vane_angle(lam, u, phase, other)),
-        "relative_angle_swing_deg": _deg(gb.relative_angle_swing(params)),
-        "impeller_speed_ratio_min": rmin,
-        "impeller_speed_ratio_max": rmax,
-        "impeller_speed_ratio_mean": 1.0 / u,
-        "equal_speed_driving_angle_1_deg": _deg(t_a),
-        "equal_speed_driving_angle_2_deg": _deg(t_b),
-        "equal_speed_input_angle_1_deg": _deg(t_a * i12),
-        "equal_speed_input_angle_2_deg": _deg(t_b * i12),
-        "equal_speed_ratio_1": ratio_a,
-        "equal_speed_ratio_2": ratio_b,
-        "input_torque_min_Nm": tmin,
-        "input_torque_max_Nm": tmax,
-        "input_torque_mean_Nm": mean,
-        "input_torque_fluctuation_Nm": tmax - tmin,
-        "input_torque_fluctuation_ratio": (tmax - tmin) / abs(mean) if mean != 0.0 else np.nan,
-        "impeller_speed_ratio_input_min": rmin / i12,
-        "impeller_speed_ratio_input_max": rmax / i12,
+    sampled = {
+        "input_torque_min_Nm": float(np.min(torque)),
+        "input_torque_max_Nm": float(np.max(torque)),
         "impeller_accel_peak_per_rad": float(np.max(np.abs(d2))),
         "impeller_jerk_peak_per_rad2": float(np.max(np.abs(d3))),
     }
+    return closed_forms.drive_summary(params, m7, m8, sampled)
 
 
 _DOCS = {
@@ -260,49 +224,27 @@ def pump_state(
 
 def _pump_summary(drive, pump, ports, inertia, speed, coefficient) -> dict:
     period = gb.period(drive)
-    i12 = float(drive.input_gear_ratio)
     fine = np.linspace(0.0, period, _PEAK_SAMPLES)
     st = pump_state(drive, pump, ports, inertia, speed, fine)
-    disp = gb_pump.displacement(drive, pump)
-    k = pump.volume_per_angle
-    phi_min, phi_max = pump.chamber_angle_range
-    dp = float(ports.discharge_pressure) - float(ports.suction_pressure)
-    # every chamber takes in Delta V at p_s and delivers it at p_d once per period (exact)
-    work_period = -dp * disp["per_period"]
-    mean_torque = work_period / period
     omega_mean = float(np.mean(st["omega"][:-1]))
     # time-averaged flow: volume per period over the time of a period
     dt = 1.0 / st["omega"]
     t_period = float(np.trapezoid(dt, fine))
-    flow_mean = disp["per_period"] / t_period
+    flow_mean = vp.displacement(pump) / t_period
     # flywheel: net torque at the mean speed (member inertia included), J_eq already present
-    _, dq, d2q, _ = gb.impeller_angles(drive, fine)
+    dq, d2q, _ = gb.impeller_rates(drive, fine)
     js, jm = inertia
     net_const = st["shaft"] - tq.inertia_torque(js, jm, dq, d2q, omega_mean, 0.0)
     delta_e = float(fw.energy_fluctuation(net_const, fine))
     j_mean = float(np.trapezoid(st["J_eq"], fine) / period)
     cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
     out = {
-        "vanes_per_impeller": int(pump.vanes_per_impeller),
-        "chambers": pump.n_chambers,
-        "pump_vane_angle_deg": float(np.degrees(pump.vane_angle)),
-        "pump_vane_angle_max_deg": float(np.degrees(pump.vane_angle_max)),
-        "chamber_angle_min_deg": float(np.degrees(phi_min)),
-        "chamber_angle_max_deg": float(np.degrees(phi_max)),
-        "chamber_volume_min_cm3": k * phi_min * 1e6,
-        "chamber_volume_max_cm3": k * phi_max * 1e6,
-        "displacement_cm3_per_rev": disp["per_input_turn"] * 1e6,
-        "displacement_per_period_cm3": disp["per_period"] * 1e6,
-        "displacement_per_impeller_rev_cm3": disp["per_impeller_rev"] * 1e6,
+        **closed_forms.pump_summary(drive, pump),
         "flow_mean_l_per_min": flow_mean * _M3_TO_L_PER_MIN,
         "flow_max_l_per_min": float(np.max(st["flow"])) * _M3_TO_L_PER_MIN,
         "flow_min_l_per_min": float(np.min(st["flow"])) * _M3_TO_L_PER_MIN,
         "flow_ripple": vp.flow_ripple(st["flow"], dt),
-        "pressure_rise_bar": dp / 1e5,
-        "hydraulic_power_W": dp * flow_mean,
-        "indicated_work_J": work_period / i12,
-        "indicated_work_per_period_J": work_period,
-        "mean_torque_Nm": mean_torque,
+        **closed_forms.work_summary(drive, pump, ports, flow_mean),
         "shaft_torque_min_Nm": float(np.min(st["shaft"])),
         "shaft_torque_max_Nm": float(np.max(st["shaft"])),
         "torque_ripple": float(tq.torque_ripple(st["shaft"])),
