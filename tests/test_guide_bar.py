@@ -175,7 +175,7 @@ def test_speed_ratio_range_and_mean():
     for _ in range(5):
         lam, u = rng.uniform(0.05, 0.95), rng.uniform(0.5, 4)
         for driver in gb.DRIVERS:
-            r = gb.driven_angle(lam, x, driver)[1] / u
+            r = gb.driven_angle(lam, driver, x)[1] / u
             lo, hi = gb.speed_ratio_range(lam, u, driver)
             assert r.min() == pytest.approx(lo, rel=1e-9)
             assert r.max() == pytest.approx(hi, rel=1e-9)
@@ -249,10 +249,10 @@ def test_shapes_0d_1d_3d():
     m0 = gb.motion(p, t3[2, 1, 3])
     assert m0.q.shape == (2,)
     np.testing.assert_array_equal(m0.d2q, m3.d2q[:, 2, 1, 3])
-    assert gb.input_torque(p, t3, 3.0, 4.0).shape == t3.shape
+    assert gb.input_torque(p, 3.0, 4.0, t3).shape == t3.shape
     # loads broadcasting with theta
     m7 = rng.uniform(1, 5, (3, 1, 1))
-    M = gb.input_torque(p, t3, m7, 2.0)
+    M = gb.input_torque(p, m7, 2.0, t3)
     np.testing.assert_allclose(M, m7 * m3.dq[0] + 2.0 * m3.dq[1])
     assert gb.vane_angle(np.full((2, 3), 0.5), 2.0, np.pi, "crank").shape == (2, 3)
 
@@ -334,9 +334,9 @@ def test_input_torque_is_eq7_for_crank_driven():
         theta = rng.uniform(-10, 10, 50)
         m7, m8 = rng.uniform(-20, 20, 2)
         phi = theta / p.input_gear_ratio
-        want = gb.input_torque_eq7(p.lam, p.gear_ratio, p.input_gear_ratio, phi, p.phase + phi,
-                                   m7, m8)  # fmt: skip
-        np.testing.assert_allclose(gb.input_torque(p, theta, m7, m8), want, rtol=1e-13,
+        want = gb.input_torque_eq7(p.lam, p.gear_ratio, p.input_gear_ratio, m7, m8, phi,
+                                   p.phase + phi)  # fmt: skip
+        np.testing.assert_allclose(gb.input_torque(p, m7, m8, theta), want, rtol=1e-13,
                                    atol=1e-13)  # fmt: skip
 
 
@@ -355,12 +355,12 @@ def test_input_torque_power_balance_with_finite_differences():
                 qk = [link.driven(driver, v) / p.gear_ratio for v in x]
                 dq.append((qk[1] - qk[0]) / (2 * h))
             want = m7 * dq[0] + m8 * dq[1]
-            assert float(gb.input_torque(p, theta, m7, m8)) == pytest.approx(want, abs=1e-8)
+            assert float(gb.input_torque(p, m7, m8, theta)) == pytest.approx(want, abs=1e-8)
 
 
 def _fluctuation(lam, driver, m7, m8, phase=np.pi):
     p = gb.GuideBar(lam, 2.0, 2.0, phase, driver)
-    M = gb.input_torque(p, np.linspace(0, gb.period(p), 4001), m7, m8)
+    M = gb.input_torque(p, m7, m8, np.linspace(0, gb.period(p), 4001))
     return M.max() - M.min()
 
 
@@ -387,7 +387,7 @@ def test_torque_mean_is_loads_over_ratios():
     for driver in gb.DRIVERS:
         p = _random_bar(rng, driver)
         th = np.linspace(0, gb.period(p), 40001)
-        M = gb.input_torque(p, th, 4.0, 9.0)
+        M = gb.input_torque(p, 4.0, 9.0, th)
         mean = np.trapezoid(M, th) / gb.period(p)
         assert mean == pytest.approx(13.0 / (p.gear_ratio * p.input_gear_ratio), rel=1e-10)
 

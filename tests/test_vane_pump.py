@@ -238,7 +238,7 @@ def test_shapes_0d_1d_3d():
     assert vp.vane_angles(p.pump, _m(p, th3)).shape == (2, 3, 2, 3, 4)
     assert vp.volume_derivatives_dq(p.pump, _m(p, th3)).shape == (2, 6, 2, 3, 4)
     assert vp.flow_rate(p.pump, _m(p, th3), 100.0).shape == (2, 3, 4)
-    assert vp.chamber_pressures(dV3, vp.PortPressures(PS, PD)).shape == (6, 2, 3, 4)
+    assert vp.chamber_pressures(vp.PortPressures(PS, PD), dV3).shape == (6, 2, 3, 4)
 
 
 def test_periodicity():
@@ -343,7 +343,7 @@ def test_cycle_work_through_the_drive_equals_sum_of_p_dv(case):
     def torque(t):
         _, dv = vp.chamber_volumes(p.pump, _m(p, t))
         m = tq.member_torques(
-            vp.chamber_pressures(dv, ports), vp.volume_derivatives_dq(p.pump, _m(p, t))
+            vp.chamber_pressures(ports, dv), vp.volume_derivatives_dq(p.pump, _m(p, t))
         )
         return tq.shaft_torque_from_members(m, gb.impeller_angles(p.drive, t)[1])
 

@@ -433,7 +433,7 @@ def volume_derivatives_dq(pump: VanePump, motion: Motion):
     return np.broadcast_to(table.reshape(table.shape + (1,) * len(shape)), (2, 2 * z, *shape))
 
 
-def chamber_pressures(dvolume, ports: PortPressures):
+def chamber_pressures(ports: PortPressures, dvolume):
     """Ideal ports: ``p_d`` where ``dV/dtheta < 0`` (discharge), else ``p_s`` [Pa].
 
     Parameters

@@ -24,17 +24,17 @@ from rotorkin.machines import vane_pump as vp
 __all__ = ["impeller_outline", "impeller_area", "impeller_parts"]
 
 
-def impeller_outline(vane_centres, vane_angle, hub_radius, casing_radius, tolerance):
+def impeller_outline(vane_angle, hub_radius, casing_radius, vane_centres, tolerance):
     """Closed outline of an impeller with vanes centred at ``vane_centres`` [rad].
 
     Parameters
     ----------
-    vane_centres : array_like, shape (Z,)
-        Angles of the vane centre lines [rad], equally spaced ``2 pi / Z``.
     vane_angle : float
         Angular width gamma of a vane [rad], ``0 < gamma < 2 pi / Z``.
     hub_radius, casing_radius : float
         [m].
+    vane_centres : array_like, shape (Z,)
+        Angles of the vane centre lines [rad], equally spaced ``2 pi / Z``.
     tolerance : float
         Chordal tolerance of the arcs [m].
 
@@ -73,7 +73,7 @@ def impeller_parts(params: gb.GuideBar, pump: vp.VanePump, tolerance) -> list[Pa
     casing = planar.circle_curve("casing", "CASING", (0.0, 0.0), rc, tolerance)
     parts = []
     for k in (0, 1):
-        pts = impeller_outline(v[k], pump.vane_angle, rh, rc, tolerance)
+        pts = impeller_outline(pump.vane_angle, rh, rc, v[k], tolerance)
         outline = Curve("profile", "PROFILE", pts)
         parts.append(
             Part(

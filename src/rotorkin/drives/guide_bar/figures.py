@@ -52,14 +52,14 @@ def fig_speed_ratios(params: gb.GuideBar, driver: str, path: Path, number: int) 
     lam, u = float(p.lam), float(p.gear_ratio)
     t = np.linspace(0.0, 2.0 * np.pi, 721)
     x = np.stack([t, t + float(p.phase)])
-    r = gb.driven_angle(lam, x, driver)[1] / u
+    r = gb.driven_angle(lam, driver, x)[1] / u
     fig, ax = plt.subplots(figsize=(8, 5.8))
     ax.plot(np.degrees(t), r[0], "C0", label="impeller 1 (gear 7): omega_7 / omega_driving")
     ax.plot(np.degrees(t), r[1], "C3", label="impeller 2 (gear 8): omega_8 / omega_driving")
     ax.axhline(1.0 / u, color="0.5", ls=":", label=f"mean 1/u = {1.0 / u:.3g}")
     for k, ta in enumerate(gb.equal_speed_angles(p.phase)):
         ta = float(np.mod(ta, 2.0 * np.pi))
-        ra = float(gb.driven_angle(lam, ta, driver)[1]) / u
+        ra = float(gb.driven_angle(lam, driver, ta)[1]) / u
         ax.plot([np.degrees(ta)], [ra], "ko", label="equal-speed points" if k == 0 else None)
         ax.annotate(f"{np.degrees(ta):.1f} deg", (np.degrees(ta), ra),
                     textcoords="offset points", xytext=(6, 8), fontsize=8)  # fmt: skip
@@ -124,7 +124,7 @@ def _torque_limits(params: gb.GuideBar, lams, m7, m8):
     for driver in gb.DRIVERS:
         for lam in lams:
             p = replace(params, lam=lam, driver=driver)
-            vals.append(gb.input_torque(p, np.linspace(0.0, gb.period(p), 721), m7, m8))
+            vals.append(gb.input_torque(p, m7, m8, np.linspace(0.0, gb.period(p), 721)))
     lo, hi = float(np.min(vals)), float(np.max(vals))
     pad = 0.06 * max(hi - lo, 1e-3 * max(abs(lo), abs(hi), 1e-12))
     return lo - pad, hi + pad
@@ -140,7 +140,7 @@ def fig_input_torque(params: gb.GuideBar, driver: str, m7, m8, path: Path, numbe
         p = replace(params, lam=lam, driver=driver)
         theta = np.linspace(0.0, gb.period(p), 721)
         style = "k--" if lam == round(float(params.lam), 12) else f"C{i}-"
-        ax.plot(np.degrees(theta), gb.input_torque(p, theta, m7, m8), style,
+        ax.plot(np.degrees(theta), gb.input_torque(p, m7, m8, theta), style,
                 label=f"lambda = {lam:.3g}" + (" (config)" if style == "k--" else ""))  # fmt: skip
     lo, hi = _torque_limits(params, lams, m7, m8)
     ax.set_ylim(lo, hi)  # the same scale in Fig. 10 and 11, as the paper compares them

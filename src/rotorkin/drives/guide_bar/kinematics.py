@@ -326,7 +326,7 @@ def _by_driver(crank_fn, guide_fn, driver, *args):
                                                        strict=True))  # fmt: skip
 
 
-def driven_angle(lam, x, driver):
+def driven_angle(lam, driver, x):
     """:func:`guide_angle` (``driver = "crank"``) or :func:`crank_angle` (``"guide"``).
 
     ``driver`` may be an array of those names, broadcasting with ``lam`` and ``x``.
@@ -334,7 +334,7 @@ def driven_angle(lam, x, driver):
     return _by_driver(guide_angle, crank_angle, driver, lam, x)
 
 
-def driven_rates(lam, x, driver):
+def driven_rates(lam, driver, x):
     """:func:`guide_rates` (``driver = "crank"``) or :func:`crank_rates` (``"guide"``).
 
     ``driver`` may be an array of those names, broadcasting with ``lam`` and ``x``.
@@ -363,7 +363,7 @@ def speed_ratio_eq3(lam, u, x):
     c, s = np.cos(x), np.sin(x)
     W = np.sqrt(1.0 - (lam * s) ** 2)
     num = 1.0 - (lam * s) ** 2 + (lam * c) ** 2 - 2.0 * lam * c * W
-    return np.sqrt(num) / (u * W)
+    return np.sqrt(np.maximum(num, 0.0)) / (u * W)
 
 
 def _speed_ratio_range_crank(lam, u):
@@ -421,7 +421,7 @@ def impeller_rates(params: GuideBar, theta):
         ``dq/dtheta`` [-], ``d2q/dtheta2`` [1/rad], ``d3q/dtheta3`` [1/rad^2].
     """
     x = driving_angles(params, theta)
-    f = driven_rates(params.lam, x, params.driver)
+    f = driven_rates(params.lam, params.driver, x)
     return _per_theta(params, f, 1)
 
 
@@ -452,7 +452,7 @@ def impeller_angles(params: GuideBar, theta):
         ``...`` the broadcast shape of theta and the parameters.
     """
     x = driving_angles(params, theta)
-    f = driven_angle(params.lam, x, params.driver)
+    f = driven_angle(params.lam, params.driver, x)
     return _per_theta(params, f, 0)
 
 
@@ -562,7 +562,7 @@ def vane_angle_paper(lam, u, phase, driver: str):
         c1 = lam * s * s + c * W
         c2 = lam * s * s - c * W
     else:
-        driven_angle(0.5, 0.0, driver)  # raises
+        driven_angle(0.5, driver, 0.0)  # raises
     clip = (np.clip(v, -1.0, 1.0) for v in (c1, c2))
     return sum(np.arccos(v) for v in clip) / u
 
@@ -576,7 +576,7 @@ def vane_angle_half_turn(lam, u, driver: str):
     lam, u = np.asarray(lam, dtype=float), np.asarray(u, dtype=float)
     if driver == "crank":
         return 2.0 * np.arccos(lam / np.sqrt(1.0 + lam * lam)) / u
-    driven_angle(0.5, 0.0, driver)  # validates the name
+    driven_angle(0.5, driver, 0.0)  # validates the name
     return 2.0 * np.arccos(lam) / u
 
 
@@ -592,7 +592,7 @@ def lambda_for_vane_angle(gamma0, u, driver: str):
         ok = (half > np.pi / 4.0) & (half < np.pi / 2.0)
         safe = np.where(ok, half, np.pi / 3.0)
         return np.where(ok, np.cos(safe) / np.sin(safe), np.nan)
-    driven_angle(0.5, 0.0, driver)  # validates the name
+    driven_angle(0.5, driver, 0.0)  # validates the name
     ok = (half > 0.0) & (half < np.pi / 2.0)
     return np.where(ok, np.cos(half), np.nan)
 
@@ -611,7 +611,7 @@ def relative_angle_swing(params: GuideBar):
 # --------------------------------------------------------------------------------------------
 # torque (section 4)
 # --------------------------------------------------------------------------------------------
-def input_torque(params: GuideBar, theta, m7, m8):
+def input_torque(params: GuideBar, m7, m8, theta):
     """Torque on input gear 1 by virtual work, ``M1 = M7 dq_1/dtheta + M8 dq_2/dtheta`` [N*m].
 
     Eq. 7 (crank-driven) and eq. 8 (guide-driven; garbled in the OCR) are this
@@ -621,10 +621,10 @@ def input_torque(params: GuideBar, theta, m7, m8):
     Parameters
     ----------
     params : GuideBar
-    theta : array_like
-        Input gear angle [rad].
     m7, m8 : array_like
         Resisting torques on impeller 1 and 2 [N*m]; broadcast with theta.
+    theta : array_like
+        Input gear angle [rad].
 
     Returns
     -------
@@ -635,7 +635,7 @@ def input_torque(params: GuideBar, theta, m7, m8):
     return np.asarray(m7, dtype=float) * dq[0] + np.asarray(m8, dtype=float) * dq[1]
 
 
-def input_torque_eq7(lam, u, i12, x1, x2, m7, m8):
+def input_torque_eq7(lam, u, i12, m7, m8, x1, x2):
     """Crank-driven input torque as printed (eq. 7).
 
     ``M1 = (1 + l cos x1)/([1 + 2 l cos x1 + l^2] u i12) M7 + (same at x2) M8``,

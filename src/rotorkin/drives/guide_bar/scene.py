@@ -65,7 +65,7 @@ def mechanism_points(params, theta):
         ``(lambda + cos(crank), sin(crank))`` per mechanism.
     """
     x = gb.driving_angles(params, theta)
-    f = gb.driven_angle(float(params.lam), x, params.driver)[0]
+    f = gb.driven_angle(params.lam, params.driver, x)[0]
     crank, guide = (x, f) if params.driver == "crank" else (f, x)
     pin = np.stack([params.lam + np.cos(crank), np.sin(crank)], axis=1)
     return crank, guide, pin

@@ -201,7 +201,7 @@ def pump_state(
     motion = gb.motion(params, theta)
     dq, d2q = motion.dq, motion.d2q
     V, dV = vp.chamber_volumes(pump, motion)
-    p = vp.chamber_pressures(dV, ports)
+    p = vp.chamber_pressures(ports, dV)
     M = tq.member_torques(p, vp.volume_derivatives_dq(pump, motion))
     shaft = tq.shaft_torque_from_members(M, dq)
     omega, omega_dot, _ = shaft_speed(theta, speed, period)

@@ -69,8 +69,8 @@ def drive_summary(params: gb.GuideBar, m7, m8, sampled: dict | None = None) -> d
         "equal_speed_driving_angle_2_deg": np.degrees(t_b),
         "equal_speed_input_angle_1_deg": np.degrees(t_a * i12),
         "equal_speed_input_angle_2_deg": np.degrees(t_b * i12),
-        "equal_speed_ratio_1": gb.driven_rates(lam, t_a, driver)[0] / u,
-        "equal_speed_ratio_2": gb.driven_rates(lam, t_b, driver)[0] / u,
+        "equal_speed_ratio_1": gb.driven_rates(lam, driver, t_a)[0] / u,
+        "equal_speed_ratio_2": gb.driven_rates(lam, driver, t_b)[0] / u,
     }
     if sampled is not None:
         tmin, tmax = sampled["input_torque_min_Nm"], sampled["input_torque_max_Nm"]
