@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import dataclasses
+import inspect
+
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -11,6 +14,9 @@ from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion
 from rotorkin.drives import evaluate
 from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.drives.guide_bar import pump as gb_pump
+from rotorkin.drives.guide_bar.schema import GuideBarDrive, GuideBarLoads, VanePumpMachine
+from rotorkin.machines import vane_pump as vp
 from rotorkin.studies.helpers import build_params
 
 
@@ -533,3 +539,68 @@ def test_fig9_ordering_reverses_at_small_phase():
     crank = _numeric_vane_angle(0.5, 2.0, np.pi, "crank")[0]
     guide = _numeric_vane_angle(0.5, 2.0, np.pi, "guide")[0]
     assert crank > guide + 1e-3
+
+
+# --------------------------------------------------------------------------------------------
+# one source of defaults: the schema
+# --------------------------------------------------------------------------------------------
+def _schema_defaults():
+    """Every section's defaults parsed through the schema (SI), by field name."""
+    drive = GuideBarDrive(type="guide_bar", **{"lambda": 0.5}, gear_ratio=2.0)
+    required = {"type", "lam", "gear_ratio"}  # given above, no default to compare
+    return {
+        "drive": {k: v for k, v in drive.model_dump().items() if k not in required},
+        "machine": VanePumpMachine().model_dump(),
+        "loads": GuideBarLoads().model_dump(),
+    }
+
+
+def _dataclass_defaults(cls):
+    return {
+        f.name: f.default for f in dataclasses.fields(cls) if f.default is not dataclasses.MISSING
+    }
+
+
+def test_every_dataclass_default_is_the_schema_default():
+    """GuideBar ~ [drive], VanePump and vane_pump() ~ [machine], PortPressures ~ [loads]."""
+    schema = _schema_defaults()
+    pump_fn = {
+        name: par.default
+        for name, par in inspect.signature(gb_pump.vane_pump).parameters.items()
+        if par.default is not inspect.Parameter.empty
+    }
+    pairs = (
+        ("drive", _dataclass_defaults(gb.GuideBar)),
+        ("machine", _dataclass_defaults(vp.VanePump)),
+        ("loads", _dataclass_defaults(vp.PortPressures)),
+        ("machine", pump_fn),
+    )
+    compared = []
+    for section, defaults in pairs:
+        for name, value in defaults.items():
+            assert name in schema[section], f"{name}: no field of that name in [{section}]"
+            want = schema[section][name]
+            assert value == want and (value is None) == (want is None), (
+                f"{name}: dataclass default {value!r} != schema [{section}] default {want!r}"
+            )
+            compared.append(name)
+    # every default is compared; the schema's defaults of these sections are all covered
+    assert {"input_gear_ratio", "phase", "driver"} <= set(compared)
+    assert {"vanes_per_impeller", "hub_radius", "casing_radius", "axial_width"} <= set(compared)
+    assert {"suction_pressure", "discharge_pressure", "vane_angle"} <= set(compared)
+
+
+def test_the_defaults_check_fails_on_a_mismatch():
+    """The comparison above is not vacuous: a changed default is caught."""
+
+    @dataclasses.dataclass(frozen=True)
+    class Shifted:
+        lam: float
+        gear_ratio: float
+        input_gear_ratio: float = 1.0
+        phase: float = np.pi / 2.0
+        driver: str = "crank"
+
+    schema = _schema_defaults()["drive"]
+    bad = {k: v for k, v in _dataclass_defaults(Shifted).items() if schema[k] != v}
+    assert bad == {"phase": np.pi / 2.0}

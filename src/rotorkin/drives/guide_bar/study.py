@@ -287,19 +287,11 @@ def _pump_columns(drive, pump, ports, inertia, speed, theta) -> tuple[dict, dict
 def drive_params(cfg: dict) -> gb.GuideBar:
     """The drive's parameters from a validated config (SI); errors name the config keys."""
     d = cfg["drive"]
-    params = build_params(
-        gb.GuideBar,
-        "drive",
-        {
-            "lam": d["lambda"],
-            "gear_ratio": d["gear_ratio"],
-            "input_gear_ratio": d.get("input_gear_ratio", 1.0),
-            "phase": d.get("phase", np.pi),
-            "driver": d.get("driver", "crank"),
-        },
-        aliases={"lam": "lambda"},
-    )
-    return params
+    keys = {"lam": "lambda", "gear_ratio": "gear_ratio", "input_gear_ratio": "input_gear_ratio",
+            "phase": "phase", "driver": "driver"}  # fmt: skip
+    # a key missing from cfg takes the dataclass default, which is the schema's
+    values = {field: d[key] for field, key in keys.items() if key in d}
+    return build_params(gb.GuideBar, "drive", values, aliases={"lam": "lambda"})
 
 
 def pump_params(cfg: dict, params: gb.GuideBar | None = None) -> vp.VanePump:
