@@ -516,6 +516,7 @@ def test_study_errors_name_config_keys():
         evaluate(_cfg(phase=0.0))
 
 
+@pytest.mark.slow
 def test_study_plot_writes_pngs(tmp_path):
     cfg = _cfg(driver="guide", phase=np.radians(120.0))
     cfg["loads"] = {"impeller_torque_1": 0.0, "impeller_torque_2": 0.0}
@@ -604,3 +605,16 @@ def test_the_defaults_check_fails_on_a_mismatch():
     schema = _schema_defaults()["drive"]
     bad = {k: v for k, v in _dataclass_defaults(Shifted).items() if schema[k] != v}
     assert bad == {"phase": np.pi / 2.0}
+
+
+def test_study_keeps_the_impellers_motion_on_the_column_grid():
+    """StudyResult.motion: both impellers over one period, on the grid of the columns."""
+    res = evaluate(_cfg(driver="guide", input_gear_ratio=1.5, phase=2.0))
+    m, c = res.motion, res.columns
+    assert isinstance(m, Motion) and m.members == ("impeller 1", "impeller 2")
+    np.testing.assert_allclose(np.degrees(m.theta), c["theta_deg"], rtol=1e-15, atol=0)
+    assert m.theta[0] == 0.0 and m.theta[-1] == pytest.approx(2 * np.pi * 1.5, rel=1e-15)
+    for k in (1, 2):
+        np.testing.assert_array_equal(np.degrees(m.q[k - 1]), c[f"impeller{k}_angle_deg"])
+        np.testing.assert_array_equal(m.dq[k - 1], c[f"impeller{k}_speed_ratio"])
+        np.testing.assert_array_equal(m.d3q[k - 1], c[f"impeller{k}_jerk_per_rad2"])

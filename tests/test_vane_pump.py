@@ -604,6 +604,7 @@ def test_equal_port_pressures_give_no_fluid_torque():
     assert s["shaft_torque_min_Nm"] == 0.0 and s["shaft_torque_max_Nm"] == 0.0
 
 
+@pytest.mark.slow
 def test_plot_writes_pump_figures(tmp_path):
     res = evaluate(
         _cfg(
