@@ -542,7 +542,7 @@ def vane_angle(lam, u, phase, driver):
     return _by_driver(_vane_angle_crank, _vane_angle_guide, driver, lam, u, a)[0]
 
 
-def vane_angle_paper(lam, u, phase, driver: str):
+def vane_angle_paper(lam, u, phase, driver):
     """The paper's general-Sigma vane angle, ``(theta_1 + theta_2)/u``, as printed (section 3).
 
     Crank-driven: ``cos theta_1 = (lambda + cos(Sigma/2)) / sqrt(1 + 2 lambda
@@ -554,33 +554,35 @@ def vane_angle_paper(lam, u, phase, driver: str):
     lam, u = np.asarray(lam, dtype=float), np.asarray(u, dtype=float)
     p = np.asarray(phase, dtype=float)
     c, s = np.cos(0.5 * p), np.sin(0.5 * p)
-    if driver == "crank":
-        c1 = (lam + c) / np.sqrt(1.0 + 2.0 * lam * c + lam * lam)
-        c2 = (lam - c) / np.sqrt(1.0 - 2.0 * lam * c + lam * lam)
-    elif driver == "guide":
+
+    def crank():
+        return (lam + c) / np.sqrt(1.0 + 2.0 * lam * c + lam * lam), (lam - c) / np.sqrt(
+            1.0 - 2.0 * lam * c + lam * lam
+        )
+
+    def guide():
         W = np.sqrt(1.0 - (lam * s) ** 2)
-        c1 = lam * s * s + c * W
-        c2 = lam * s * s - c * W
-    else:
-        driven_angle(0.5, driver, 0.0)  # raises
-    clip = (np.clip(v, -1.0, 1.0) for v in (c1, c2))
+        return lam * s * s + c * W, lam * s * s - c * W
+
+    clip = (np.clip(v, -1.0, 1.0) for v in _by_driver(crank, guide, driver))
     return sum(np.arccos(v) for v in clip) / u
 
 
-def vane_angle_half_turn(lam, u, driver: str):
+def vane_angle_half_turn(lam, u, driver):
     """Vane angle at Sigma = 180 deg: eq. 5 (crank) or eq. 6 (guide) solved for gamma_0 [rad].
 
     Crank: ``gamma_0 = 2 arccos(lambda / sqrt(1 + lambda^2)) / u`` (eq. 5);
     guide: ``gamma_0 = 2 arccos(lambda) / u`` (eq. 6).
     """
     lam, u = np.asarray(lam, dtype=float), np.asarray(u, dtype=float)
-    if driver == "crank":
-        return 2.0 * np.arccos(lam / np.sqrt(1.0 + lam * lam)) / u
-    driven_angle(0.5, driver, 0.0)  # validates the name
-    return 2.0 * np.arccos(lam) / u
+    return _by_driver(
+        lambda: (2.0 * np.arccos(lam / np.sqrt(1.0 + lam * lam)) / u,),
+        lambda: (2.0 * np.arccos(lam) / u,),
+        driver,
+    )[0]
 
 
-def lambda_for_vane_angle(gamma0, u, driver: str):
+def lambda_for_vane_angle(gamma0, u, driver):
     """lambda that gives the vane angle gamma_0 at Sigma = 180 deg (eq. 5, 6 inverted).
 
     Crank: ``lambda = cot(u gamma_0 / 2)``, needs ``pi/4 < u gamma_0/2 < pi/2``;
@@ -588,13 +590,17 @@ def lambda_for_vane_angle(gamma0, u, driver: str):
     NaN where no ``0 < lambda < 1`` exists. Derived here.
     """
     half = 0.5 * np.asarray(u, dtype=float) * np.asarray(gamma0, dtype=float)
-    if driver == "crank":
+
+    def crank():
         ok = (half > np.pi / 4.0) & (half < np.pi / 2.0)
         safe = np.where(ok, half, np.pi / 3.0)
-        return np.where(ok, np.cos(safe) / np.sin(safe), np.nan)
-    driven_angle(0.5, driver, 0.0)  # validates the name
-    ok = (half > 0.0) & (half < np.pi / 2.0)
-    return np.where(ok, np.cos(half), np.nan)
+        return (np.where(ok, np.cos(safe) / np.sin(safe), np.nan),)
+
+    def guide():
+        ok = (half > 0.0) & (half < np.pi / 2.0)
+        return (np.where(ok, np.cos(half), np.nan),)
+
+    return _by_driver(crank, guide, driver)[0]
 
 
 def relative_angle_swing(params: GuideBar):
