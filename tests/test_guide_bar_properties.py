@@ -280,3 +280,39 @@ def test_sweep_reasons_name_what_the_study_names(lam, z, rh, ps):
             assert keys[reason[i]] == exc.name
         else:
             assert reason[i] == 0
+
+
+@SETTINGS
+@given(
+    designs=st.lists(
+        st.tuples(drives(), st.integers(1, 3), st.floats(0.01, 0.3), st.floats(0.01, 0.07)),
+        min_size=1,
+        max_size=5,
+    )
+)
+def test_pump_of_array_designs_equals_one_pump_per_design(designs):
+    """The pump's closed forms over (n,) arrays of designs equal the pumps built one by one."""
+    ones = []
+    for p, z, gamma, rh in designs:
+        try:
+            ones.append((p, gb_pump.vane_pump(p, z, gamma, rh)))
+        except ParameterError:
+            continue
+    if not ones:
+        return
+    fields = ("lam", "gear_ratio", "input_gear_ratio", "phase", "driver")
+    params = gb.GuideBar(*(np.array([getattr(p, f) for p, _ in ones]) for f in fields))
+    many = gb_pump.vane_pump(
+        params,
+        np.array([one.vanes_per_impeller for _, one in ones]),
+        np.array([one.vane_angle for _, one in ones]),
+        np.array([one.hub_radius for _, one in ones]),
+    )
+    disp = gb_pump.displacement(params, many)
+    for i, (p, one) in enumerate(ones):
+        assert many.swing[i] == pytest.approx(one.swing, rel=1e-14, abs=1e-15)
+        assert many.vane_angle_max[i] == pytest.approx(one.vane_angle_max, rel=1e-14, abs=1e-15)
+        for a, b in zip(many.chamber_angle_range, one.chamber_angle_range, strict=True):
+            assert a[i] == pytest.approx(b, rel=1e-13, abs=1e-14)
+        for key, value in gb_pump.displacement(p, one).items():
+            assert disp[key][i] == pytest.approx(value, rel=1e-13)
