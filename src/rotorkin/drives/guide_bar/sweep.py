@@ -212,13 +212,15 @@ def _sampled(p, samples, threads) -> dict:
     cols = {k: full(p.float(k), n) for k in ("drive.lambda", "drive.gear_ratio",
             "drive.input_gear_ratio", "drive.phase", "loads.impeller_torque_1",
             "loads.impeller_torque_2")}  # fmt: skip
-    driver = full(np.asarray(p["drive.driver"]), n, dtype=str)
+    # one driver for all designs: one formula evaluated; else both, picked per design
+    varies = p.varies("drive.driver")
+    driver = full(np.asarray(p["drive.driver"]), n, dtype=str) if varies else p["drive.driver"]
     shared_grid = not p.varies("drive.input_gear_ratio")
     grid = sample_grid(period(p), samples) if shared_grid else None
 
     def fn(lo, hi):
         lam, u, i12, ph, m7, m8 = (cols[k][lo:hi, None] for k in cols)
-        params = gb.GuideBar(lam, u, i12, ph, driver[lo:hi, None])
+        params = gb.GuideBar(lam, u, i12, ph, driver[lo:hi, None] if varies else driver)
         theta = grid if shared_grid else sample_grid(gb.period(params), samples)
         d1, d2, d3 = gb.impeller_rates(params, theta)  # (2, block, samples)
         torque = m7 * d1[0] + m8 * d1[1]
