@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import dataclasses
+import inspect
+
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -11,6 +14,9 @@ from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion
 from rotorkin.drives import evaluate
 from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.drives.guide_bar import pump as gb_pump
+from rotorkin.drives.guide_bar.schema import GuideBarDrive, GuideBarLoads, VanePumpMachine
+from rotorkin.machines import vane_pump as vp
 from rotorkin.studies.helpers import build_params
 
 
@@ -175,7 +181,7 @@ def test_speed_ratio_range_and_mean():
     for _ in range(5):
         lam, u = rng.uniform(0.05, 0.95), rng.uniform(0.5, 4)
         for driver in gb.DRIVERS:
-            r = gb.driven_angle(lam, x, driver)[1] / u
+            r = gb.driven_angle(lam, driver, x)[1] / u
             lo, hi = gb.speed_ratio_range(lam, u, driver)
             assert r.min() == pytest.approx(lo, rel=1e-9)
             assert r.max() == pytest.approx(hi, rel=1e-9)
@@ -249,10 +255,10 @@ def test_shapes_0d_1d_3d():
     m0 = gb.motion(p, t3[2, 1, 3])
     assert m0.q.shape == (2,)
     np.testing.assert_array_equal(m0.d2q, m3.d2q[:, 2, 1, 3])
-    assert gb.input_torque(p, t3, 3.0, 4.0).shape == t3.shape
+    assert gb.input_torque(p, 3.0, 4.0, t3).shape == t3.shape
     # loads broadcasting with theta
     m7 = rng.uniform(1, 5, (3, 1, 1))
-    M = gb.input_torque(p, t3, m7, 2.0)
+    M = gb.input_torque(p, m7, 2.0, t3)
     np.testing.assert_allclose(M, m7 * m3.dq[0] + 2.0 * m3.dq[1])
     assert gb.vane_angle(np.full((2, 3), 0.5), 2.0, np.pi, "crank").shape == (2, 3)
 
@@ -334,9 +340,9 @@ def test_input_torque_is_eq7_for_crank_driven():
         theta = rng.uniform(-10, 10, 50)
         m7, m8 = rng.uniform(-20, 20, 2)
         phi = theta / p.input_gear_ratio
-        want = gb.input_torque_eq7(p.lam, p.gear_ratio, p.input_gear_ratio, phi, p.phase + phi,
-                                   m7, m8)  # fmt: skip
-        np.testing.assert_allclose(gb.input_torque(p, theta, m7, m8), want, rtol=1e-13,
+        want = gb.input_torque_eq7(p.lam, p.gear_ratio, p.input_gear_ratio, m7, m8, phi,
+                                   p.phase + phi)  # fmt: skip
+        np.testing.assert_allclose(gb.input_torque(p, m7, m8, theta), want, rtol=1e-13,
                                    atol=1e-13)  # fmt: skip
 
 
@@ -355,12 +361,12 @@ def test_input_torque_power_balance_with_finite_differences():
                 qk = [link.driven(driver, v) / p.gear_ratio for v in x]
                 dq.append((qk[1] - qk[0]) / (2 * h))
             want = m7 * dq[0] + m8 * dq[1]
-            assert float(gb.input_torque(p, theta, m7, m8)) == pytest.approx(want, abs=1e-8)
+            assert float(gb.input_torque(p, m7, m8, theta)) == pytest.approx(want, abs=1e-8)
 
 
 def _fluctuation(lam, driver, m7, m8, phase=np.pi):
     p = gb.GuideBar(lam, 2.0, 2.0, phase, driver)
-    M = gb.input_torque(p, np.linspace(0, gb.period(p), 4001), m7, m8)
+    M = gb.input_torque(p, m7, m8, np.linspace(0, gb.period(p), 4001))
     return M.max() - M.min()
 
 
@@ -387,7 +393,7 @@ def test_torque_mean_is_loads_over_ratios():
     for driver in gb.DRIVERS:
         p = _random_bar(rng, driver)
         th = np.linspace(0, gb.period(p), 40001)
-        M = gb.input_torque(p, th, 4.0, 9.0)
+        M = gb.input_torque(p, 4.0, 9.0, th)
         mean = np.trapezoid(M, th) / gb.period(p)
         assert mean == pytest.approx(13.0 / (p.gear_ratio * p.input_gear_ratio), rel=1e-10)
 
@@ -510,6 +516,7 @@ def test_study_errors_name_config_keys():
         evaluate(_cfg(phase=0.0))
 
 
+@pytest.mark.slow
 def test_study_plot_writes_pngs(tmp_path):
     cfg = _cfg(driver="guide", phase=np.radians(120.0))
     cfg["loads"] = {"impeller_torque_1": 0.0, "impeller_torque_2": 0.0}
@@ -533,3 +540,81 @@ def test_fig9_ordering_reverses_at_small_phase():
     crank = _numeric_vane_angle(0.5, 2.0, np.pi, "crank")[0]
     guide = _numeric_vane_angle(0.5, 2.0, np.pi, "guide")[0]
     assert crank > guide + 1e-3
+
+
+# --------------------------------------------------------------------------------------------
+# one source of defaults: the schema
+# --------------------------------------------------------------------------------------------
+def _schema_defaults():
+    """Every section's defaults parsed through the schema (SI), by field name."""
+    drive = GuideBarDrive(type="guide_bar", **{"lambda": 0.5}, gear_ratio=2.0)
+    required = {"type", "lam", "gear_ratio"}  # given above, no default to compare
+    return {
+        "drive": {k: v for k, v in drive.model_dump().items() if k not in required},
+        "machine": VanePumpMachine().model_dump(),
+        "loads": GuideBarLoads().model_dump(),
+    }
+
+
+def _dataclass_defaults(cls):
+    return {
+        f.name: f.default for f in dataclasses.fields(cls) if f.default is not dataclasses.MISSING
+    }
+
+
+def test_every_dataclass_default_is_the_schema_default():
+    """GuideBar ~ [drive], VanePump and vane_pump() ~ [machine], PortPressures ~ [loads]."""
+    schema = _schema_defaults()
+    pump_fn = {
+        name: par.default
+        for name, par in inspect.signature(gb_pump.vane_pump).parameters.items()
+        if par.default is not inspect.Parameter.empty
+    }
+    pairs = (
+        ("drive", _dataclass_defaults(gb.GuideBar)),
+        ("machine", _dataclass_defaults(vp.VanePump)),
+        ("loads", _dataclass_defaults(vp.PortPressures)),
+        ("machine", pump_fn),
+    )
+    compared = []
+    for section, defaults in pairs:
+        for name, value in defaults.items():
+            assert name in schema[section], f"{name}: no field of that name in [{section}]"
+            want = schema[section][name]
+            assert value == want and (value is None) == (want is None), (
+                f"{name}: dataclass default {value!r} != schema [{section}] default {want!r}"
+            )
+            compared.append(name)
+    # every default is compared; the schema's defaults of these sections are all covered
+    assert {"input_gear_ratio", "phase", "driver"} <= set(compared)
+    assert {"vanes_per_impeller", "hub_radius", "casing_radius", "axial_width"} <= set(compared)
+    assert {"suction_pressure", "discharge_pressure", "vane_angle"} <= set(compared)
+
+
+def test_the_defaults_check_fails_on_a_mismatch():
+    """The comparison above is not vacuous: a changed default is caught."""
+
+    @dataclasses.dataclass(frozen=True)
+    class Shifted:
+        lam: float
+        gear_ratio: float
+        input_gear_ratio: float = 1.0
+        phase: float = np.pi / 2.0
+        driver: str = "crank"
+
+    schema = _schema_defaults()["drive"]
+    bad = {k: v for k, v in _dataclass_defaults(Shifted).items() if schema[k] != v}
+    assert bad == {"phase": np.pi / 2.0}
+
+
+def test_study_keeps_the_impellers_motion_on_the_column_grid():
+    """StudyResult.motion: both impellers over one period, on the grid of the columns."""
+    res = evaluate(_cfg(driver="guide", input_gear_ratio=1.5, phase=2.0))
+    m, c = res.motion, res.columns
+    assert isinstance(m, Motion) and m.members == ("impeller 1", "impeller 2")
+    np.testing.assert_allclose(np.degrees(m.theta), c["theta_deg"], rtol=1e-15, atol=0)
+    assert m.theta[0] == 0.0 and m.theta[-1] == pytest.approx(2 * np.pi * 1.5, rel=1e-15)
+    for k in (1, 2):
+        np.testing.assert_array_equal(np.degrees(m.q[k - 1]), c[f"impeller{k}_angle_deg"])
+        np.testing.assert_array_equal(m.dq[k - 1], c[f"impeller{k}_speed_ratio"])
+        np.testing.assert_array_equal(m.d3q[k - 1], c[f"impeller{k}_jerk_per_rad2"])

@@ -131,8 +131,8 @@ def test_eq7_input_torque_and_fig10_fig11():
     theta = np.linspace(0, 4 * np.pi, 721)
     pc = gb.GuideBar(LAM, U, I12, SIGMA, "crank")
     np.testing.assert_allclose(
-        gb.input_torque(pc, theta, 10.0, 10.0),
-        gb.input_torque_eq7(LAM, U, I12, theta / I12, SIGMA + theta / I12, 10.0, 10.0),
+        gb.input_torque(pc, 10.0, 10.0, theta),
+        gb.input_torque_eq7(LAM, U, I12, 10.0, 10.0, theta / I12, SIGMA + theta / I12),
         rtol=1e-13,
     )
     fluct = {}
@@ -140,7 +140,7 @@ def test_eq7_input_torque_and_fig10_fig11():
         fluct[driver] = []
         for lam in (0.3, 0.5, 0.7):
             p = gb.GuideBar(lam, U, I12, SIGMA, driver)
-            M = gb.input_torque(p, theta, 10.0, 10.0)
+            M = gb.input_torque(p, 10.0, 10.0, theta)
             fluct[driver].append(M.max() - M.min())
     assert np.all(np.diff(fluct["crank"]) > 0)
     assert np.all(np.array(fluct["guide"]) < 0.1 * np.array(fluct["crank"]))

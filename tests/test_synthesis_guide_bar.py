@@ -124,9 +124,9 @@ def load_config_from_raw(raw):
 @pytest.mark.parametrize(
     "target, words",
     [
-        ("30 deg", ["--target", "45 deg < gamma_0 < 90 deg", "drive.gear_ratio"]),
-        ("sixty", ["--target", "'sixty'"]),
-        ("60 mm", ["--target", "angle"]),
+        ("30 deg", ["target = 30 deg", "45 deg < gamma_0 < 90 deg", "drive.gear_ratio"]),
+        ("sixty", ["target = ", "'sixty'"]),
+        ("60 mm", ["target = ", "angle"]),
     ],
 )
 def test_synthesize_errors(target, words):
@@ -140,7 +140,7 @@ def test_synthesize_errors(target, words):
 
 
 def test_default_target_from_the_bare_example():
-    """No --target: 60 deg, not the example's 63.43 deg, reached to 1e-9 rad by the forward run."""
+    """No target: 60 deg, not the example's 63.43 deg, reached to 1e-9 rad by the forward run."""
     cfg, raw, _ = load_config(None, "guide-bar-pump", [])
     res = synthesize(cfg, raw, "vane_angle")
     assert res.metrics["target_vane_angle_deg"] == pytest.approx(60.0, abs=1e-12)
@@ -152,7 +152,7 @@ def test_default_target_from_the_bare_example():
     lam = new["drive"]["lambda"]
     assert lam == pytest.approx(1.0 / np.sqrt(3.0), rel=1e-12)  # eq. 5: cot 60 deg
     assert abs(_vane_angle_independent(lam, 2.0, np.pi, "crank") - np.pi / 3.0) < 1e-9
-    assert any("--target not given" in n for n in res.notes)
+    assert any("target not given" in n for n in res.notes)
 
 
 def test_default_vane_angle_falls_back_inside_the_range():

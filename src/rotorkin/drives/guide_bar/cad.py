@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from rotorkin.drives.guide_bar import cam as impeller
+from rotorkin.drives.guide_bar.study import drive_params, pump_params
 from rotorkin.render.cad import check_tolerance
 
 __all__ = ["cad_parts"]
@@ -14,15 +16,7 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     :class:`ParameterError` named by config key (``cam.roller_radius``,
     ``cam.thickness``, ``export.tolerance``, drive and machine keys).
     """
-    from rotorkin.drives.guide_bar import cam as impeller
-    from rotorkin.drives.guide_bar.schema import VanePumpMachine
-    from rotorkin.drives.guide_bar.study import drive_params
-    from rotorkin.machines import vane_pump as vp
-    from rotorkin.studies.helpers import build_params
-
     params = drive_params(cfg)
-    m = {**VanePumpMachine().model_dump(), **(cfg.get("machine") or {})}
-    keys = ("vanes_per_impeller", "vane_angle", "hub_radius", "casing_radius", "axial_width")
-    pump = build_params(vp.VanePump, "machine", {"drive": params, **{k: m[k] for k in keys}})
+    pump = pump_params(cfg, params)
     tol = check_tolerance(cfg, float(pump.hub_radius))
-    return (impeller.impeller_parts(pump, tol) if with_parts else []), []
+    return (impeller.impeller_parts(params, pump, tol) if with_parts else []), []

@@ -18,22 +18,23 @@ import numpy as np
 from rotorkin.cams import planar
 from rotorkin.cams.planar import Curve, Part
 from rotorkin.core.angles import fmt_deg, fmt_mm
+from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.machines import vane_pump as vp
 
 __all__ = ["impeller_outline", "impeller_area", "impeller_parts"]
 
 
-def impeller_outline(vane_centres, vane_angle, hub_radius, casing_radius, tolerance):
+def impeller_outline(vane_angle, hub_radius, casing_radius, vane_centres, tolerance):
     """Closed outline of an impeller with vanes centred at ``vane_centres`` [rad].
 
     Parameters
     ----------
-    vane_centres : array_like, shape (Z,)
-        Angles of the vane centre lines [rad], equally spaced ``2 pi / Z``.
     vane_angle : float
         Angular width gamma of a vane [rad], ``0 < gamma < 2 pi / Z``.
     hub_radius, casing_radius : float
         [m].
+    vane_centres : array_like, shape (Z,)
+        Angles of the vane centre lines [rad], equally spaced ``2 pi / Z``.
     tolerance : float
         Chordal tolerance of the arcs [m].
 
@@ -62,17 +63,17 @@ def impeller_area(vanes, vane_angle, hub_radius, casing_radius):
     return np.pi * rh * rh + int(vanes) * float(vane_angle) * 0.5 * (rc * rc - rh * rh)
 
 
-def impeller_parts(pump: vp.VanePump, tolerance) -> list[Part]:
+def impeller_parts(params: gb.GuideBar, pump: vp.VanePump, tolerance) -> list[Part]:
     """Both impellers as :class:`~rotorkin.cams.planar.Part` s, extruded to ``axial_width``.
 
     Curves: ``profile`` (PROFILE) and, for reference, the ``casing`` circle (CASING).
     """
-    v = vp.vane_angles(pump, 0.0)  # (2, Z)
+    v = vp.vane_angles(pump, gb.motion(params, 0.0))  # (2, Z)
     rh, rc = float(pump.hub_radius), float(pump.casing_radius)
     casing = planar.circle_curve("casing", "CASING", (0.0, 0.0), rc, tolerance)
     parts = []
     for k in (0, 1):
-        pts = impeller_outline(v[k], pump.vane_angle, rh, rc, tolerance)
+        pts = impeller_outline(pump.vane_angle, rh, rc, v[k], tolerance)
         outline = Curve("profile", "PROFILE", pts)
         parts.append(
             Part(

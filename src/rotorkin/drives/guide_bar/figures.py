@@ -1,7 +1,7 @@
 """Figures of the guide-bar + gear drive of a differential vane pump (JHIT 2012, Fig. 3, 5, 9-11)
 and of the pump itself (chambers, cross-sections, flow, torques; derived here).
 
-matplotlib is imported lazily inside the functions (Agg backend).
+pyplot comes from :func:`rotorkin.render.figures.pyplot` (the command line chooses the backend).
 """
 
 from __future__ import annotations
@@ -10,14 +10,20 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+from matplotlib.patches import Patch, Wedge
 
 from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.machines import vane_pump as vp
+from rotorkin.render.figures import pyplot as _plt
+from rotorkin.render.figures import save as _save
+from rotorkin.render.figures import save_in
 
 __all__ = [
     "TORQUE_LAMBDAS",
     "plot_all",
     "fig_speed_ratios",
     "fig_vane_angle",
+    "fig9_axes",
     "fig_input_torque",
     "fig_relative_angle",
     "fig_pump_sections",
@@ -26,27 +32,10 @@ __all__ = [
     "fig_pump_torque",
 ]
 
-_DPI = 120
 #: The lambdas of Fig. 10 and 11 (besides the config's).
 TORQUE_LAMBDAS = (0.3, 0.5, 0.7)
 _LABEL = {"crank": "crank-driven", "guide": "guide-driven"}
 _EQ = {"crank": 5, "guide": 6}
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def _save(fig, path: Path) -> Path:
-    fig.tight_layout()
-    fig.savefig(path, dpi=_DPI)
-    _plt().close(fig)
-    return path
 
 
 def _tag(p: gb.GuideBar) -> str:
@@ -63,14 +52,14 @@ def fig_speed_ratios(params: gb.GuideBar, driver: str, path: Path, number: int) 
     lam, u = float(p.lam), float(p.gear_ratio)
     t = np.linspace(0.0, 2.0 * np.pi, 721)
     x = np.stack([t, t + float(p.phase)])
-    r = gb.driven_angle(lam, x, driver)[1] / u
+    r = gb.driven_angle(lam, driver, x)[1] / u
     fig, ax = plt.subplots(figsize=(8, 5.8))
     ax.plot(np.degrees(t), r[0], "C0", label="impeller 1 (gear 7): omega_7 / omega_driving")
     ax.plot(np.degrees(t), r[1], "C3", label="impeller 2 (gear 8): omega_8 / omega_driving")
     ax.axhline(1.0 / u, color="0.5", ls=":", label=f"mean 1/u = {1.0 / u:.3g}")
     for k, ta in enumerate(gb.equal_speed_angles(p.phase)):
         ta = float(np.mod(ta, 2.0 * np.pi))
-        ra = float(gb.driven_angle(lam, ta, driver)[1]) / u
+        ra = float(gb.driven_angle(lam, driver, ta)[1]) / u
         ax.plot([np.degrees(ta)], [ra], "ko", label="equal-speed points" if k == 0 else None)
         ax.annotate(f"{np.degrees(ta):.1f} deg", (np.degrees(ta), ra),
                     textcoords="offset points", xytext=(6, 8), fontsize=8)  # fmt: skip
@@ -109,13 +98,18 @@ def fig_vane_angle(params: gb.GuideBar, path: Path) -> Path:
     g_cfg = gb.vane_angle(params.lam, params.gear_ratio, params.phase, params.driver)
     ax.plot([np.degrees(g_cfg)], [params.lam], "k*", ms=12,
             label=f"config ({_LABEL[params.driver]}): {np.degrees(g_cfg):.2f} deg")  # fmt: skip
+    fig9_axes(ax, "Fig. 9  lambda vs vane angle gamma_0, Sigma = 180 deg")
+    return _save(fig, path)
+
+
+def fig9_axes(ax, title: str) -> None:
+    """Axes, grid, legend and title of Fig. 9 (lambda over the vane angle gamma_0 [deg])."""
     ax.set_xlabel("theoretical vane angle gamma_0 [deg]")
     ax.set_ylabel("mechanism coefficient lambda = d/a [-]")
     ax.set_ylim(0.0, 1.0)
     ax.grid(True, alpha=0.4)
     ax.legend(fontsize=8, loc="lower left")
-    ax.set_title("Fig. 9  lambda vs vane angle gamma_0, Sigma = 180 deg")
-    return _save(fig, path)
+    ax.set_title(title)
 
 
 def _torques(m7: float, m8: float):
@@ -130,7 +124,7 @@ def _torque_limits(params: gb.GuideBar, lams, m7, m8):
     for driver in gb.DRIVERS:
         for lam in lams:
             p = replace(params, lam=lam, driver=driver)
-            vals.append(gb.input_torque(p, np.linspace(0.0, gb.period(p), 721), m7, m8))
+            vals.append(gb.input_torque(p, m7, m8, np.linspace(0.0, gb.period(p), 721)))
     lo, hi = float(np.min(vals)), float(np.max(vals))
     pad = 0.06 * max(hi - lo, 1e-3 * max(abs(lo), abs(hi), 1e-12))
     return lo - pad, hi + pad
@@ -146,7 +140,7 @@ def fig_input_torque(params: gb.GuideBar, driver: str, m7, m8, path: Path, numbe
         p = replace(params, lam=lam, driver=driver)
         theta = np.linspace(0.0, gb.period(p), 721)
         style = "k--" if lam == round(float(params.lam), 12) else f"C{i}-"
-        ax.plot(np.degrees(theta), gb.input_torque(p, theta, m7, m8), style,
+        ax.plot(np.degrees(theta), gb.input_torque(p, m7, m8, theta), style,
                 label=f"lambda = {lam:.3g}" + (" (config)" if style == "k--" else ""))  # fmt: skip
     lo, hi = _torque_limits(params, lams, m7, m8)
     ax.set_ylim(lo, hi)  # the same scale in Fig. 10 and 11, as the paper compares them
@@ -220,14 +214,9 @@ def _shade_strokes(ax, theta, dv_a):
                     transform=ax.get_xaxis_transform(), lw=0)  # fmt: skip
 
 
-def fig_pump_sections(pump, ports, path: Path) -> Path:
+def fig_pump_sections(drive: gb.GuideBar, pump, ports, path: Path) -> Path:
     """Cross-sections of the pump at four input angles: vanes and chambers by port."""
-    from matplotlib.patches import Wedge
-
-    from rotorkin.machines import vane_pump as vp
-
     plt = _plt()
-    drive = pump.drive
     i12 = float(drive.input_gear_ratio)
     t_a, t_b = sorted(float(np.mod(t, 2.0 * np.pi)) for t in gb.equal_speed_angles(drive.phase))
     period = gb.period(drive)
@@ -236,8 +225,9 @@ def fig_pump_sections(pump, ports, path: Path) -> Path:
     )
     names = np.array(["equal speed", "between", "equal speed", "between"])[np.argsort(thetas)]
     thetas = np.sort(thetas)
-    vanes = vp.vane_angles(pump, thetas)  # (2, Z, 4)
-    phi, dphi, _, _ = vp.chamber_angles(pump, thetas)
+    motion = gb.motion(drive, thetas)
+    vanes = vp.vane_angles(pump, motion)  # (2, Z, 4)
+    phi, dphi, _, _ = vp.chamber_angles(pump, motion)
     k = pump.volume_per_angle * 1e6
     z = int(pump.vanes_per_impeller)
     rh, rc, g = pump.hub_radius * 1e3, pump.casing_radius * 1e3, float(pump.vane_angle)
@@ -272,8 +262,6 @@ def fig_pump_sections(pump, ports, path: Path) -> Path:
                      fontsize=9)  # fmt: skip
         ax.grid(True, alpha=0.3)
     axes[0].set_ylabel("y [mm]")
-    from matplotlib.patches import Patch
-
     handles = [Patch(color="k", label="impeller 1 vanes"),
                Patch(color="C2", label="impeller 2 vanes"),
                Patch(color=_DISCHARGE, alpha=0.35, label="chamber shrinking: discharge port"),
@@ -283,9 +271,7 @@ def fig_pump_sections(pump, ports, path: Path) -> Path:
     fig.suptitle("Pump cross-sections (sense of rotation counter-clockwise)\n"
                  + _pump_tag(pump, ports), fontsize=10)  # fmt: skip
     fig.tight_layout(rect=(0, 0.07, 1, 1))
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save_in(fig, path.parent, path.name)
 
 
 def fig_pump_chambers(pump, ports, theta, state, path: Path) -> Path:
@@ -408,7 +394,7 @@ def plot_all(params: gb.GuideBar, m7: float, m8: float, outdir: Path, pump=None,
     ]
     if pump is not None:
         paths += [
-            fig_pump_sections(pump, ports, outdir / "pump_sections.png"),
+            fig_pump_sections(params, pump, ports, outdir / "pump_sections.png"),
             fig_pump_chambers(pump, ports, theta, state, outdir / "pump_chambers.png"),
             fig_pump_flow(pump, ports, theta, state, summary, outdir / "pump_flow.png"),
             fig_pump_torque(pump, ports, theta, state, summary, outdir / "pump_torque.png"),

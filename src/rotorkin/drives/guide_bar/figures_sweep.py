@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.drives.guide_bar.figures import fig9_axes
 from rotorkin.render.figures import Recipe
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save as _save
@@ -50,12 +51,7 @@ def _guide_fig9(ds, outdir, recipe, cfg):
                 ls="-" if u == 2 else "--",
                 label=f"{_DRIVER[str(drv)]}, u = {u:g} (eq. {5 if drv == 'crank' else 6})",
             )
-    ax.set_xlabel("theoretical vane angle gamma_0 [deg]")
-    ax.set_ylabel("mechanism coefficient lambda = d/a [-]")
-    ax.set_ylim(0.0, 1.0)
-    ax.grid(True, alpha=0.4)
-    ax.legend(fontsize=8, loc="lower left")
-    ax.set_title("Fig. 9  lambda against the vane angle gamma_0, Sigma = 180 deg (from a sweep)")
+    fig9_axes(ax, "Fig. 9  lambda against the vane angle gamma_0, Sigma = 180 deg (from a sweep)")
     return [_save(fig, outdir / recipe.figures[0])]
 
 

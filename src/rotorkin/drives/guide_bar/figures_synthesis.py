@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.render.figures import BASELINE as _BASE
 from rotorkin.render.figures import SYNTHESIZED as _SYN
 from rotorkin.render.figures import degree_axis as _deg_axis
@@ -15,8 +16,6 @@ __all__ = ["plot_guide_bar"]
 
 def plot_guide_bar(outdir, lambdas, u, phase, driver, gamma, i12):
     """Vane angle against lambda (target, baseline, solution) and the impeller speed ratios."""
-    from rotorkin.drives.guide_bar import kinematics as gb
-
     plt = _plt()
     lam0, lam1 = lambdas
     grid = np.linspace(0.0, 0.999, 500)

@@ -54,17 +54,25 @@ from rotorkin.core.motion import Motion
 
 __all__ = [
     "DRIVERS",
+    "FIELDS",
+    "inadmissible",
+    "raise_inadmissible",
     "GuideBar",
+    "guide_rates",
     "guide_angle",
+    "crank_rates",
     "crank_angle",
+    "driven_rates",
     "driven_angle",
     "speed_ratio_eq1",
     "speed_ratio_eq3",
     "speed_ratio_range",
     "driving_angles",
+    "impeller_rates",
     "impeller_angles",
     "motion",
     "period",
+    "input_period",
     "equal_speed_angles",
     "vane_angle",
     "vane_angle_paper",
@@ -76,27 +84,115 @@ __all__ = [
 ]
 
 #: Admissible driving members.
+#: Admissible driving members.
 DRIVERS = ("crank", "guide")
+
+#: Parameters of :class:`GuideBar` in the order they are checked (:func:`inadmissible`).
+FIELDS = ("lam", "gear_ratio", "input_gear_ratio", "phase", "driver")
+
+
+def inadmissible(lam, gear_ratio, input_gear_ratio=1.0, phase=np.pi, driver="crank"):
+    """Which parameter each design violates first: index into :data:`FIELDS` plus 1 (0: none).
+
+    Admissible: ``0 < lam < 1`` (at ``lam >= 1`` the guide bar no longer turns
+    fully round), ``gear_ratio > 0``, ``input_gear_ratio > 0``, ``phase`` finite
+    and not a multiple of ``2 pi`` (both impellers would move together),
+    ``driver`` one of :data:`DRIVERS`.
+
+    Parameters
+    ----------
+    lam, gear_ratio, input_gear_ratio, phase : array_like
+        lambda [-], u [-], i12 [-], Sigma [rad]; broadcast together.
+    driver : str or array_like of str
+        Broadcasts with the others.
+
+    Returns
+    -------
+    ndarray of int16
+        Broadcast shape of the parameters.
+    """
+    lam, u, i12, p = (np.asarray(v, dtype=float) for v in (lam, gear_ratio, input_gear_ratio,
+                                                          phase))  # fmt: skip
+    known = np.isin(np.asarray(driver), DRIVERS)
+    with np.errstate(invalid="ignore"):
+        turns = p / (2.0 * np.pi)
+        bad = (
+            ~(np.isfinite(lam) & (lam > 0.0) & (lam < 1.0)),
+            ~(np.isfinite(u) & (u > 0.0)),
+            ~(np.isfinite(i12) & (i12 > 0.0)),
+            ~np.isfinite(p) | (np.abs(turns - np.round(turns)) < 1e-9),
+            ~known,
+        )
+    bad = np.broadcast_arrays(*bad)
+    reason = np.zeros(bad[0].shape, dtype=np.int16)
+    for k in range(len(bad) - 1, -1, -1):  # the first violated parameter wins
+        reason[bad[k]] = k + 1
+    return reason
+
+
+def _admissible(field: str, value) -> tuple[str, str]:
+    """``(value as people read it, admissible range)`` for :class:`ParameterError`."""
+    if field == "lam":
+        text = "0 < lambda < 1"
+        if np.isfinite(value) and value >= 1.0:
+            text += (": at lambda >= 1 the guide bar would no longer turn fully round "
+                     "(oscillating guide bar)")  # fmt: skip
+        return f"{value:g}", text
+    if field == "phase":
+        return fmt_deg(value), (
+            "not a multiple of 360 deg: both impellers would move together and no chamber "
+            "would change (the paper uses 180 deg)"
+        )
+    if field == "driver":
+        return repr(value), "one of " + ", ".join(map(repr, DRIVERS))
+    symbol = {"gear_ratio": "u", "input_gear_ratio": "i12"}[field]
+    return f"{value:g}", f"{field} {symbol} > 0"
+
+
+def raise_inadmissible(fields, values, reason) -> None:
+    """Raise :class:`ParameterError` for the first design whose ``reason`` is not 0.
+
+    ``fields`` names the parameters, ``values`` their values (broadcast with
+    ``reason``), ``reason`` the codes of an ``inadmissible`` function (index + 1).
+    """
+    reason = np.asarray(reason)
+    if not reason.any():
+        return
+    i = int(np.flatnonzero(reason)[0])
+    k = int(reason.flat[i]) - 1
+    value = np.broadcast_to(np.asarray(values[k]), reason.shape).flat[i]
+    value = value.item() if hasattr(value, "item") else value
+    raise ParameterError(fields[k], *_admissible(fields[k], value))
 
 
 @dataclass(frozen=True)
 class GuideBar:
     """Parameters of the guide-bar + gear drive (dimensionless; angles in rad).
 
+    Every field is a float or an array (one value per design); arrays broadcast
+    against each other and against the input angles of :func:`impeller_angles`
+    (e.g. parameters of shape (n, 1) against angles of shape (m,)).
+
     Parameters
     ----------
-    lam : float
+    lam : float or ndarray
         Mechanism coefficient ``lambda = d/a`` (frame over crank length),
         ``0 < lambda < 1``. Config key ``drive.lambda``. Paper: 0.5.
-    gear_ratio : float
+    gear_ratio : float or ndarray
         ``u``, guide-bar (or crank) gear to impeller gear, ``u > 0``. Paper: 2.
-    input_gear_ratio : float, optional
+    input_gear_ratio : float or ndarray, optional
         ``i12 = z2/z1 = z9/z1``, ``i12 > 0`` (default 1; paper Fig. 10, 11: 2).
-    phase : float, optional
+    phase : float or ndarray, optional
         Installation phase ``Sigma = sigma_2 - sigma_1`` [rad], not a multiple
         of 2 pi (default pi, the paper's).
-    driver : {"crank", "guide"}, optional
+    driver : {"crank", "guide"} or ndarray of str, optional
         Driving member of both mechanisms (default ``"crank"``, Fig. 2).
+
+    Raises
+    ------
+    ParameterError
+        Named by the field (:func:`inadmissible`), with its value and the
+        admissible range.
     """
 
     lam: float
@@ -106,82 +202,72 @@ class GuideBar:
     driver: str = "crank"
 
     def __post_init__(self):
-        lam = float(self.lam)
-        if not np.isfinite(lam) or lam <= 0.0:
-            raise ParameterError("lam", f"{lam:g}", "0 < lambda < 1")
-        if lam >= 1.0:
-            raise ParameterError(
-                "lam",
-                f"{lam:g}",
-                "0 < lambda < 1: at lambda >= 1 the guide bar would no longer turn fully "
-                "round (oscillating guide bar)",
-            )
-        u = float(self.gear_ratio)
-        if not (np.isfinite(u) and u > 0.0):
-            raise ParameterError("gear_ratio", f"{u:g}", "gear_ratio u > 0")
-        i12 = float(self.input_gear_ratio)
-        if not (np.isfinite(i12) and i12 > 0.0):
-            raise ParameterError("input_gear_ratio", f"{i12:g}", "input_gear_ratio i12 > 0")
-        p = float(self.phase)
-        turns = p / (2.0 * np.pi)
-        if not np.isfinite(p) or abs(turns - np.round(turns)) < 1e-9:
-            raise ParameterError(
-                "phase",
-                fmt_deg(p),
-                "not a multiple of 360 deg: both impellers would move together and no "
-                "chamber would change (the paper uses 180 deg)",
-            )
-        if self.driver not in DRIVERS:
-            raise ParameterError(
-                "driver", repr(self.driver), "one of " + ", ".join(map(repr, DRIVERS))
-            )
+        values = tuple(getattr(self, f) for f in FIELDS)
+        raise_inadmissible(FIELDS, values, inadmissible(*values))
 
 
 # --------------------------------------------------------------------------------------------
 # one mechanism: driven angle from driving angle
 # --------------------------------------------------------------------------------------------
-def guide_angle(lam, x):
-    """Guide bar angle of a crank-driven mechanism and its derivatives (eq. 1).
+def guide_rates(lam, x):
+    """Derivatives of the guide bar angle of a crank-driven mechanism w.r.t. x (eq. 1).
 
     Parameters
     ----------
     lam : array_like
         ``lambda = d/a``, ``0 < lambda < 1``.
     x : array_like
-        Crank angle [rad], from the line guide pivot -> crank pivot.
+        Crank angle [rad], from the line guide pivot -> crank pivot; broadcasts with lam.
 
     Returns
     -------
-    tuple of 4 ndarray
-        ``g`` [rad] (continuous, ``g(x + 2 pi) = g(x) + 2 pi``) and
+    tuple of 3 ndarray
         ``g' = (1 + lambda cos x)/D`` (eq. 1 times u),
         ``g'' = lambda (1 - lambda^2) sin x / D^2``,
         ``g''' = lambda (1 - lambda^2)(D cos x + 4 lambda sin^2 x)/D^3``,
-        with ``D = 1 + 2 lambda cos x + lambda^2``; derivatives w.r.t. x.
+        with ``D = 1 + 2 lambda cos x + lambda^2`` [-, 1/rad, 1/rad^2].
     """
     lam = np.asarray(lam, dtype=float)
     x = np.asarray(x, dtype=float)
     c, s = np.cos(x), np.sin(x)
     D = 1.0 + 2.0 * lam * c + lam * lam
     K = lam * (1.0 - lam * lam)
-    g = angle_near(s, lam + c, x)
-    return g, (1.0 + lam * c) / D, K * s / D**2, K * (D * c + 4.0 * lam * s * s) / D**3
+    return (1.0 + lam * c) / D, K * s / D**2, K * (D * c + 4.0 * lam * s * s) / D**3
 
 
-def crank_angle(lam, y):
-    """Crank angle of a guide-driven mechanism and its derivatives (eq. 3, our zero).
+def guide_angle(lam, x):
+    """Guide bar angle of a crank-driven mechanism and its derivatives (eq. 1).
+
+    Parameters
+    ----------
+    lam, x : array_like
+        As :func:`guide_rates`.
+
+    Returns
+    -------
+    tuple of 4 ndarray
+        ``g = angle(lambda + cos x, sin x)`` [rad] (continuous,
+        ``g(x + 2 pi) = g(x) + 2 pi``) and ``g', g'', g'''`` (:func:`guide_rates`).
+    """
+    lam = np.asarray(lam, dtype=float)
+    x = np.asarray(x, dtype=float)
+    g = angle_near(np.sin(x), lam + np.cos(x), x)
+    return (g, *guide_rates(lam, x))
+
+
+def crank_rates(lam, y):
+    """Derivatives of the crank angle of a guide-driven mechanism w.r.t. y (eq. 3, our zero).
 
     Parameters
     ----------
     lam : array_like
         ``lambda = d/a``, ``0 < lambda < 1``.
     y : array_like
-        Guide bar angle [rad], from the line guide pivot -> crank pivot.
+        Guide bar angle [rad], from the line guide pivot -> crank pivot; broadcasts with lam.
 
     Returns
     -------
-    tuple of 4 ndarray
-        ``h`` [rad] (continuous, the inverse function of :func:`guide_angle`) and
+    tuple of 3 ndarray
         ``h' = 1 + lambda cos y / W``,
         ``h'' = -lambda (1 - lambda^2) sin y / W^3``,
         ``h''' = -lambda (1 - lambda^2) cos y (1 + 2 lambda^2 sin^2 y) / W^5``,
@@ -193,18 +279,67 @@ def crank_angle(lam, y):
     c, s = np.cos(y), np.sin(y)
     W = np.sqrt(1.0 - (lam * s) ** 2)
     K = lam * (1.0 - lam * lam)
-    r = lam * c + W  # crank pin distance from the guide pivot [a]
+    return 1.0 + lam * c / W, -K * s / W**3, -K * c * (1.0 + 2.0 * (lam * s) ** 2) / W**5
+
+
+def crank_angle(lam, y):
+    """Crank angle of a guide-driven mechanism and its derivatives (eq. 3, our zero).
+
+    Parameters
+    ----------
+    lam, y : array_like
+        As :func:`crank_rates`.
+
+    Returns
+    -------
+    tuple of 4 ndarray
+        ``h = angle(s cos y - lambda, s sin y)`` [rad], ``s = lambda cos y + W``
+        the crank pin's distance from the guide pivot [a] (continuous, the inverse
+        function of :func:`guide_angle`), and ``h', h'', h'''`` (:func:`crank_rates`).
+    """
+    lam = np.asarray(lam, dtype=float)
+    y = np.asarray(y, dtype=float)
+    c, s = np.cos(y), np.sin(y)
+    r = lam * c + np.sqrt(1.0 - (lam * s) ** 2)  # crank pin distance from the guide pivot [a]
     h = angle_near(r * s, r * c - lam, y)
-    return h, 1.0 + lam * c / W, -K * s / W**3, -K * c * (1.0 + 2.0 * (lam * s) ** 2) / W**5
+    return (h, *crank_rates(lam, y))
 
 
-def driven_angle(lam, x, driver: str):
-    """:func:`guide_angle` (``driver = "crank"``) or :func:`crank_angle` (``"guide"``)."""
-    if driver == "crank":
-        return guide_angle(lam, x)
-    if driver == "guide":
-        return crank_angle(lam, x)
-    raise ParameterError("driver", repr(driver), "one of " + ", ".join(map(repr, DRIVERS)))
+def _by_driver(crank_fn, guide_fn, driver, *args):
+    """``crank_fn(*args)`` where the driver is the crank, ``guide_fn(*args)`` where the guide bar.
+
+    Both return tuples of arrays; with an array of drivers both are evaluated and
+    picked element-wise.
+    """
+    if isinstance(driver, str):
+        if driver == "crank":
+            return crank_fn(*args)
+        if driver == "guide":
+            return guide_fn(*args)
+        raise ParameterError("driver", repr(driver), "one of " + ", ".join(map(repr, DRIVERS)))
+    d = np.asarray(driver)
+    if not np.all(np.isin(d, DRIVERS)):
+        bad = d[~np.isin(d, DRIVERS)].flat[0]
+        raise ParameterError("driver", repr(bad), "one of " + ", ".join(map(repr, DRIVERS)))
+    crank = d == "crank"
+    return tuple(np.where(crank, a, b) for a, b in zip(crank_fn(*args), guide_fn(*args),
+                                                       strict=True))  # fmt: skip
+
+
+def driven_angle(lam, driver, x):
+    """:func:`guide_angle` (``driver = "crank"``) or :func:`crank_angle` (``"guide"``).
+
+    ``driver`` may be an array of those names, broadcasting with ``lam`` and ``x``.
+    """
+    return _by_driver(guide_angle, crank_angle, driver, lam, x)
+
+
+def driven_rates(lam, driver, x):
+    """:func:`guide_rates` (``driver = "crank"``) or :func:`crank_rates` (``"guide"``).
+
+    ``driver`` may be an array of those names, broadcasting with ``lam`` and ``x``.
+    """
+    return _by_driver(guide_rates, crank_rates, driver, lam, x)
 
 
 def speed_ratio_eq1(lam, u, x):
@@ -228,70 +363,120 @@ def speed_ratio_eq3(lam, u, x):
     c, s = np.cos(x), np.sin(x)
     W = np.sqrt(1.0 - (lam * s) ** 2)
     num = 1.0 - (lam * s) ** 2 + (lam * c) ** 2 - 2.0 * lam * c * W
-    return np.sqrt(num) / (u * W)
+    return np.sqrt(np.maximum(num, 0.0)) / (u * W)
 
 
-def speed_ratio_range(lam, u, driver: str):
+def _speed_ratio_range_crank(lam, u):
+    return 1.0 / ((1.0 + lam) * u), 1.0 / ((1.0 - lam) * u)
+
+
+def _speed_ratio_range_guide(lam, u):
+    return (1.0 - lam) / u, (1.0 + lam) / u
+
+
+def speed_ratio_range(lam, u, driver):
     """Smallest and largest impeller speed over the driving member's speed.
 
     Crank-driven ``1/((1 + lambda) u)`` at ``x = 0`` and ``1/((1 - lambda) u)``
     at ``x = pi``; guide-driven ``(1 - lambda)/u`` at ``y = pi`` and
     ``(1 + lambda)/u`` at ``y = 0`` (both are monotonic in ``cos x``).
 
+    Parameters
+    ----------
+    lam, u : array_like
+        lambda [-], gear ratio u [-]; broadcast.
+    driver : {"crank", "guide"} or array_like of str
+        Broadcasts with lam and u.
+
     Returns
     -------
     (min, max) : tuple of ndarray
     """
     lam, u = np.asarray(lam, dtype=float), np.asarray(u, dtype=float)
-    if driver == "crank":
-        return 1.0 / ((1.0 + lam) * u), 1.0 / ((1.0 - lam) * u)
-    driven_angle(0.5, 0.0, driver)  # validates the name
-    return (1.0 - lam) / u, (1.0 + lam) / u
+    return _by_driver(_speed_ratio_range_crank, _speed_ratio_range_guide, driver, lam, u)
 
 
 # --------------------------------------------------------------------------------------------
 # the pair of mechanisms and the impellers
 # --------------------------------------------------------------------------------------------
 def driving_angles(params: GuideBar, theta):
-    """Driving angles ``x_k = sigma_k + theta / i12`` of both mechanisms [rad], shape (2, ...)."""
-    t = np.asarray(theta, dtype=float) / float(params.input_gear_ratio)
-    return np.stack([t, t + float(params.phase)])
+    """Driving angles ``x_k = sigma_k + theta / i12`` of both mechanisms [rad], shape (2, ...).
+
+    ``...`` is the broadcast shape of theta and the parameters.
+    """
+    t = np.asarray(theta, dtype=float) / np.asarray(params.input_gear_ratio, dtype=float)
+    return np.stack(np.broadcast_arrays(t, t + np.asarray(params.phase, dtype=float)))
+
+
+def impeller_rates(params: GuideBar, theta):
+    """Derivatives of the impeller angles w.r.t. theta, without the angles (no arctangent).
+
+    ``dq_k/dtheta = f'(x_k)/(u i12)`` is eq. 1 (or eq. 3 at our zero) over
+    ``i12``; ``d2q = f''/(u i12^2)``, ``d3q = f'''/(u i12^3)``
+    (:func:`driven_rates`).
+
+    Returns
+    -------
+    tuple of 3 ndarray, shape (2, ...)
+        ``dq/dtheta`` [-], ``d2q/dtheta2`` [1/rad], ``d3q/dtheta3`` [1/rad^2].
+    """
+    x = driving_angles(params, theta)
+    f = driven_rates(params.lam, params.driver, x)
+    return _per_theta(params, f, 1)
+
+
+def _per_theta(params: GuideBar, f, first: int):
+    """``f_n / (u i12^n)``, ``n = first, first + 1, ...`` (chain rule via ``x = theta/i12``)."""
+    u = np.asarray(params.gear_ratio, dtype=float)
+    i12 = np.asarray(params.input_gear_ratio, dtype=float)
+    return tuple(fn / (u * i12**n) for n, fn in enumerate(f, start=first))
 
 
 def impeller_angles(params: GuideBar, theta):
     """Impeller angles ``q_k = f(x_k)/u`` and their derivatives w.r.t. theta.
 
     ``f`` is :func:`guide_angle` (crank-driven) or :func:`crank_angle`
-    (guide-driven). ``dq_k/dtheta = f'(x_k)/(u i12)`` is eq. 1 (or eq. 3 at our
-    zero) over ``i12``; ``d2q = f''/(u i12^2)``, ``d3q = f'''/(u i12^3)``.
+    (guide-driven); the derivatives are :func:`impeller_rates`.
 
     Parameters
     ----------
     params : GuideBar
+        Floats or arrays; they broadcast with ``theta``.
     theta : array_like
         Input gear angle [rad].
 
     Returns
     -------
     tuple of 4 ndarray, shape (2, ...)
-        ``q`` [rad], ``dq/dtheta`` [-], ``d2q/dtheta2`` [1/rad], ``d3q/dtheta3`` [1/rad^2].
+        ``q`` [rad], ``dq/dtheta`` [-], ``d2q/dtheta2`` [1/rad], ``d3q/dtheta3`` [1/rad^2];
+        ``...`` the broadcast shape of theta and the parameters.
     """
     x = driving_angles(params, theta)
-    u, i12 = float(params.gear_ratio), float(params.input_gear_ratio)
-    f = driven_angle(float(params.lam), x, params.driver)
-    return tuple(fn / (u * i12**n) for n, fn in enumerate(f))
+    f = driven_angle(params.lam, params.driver, x)
+    return _per_theta(params, f, 0)
 
 
 def motion(params: GuideBar, theta) -> Motion:
     """Motion of impeller 1 and impeller 2 (``q`` [rad]) over input gear angle theta [rad]."""
-    theta = np.asarray(theta, dtype=float)
     q, dq, d2q, d3q = impeller_angles(params, theta)
+    theta = np.asarray(theta, dtype=float)
+    if theta.shape != q.shape[1:]:
+        theta = np.broadcast_to(theta, q.shape[1:])
     return Motion(theta, q, dq, d2q, d3q, members=("impeller 1", "impeller 2"), unit="rad")
 
 
-def period(params: GuideBar) -> float:
-    """Input angle after which the speeds repeat: ``2 pi i12`` [rad] (the impellers gain 2 pi/u)."""
-    return 2.0 * np.pi * float(params.input_gear_ratio)
+def input_period(input_gear_ratio):
+    """Input angle after which the speeds repeat: ``2 pi i12`` [rad] (the impellers gain 2 pi/u).
+
+    A float, or an array when ``input_gear_ratio`` is one.
+    """
+    i12 = input_gear_ratio
+    return 2.0 * np.pi * (float(i12) if np.ndim(i12) == 0 else np.asarray(i12, dtype=float))
+
+
+def period(params: GuideBar):
+    """:func:`input_period` of the drive's ``input_gear_ratio`` [rad]."""
+    return input_period(params.input_gear_ratio)
 
 
 # --------------------------------------------------------------------------------------------
@@ -319,7 +504,15 @@ def _half_phase(phase):
     return 0.5 * np.mod(np.asarray(phase, dtype=float), 2.0 * np.pi)
 
 
-def vane_angle(lam, u, phase, driver: str):
+def _vane_angle_crank(lam, u, a):
+    return ((guide_angle(lam, a)[0] + guide_angle(lam, np.pi - a)[0]) / u,)
+
+
+def _vane_angle_guide(lam, u, a):
+    return ((2.0 * np.pi - crank_angle(lam, a)[0] - crank_angle(lam, np.pi - a)[0]) / u,)
+
+
+def vane_angle(lam, u, phase, driver):
     """Theoretical vane angle gamma_0: what the slower impeller turns between equal-speed points.
 
     With ``a = (Sigma mod 2 pi)/2`` in (0, pi), derived here from the geometry:
@@ -336,7 +529,8 @@ def vane_angle(lam, u, phase, driver: str):
     ----------
     lam, u, phase : array_like
         lambda [-], gear ratio u [-], installation phase Sigma [rad]; broadcast.
-    driver : {"crank", "guide"}
+    driver : {"crank", "guide"} or array_like of str
+        Broadcasts with the others.
 
     Returns
     -------
@@ -345,14 +539,10 @@ def vane_angle(lam, u, phase, driver: str):
     """
     lam, u = np.asarray(lam, dtype=float), np.asarray(u, dtype=float)
     a = _half_phase(phase)
-    f1 = driven_angle(lam, a, driver)[0]
-    f2 = driven_angle(lam, np.pi - a, driver)[0]
-    if driver == "crank":
-        return (f1 + f2) / u
-    return (2.0 * np.pi - f1 - f2) / u
+    return _by_driver(_vane_angle_crank, _vane_angle_guide, driver, lam, u, a)[0]
 
 
-def vane_angle_paper(lam, u, phase, driver: str):
+def vane_angle_paper(lam, u, phase, driver):
     """The paper's general-Sigma vane angle, ``(theta_1 + theta_2)/u``, as printed (section 3).
 
     Crank-driven: ``cos theta_1 = (lambda + cos(Sigma/2)) / sqrt(1 + 2 lambda
@@ -364,33 +554,35 @@ def vane_angle_paper(lam, u, phase, driver: str):
     lam, u = np.asarray(lam, dtype=float), np.asarray(u, dtype=float)
     p = np.asarray(phase, dtype=float)
     c, s = np.cos(0.5 * p), np.sin(0.5 * p)
-    if driver == "crank":
-        c1 = (lam + c) / np.sqrt(1.0 + 2.0 * lam * c + lam * lam)
-        c2 = (lam - c) / np.sqrt(1.0 - 2.0 * lam * c + lam * lam)
-    elif driver == "guide":
+
+    def crank():
+        return (lam + c) / np.sqrt(1.0 + 2.0 * lam * c + lam * lam), (lam - c) / np.sqrt(
+            1.0 - 2.0 * lam * c + lam * lam
+        )
+
+    def guide():
         W = np.sqrt(1.0 - (lam * s) ** 2)
-        c1 = lam * s * s + c * W
-        c2 = lam * s * s - c * W
-    else:
-        driven_angle(0.5, 0.0, driver)  # raises
-    clip = (np.clip(v, -1.0, 1.0) for v in (c1, c2))
+        return lam * s * s + c * W, lam * s * s - c * W
+
+    clip = (np.clip(v, -1.0, 1.0) for v in _by_driver(crank, guide, driver))
     return sum(np.arccos(v) for v in clip) / u
 
 
-def vane_angle_half_turn(lam, u, driver: str):
+def vane_angle_half_turn(lam, u, driver):
     """Vane angle at Sigma = 180 deg: eq. 5 (crank) or eq. 6 (guide) solved for gamma_0 [rad].
 
     Crank: ``gamma_0 = 2 arccos(lambda / sqrt(1 + lambda^2)) / u`` (eq. 5);
     guide: ``gamma_0 = 2 arccos(lambda) / u`` (eq. 6).
     """
     lam, u = np.asarray(lam, dtype=float), np.asarray(u, dtype=float)
-    if driver == "crank":
-        return 2.0 * np.arccos(lam / np.sqrt(1.0 + lam * lam)) / u
-    driven_angle(0.5, 0.0, driver)  # validates the name
-    return 2.0 * np.arccos(lam) / u
+    return _by_driver(
+        lambda: (2.0 * np.arccos(lam / np.sqrt(1.0 + lam * lam)) / u,),
+        lambda: (2.0 * np.arccos(lam) / u,),
+        driver,
+    )[0]
 
 
-def lambda_for_vane_angle(gamma0, u, driver: str):
+def lambda_for_vane_angle(gamma0, u, driver):
     """lambda that gives the vane angle gamma_0 at Sigma = 180 deg (eq. 5, 6 inverted).
 
     Crank: ``lambda = cot(u gamma_0 / 2)``, needs ``pi/4 < u gamma_0/2 < pi/2``;
@@ -398,30 +590,34 @@ def lambda_for_vane_angle(gamma0, u, driver: str):
     NaN where no ``0 < lambda < 1`` exists. Derived here.
     """
     half = 0.5 * np.asarray(u, dtype=float) * np.asarray(gamma0, dtype=float)
-    if driver == "crank":
+
+    def crank():
         ok = (half > np.pi / 4.0) & (half < np.pi / 2.0)
         safe = np.where(ok, half, np.pi / 3.0)
-        return np.where(ok, np.cos(safe) / np.sin(safe), np.nan)
-    driven_angle(0.5, 0.0, driver)  # validates the name
-    ok = (half > 0.0) & (half < np.pi / 2.0)
-    return np.where(ok, np.cos(half), np.nan)
+        return (np.where(ok, np.cos(safe) / np.sin(safe), np.nan),)
+
+    def guide():
+        ok = (half > 0.0) & (half < np.pi / 2.0)
+        return (np.where(ok, np.cos(half), np.nan),)
+
+    return _by_driver(crank, guide, driver)[0]
 
 
-def relative_angle_swing(params: GuideBar) -> float:
+def relative_angle_swing(params: GuideBar):
     """Swing (max - min) of the angle between the impellers, ``q_2 - q_1``, over a turn [rad].
 
     The relative angle is stationary at the equal-speed points; between them
     one impeller turns ``gamma_0``, the other ``2 pi/u - gamma_0``, so the swing
     is ``2 pi/u - 2 gamma_0``. Derived here: it sets the chamber volume change.
     """
-    g0 = float(vane_angle(params.lam, params.gear_ratio, params.phase, params.driver))
-    return 2.0 * np.pi / float(params.gear_ratio) - 2.0 * g0
+    g0 = vane_angle(params.lam, params.gear_ratio, params.phase, params.driver)
+    return 2.0 * np.pi / np.asarray(params.gear_ratio, dtype=float) - 2.0 * g0
 
 
 # --------------------------------------------------------------------------------------------
 # torque (section 4)
 # --------------------------------------------------------------------------------------------
-def input_torque(params: GuideBar, theta, m7, m8):
+def input_torque(params: GuideBar, m7, m8, theta):
     """Torque on input gear 1 by virtual work, ``M1 = M7 dq_1/dtheta + M8 dq_2/dtheta`` [N*m].
 
     Eq. 7 (crank-driven) and eq. 8 (guide-driven; garbled in the OCR) are this
@@ -431,21 +627,21 @@ def input_torque(params: GuideBar, theta, m7, m8):
     Parameters
     ----------
     params : GuideBar
-    theta : array_like
-        Input gear angle [rad].
     m7, m8 : array_like
         Resisting torques on impeller 1 and 2 [N*m]; broadcast with theta.
+    theta : array_like
+        Input gear angle [rad].
 
     Returns
     -------
     ndarray
         M1 [N*m].
     """
-    _, dq, _, _ = impeller_angles(params, theta)
+    dq = impeller_rates(params, theta)[0]
     return np.asarray(m7, dtype=float) * dq[0] + np.asarray(m8, dtype=float) * dq[1]
 
 
-def input_torque_eq7(lam, u, i12, x1, x2, m7, m8):
+def input_torque_eq7(lam, u, i12, m7, m8, x1, x2):
     """Crank-driven input torque as printed (eq. 7).
 
     ``M1 = (1 + l cos x1)/([1 + 2 l cos x1 + l^2] u i12) M7 + (same at x2) M8``,

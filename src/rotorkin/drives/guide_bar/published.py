@@ -1,9 +1,15 @@
-"""The numbers of J. Harbin Inst. Tech. 44(9) 2012 per summary key."""
+"""The numbers of J. Harbin Inst. Tech. 44(9) 2012 per summary key.
+
+Each is the paper's formula as printed (the ``*_eq*`` and ``vane_angle_half_turn``
+functions of :mod:`rotorkin.drives.guide_bar.kinematics`), evaluated where the paper
+evaluates it; the study derives the same keys from the geometry.
+"""
 
 from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.studies.published import Published
 
 _D = np.radians
@@ -24,20 +30,16 @@ def _eq7_input_torque(cfg, n=7201):
     x1 = np.linspace(0.0, 2.0 * np.pi, n)
     x2 = x1 + cfg["drive"]["phase"]
 
-    def ratio(x):  # impeller speed over driving-member speed, times u
-        if cfg["drive"]["driver"] == "crank":  # eq. 1
-            return (1 + lam * np.cos(x)) / (1 + 2 * lam * np.cos(x) + lam**2)
-        w = np.sqrt(1 - (lam * np.sin(x)) ** 2)  # eq. 3 as printed (its own zero of x)
-        c = lam * np.cos(x)
-        return np.sqrt(np.maximum(1 - (lam * np.sin(x)) ** 2 + c**2 - 2 * c * w, 0.0)) / w
-
-    return (ratio(x1) * m7 + ratio(x2) * m8) / (u * i12)
+    if cfg["drive"]["driver"] == "crank":
+        return gb.input_torque_eq7(lam, u, i12, m7, m8, x1, x2)
+    # eq. 8: the virtual-work balance with the eq. 3 ratio (its own zero of x)
+    return (gb.speed_ratio_eq3(lam, u, x1) * m7 + gb.speed_ratio_eq3(lam, u, x2) * m8) / i12
 
 
 PUBLISHED = (
     Published(
         "vane_angle_crank_driven_deg",
-        lambda c: np.degrees(2 * np.arccos(_lu(c)[0] / np.sqrt(1 + _lu(c)[0] ** 2)) / _lu(c)[1]),
+        lambda c: np.degrees(gb.vane_angle_half_turn(*_lu(c), "crank")),
         1e-6,
         "eq. 5",
         "formula",
@@ -45,7 +47,7 @@ PUBLISHED = (
     ),
     Published(
         "vane_angle_guide_driven_deg",
-        lambda c: np.degrees(2 * np.arccos(_lu(c)[0]) / _lu(c)[1]),
+        lambda c: np.degrees(gb.vane_angle_half_turn(*_lu(c), "guide")),
         1e-6,
         "eq. 6",
         "formula",
@@ -53,7 +55,7 @@ PUBLISHED = (
     ),
     Published(
         "impeller_speed_ratio_min",
-        lambda c: 1 / ((1 + _lu(c)[0]) * _lu(c)[1]),
+        lambda c: float(gb.speed_ratio_eq1(*_lu(c), 0.0)),
         1e-9,
         "eq. 1 at x = 0",
         "formula",
@@ -61,7 +63,7 @@ PUBLISHED = (
     ),
     Published(
         "impeller_speed_ratio_max",
-        lambda c: 1 / ((1 - _lu(c)[0]) * _lu(c)[1]),
+        lambda c: float(gb.speed_ratio_eq1(*_lu(c), np.pi)),
         1e-9,
         "eq. 1 at x = 180 deg",
         "formula",
@@ -69,7 +71,7 @@ PUBLISHED = (
     ),
     Published(
         "impeller_speed_ratio_min",
-        lambda c: (1 - _lu(c)[0]) / _lu(c)[1],
+        lambda c: float(gb.speed_ratio_eq3(*_lu(c), 0.0)),
         1e-9,
         "eq. 3 at x = 0",
         "formula",
@@ -77,7 +79,7 @@ PUBLISHED = (
     ),
     Published(
         "impeller_speed_ratio_max",
-        lambda c: (1 + _lu(c)[0]) / _lu(c)[1],
+        lambda c: float(gb.speed_ratio_eq3(*_lu(c), np.pi)),
         1e-9,
         "eq. 3 at x = 180 deg",
         "formula",

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.drives.guide_bar.study import drive_params, pump_params
 from rotorkin.machines import vane_pump as vp
 from rotorkin.render.scenes import (
     COLOR_1,
@@ -43,7 +44,6 @@ from rotorkin.render.scenes import (
     trace,
     xy_figure,
 )
-from rotorkin.studies.helpers import build_params
 
 __all__ = ["scene", "plots", "checks", "mechanism_points"]
 
@@ -51,15 +51,8 @@ _DISCHARGE, _SUCTION, _REST = "#f4a6a6", "#a6c8e8", "#dddddd"
 
 
 def _models(cfg):
-    from rotorkin.drives.guide_bar.study import drive_params
-
-    m = cfg["machine"]
     params = drive_params(cfg)
-    keys = ("vanes_per_impeller", "vane_angle", "hub_radius", "casing_radius", "axial_width")
-    pump = build_params(
-        vp.VanePump, "machine", {"drive": params, **{k: m[k] for k in keys if k in m}}
-    )
-    return params, pump
+    return params, pump_params(cfg, params)
 
 
 def mechanism_points(params, theta):
@@ -72,7 +65,7 @@ def mechanism_points(params, theta):
         ``(lambda + cos(crank), sin(crank))`` per mechanism.
     """
     x = gb.driving_angles(params, theta)
-    f = gb.driven_angle(float(params.lam), x, params.driver)[0]
+    f = gb.driven_angle(params.lam, params.driver, x)[0]
     crank, guide = (x, f) if params.driver == "crank" else (f, x)
     pin = np.stack([params.lam + np.cos(crank), np.sin(crank)], axis=1)
     return crank, guide, pin
@@ -149,8 +142,9 @@ def scene(result, cfg, frames: int = 120):
     # the pump section (axes x3, y3)
     rh, rc = pump.hub_radius * 1e3, pump.casing_radius * 1e3
     g, z = float(pump.vane_angle), int(pump.vanes_per_impeller)
-    vanes = vp.vane_angles(pump, theta)  # (2, Z, F)
-    phi, dphi = vp.chamber_angles(pump, theta)[:2]  # (2Z, F)
+    motion = gb.motion(params, theta)
+    vanes = vp.vane_angles(pump, motion)  # (2, Z, F)
+    phi, dphi = vp.chamber_angles(pump, motion)[:2]  # (2Z, F)
     start = np.stack([vanes[j % 2, j // 2] + 0.5 * g for j in range(2 * z)])  # (2Z, F)
     polys = [sector(rh, rc, start[j], start[j] + phi[j], 14) for j in range(2 * z)]
     rest = np.abs(dphi) < 1e-9

@@ -29,12 +29,17 @@ from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import torque as tq
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import RunSection
+from rotorkin.drives.guide_bar import figures as figures_guide_bar
 from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.drives.guide_bar import pump as gb_pump
+from rotorkin.drives.guide_bar import summary as closed_forms
+from rotorkin.drives.guide_bar.schema import GuideBarLoads, VanePumpMachine
 from rotorkin.machines import vane_pump as vp
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain
 
-__all__ = ["evaluate", "drive_params", "HEADLINE"]
+__all__ = ["evaluate", "drive_params", "pump_params", "pump_state", "HEADLINE"]
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {
@@ -63,53 +68,16 @@ def _deg(x) -> float:
 
 
 def _summary(params: gb.GuideBar, m7: float, m8: float) -> dict:
-    lam, u, i12, phase = (
-        float(params.lam),
-        float(params.gear_ratio),
-        float(params.input_gear_ratio),
-        float(params.phase),
-    )
-    other = "guide" if params.driver == "crank" else "crank"
-    rmin, rmax = (float(v) for v in gb.speed_ratio_range(lam, u, params.driver))
-    # the two equal-speed points, as driving angles of mechanism 1 in [0, 2 pi), ascending
-    t_a, t_b = sorted(float(np.mod(t, 2.0 * np.pi)) for t in gb.equal_speed_angles(phase))
-    ratio_a = float(gb.driven_angle(lam, t_a, params.driver)[1]) / u
-    ratio_b = float(gb.driven_angle(lam, t_b, params.driver)[1]) / u
     fine = np.linspace(0.0, gb.period(params), _PEAK_SAMPLES)
-    _, d1, d2, d3 = gb.impeller_angles(params, fine)
+    d1, d2, d3 = gb.impeller_rates(params, fine)
     torque = m7 * d1[0] + m8 * d1[1]
-    mean = (m7 + m8) / (u * i12)  # each impeller's speed ratio averages 1/(u i12)
-    tmin, tmax = float(np.min(torque)), float(np.max(torque))
-    return {
-        "driver": params.driver,
-        "lambda": lam,
-        "gear_ratio": u,
-        "input_gear_ratio": i12,
-        "phase_deg": _deg(phase),
-        "vane_angle_deg": _deg(gb.vane_angle(lam, u, phase, params.driver)),
-        "vane_angle_crank_driven_deg": _deg(gb.vane_angle(lam, u, phase, "crank")),
-        "vane_angle_guide_driven_deg": _deg(gb.vane_angle(lam, u, phase, "guide")),
-        "vane_angle_other_driver_deg": _deg(gb.vane_angle(lam, u, phase, other)),
-        "relative_angle_swing_deg": _deg(gb.relative_angle_swing(params)),
-        "impeller_speed_ratio_min": rmin,
-        "impeller_speed_ratio_max": rmax,
-        "impeller_speed_ratio_mean": 1.0 / u,
-        "equal_speed_driving_angle_1_deg": _deg(t_a),
-        "equal_speed_driving_angle_2_deg": _deg(t_b),
-        "equal_speed_input_angle_1_deg": _deg(t_a * i12),
-        "equal_speed_input_angle_2_deg": _deg(t_b * i12),
-        "equal_speed_ratio_1": ratio_a,
-        "equal_speed_ratio_2": ratio_b,
-        "input_torque_min_Nm": tmin,
-        "input_torque_max_Nm": tmax,
-        "input_torque_mean_Nm": mean,
-        "input_torque_fluctuation_Nm": tmax - tmin,
-        "input_torque_fluctuation_ratio": (tmax - tmin) / abs(mean) if mean != 0.0 else np.nan,
-        "impeller_speed_ratio_input_min": rmin / i12,
-        "impeller_speed_ratio_input_max": rmax / i12,
+    sampled = {
+        "input_torque_min_Nm": float(np.min(torque)),
+        "input_torque_max_Nm": float(np.max(torque)),
         "impeller_accel_peak_per_rad": float(np.max(np.abs(d2))),
         "impeller_jerk_peak_per_rad2": float(np.max(np.abs(d3))),
     }
+    return closed_forms.drive_summary(params, m7, m8, sampled)
 
 
 _DOCS = {
@@ -192,9 +160,6 @@ def _nonnegative(key: str, value: float, unit: str) -> float:
 
 def _defaults(cfg: dict):
     """Machine, loads and run sections with the schema's defaults for missing keys."""
-    from rotorkin.core.schema import RunSection
-    from rotorkin.drives.guide_bar.schema import GuideBarLoads, VanePumpMachine
-
     machine = {**VanePumpMachine().model_dump(), **(cfg.get("machine") or {})}
     loads = {**GuideBarLoads().model_dump(), **(cfg.get("loads") or {})}
     run = {**RunSection().model_dump(), **(cfg.get("run") or {})}
@@ -208,11 +173,15 @@ def _inertias(machine: dict) -> tuple[float, tuple[float, float]]:
     return js, (j1, j2)
 
 
-def pump_state(pump: vp.VanePump, ports: vp.PortPressures, inertia, speed, theta) -> dict:
+def pump_state(
+    params: gb.GuideBar, pump: vp.VanePump, ports: vp.PortPressures, inertia, speed, theta
+) -> dict:
     """Chambers, pressures, flow and torques of the pump at the input angles ``theta``.
 
     Parameters
     ----------
+    params : GuideBar
+        The drive of the pump.
     pump : VanePump
     ports : PortPressures
     inertia : (float, (float, float))
@@ -228,11 +197,12 @@ def pump_state(pump: vp.VanePump, ports: vp.PortPressures, inertia, speed, theta
         ``V``, ``dV``, ``p`` (2 Z, n); ``M`` (2, n); ``shaft``, ``inertia``,
         ``net``, ``J_eq``, ``flow``, ``omega``, ``omega_dot`` (n,).
     """
-    period = gb.period(pump.drive)
-    _, dq, d2q, _ = gb.impeller_angles(pump.drive, theta)
-    V, dV = vp.chamber_volumes(pump, theta)
-    p = vp.chamber_pressures(dV, ports)
-    M = tq.member_torques(p, vp.volume_derivatives_dq(pump, theta))
+    period = gb.period(params)
+    motion = gb.motion(params, theta)
+    dq, d2q = motion.dq, motion.d2q
+    V, dV = vp.chamber_volumes(pump, motion)
+    p = vp.chamber_pressures(ports, dV)
+    M = tq.member_torques(p, vp.volume_derivatives_dq(pump, motion))
     shaft = tq.shaft_torque_from_members(M, dq)
     omega, omega_dot, _ = shaft_speed(theta, speed, period)
     js, jm = inertia
@@ -246,60 +216,35 @@ def pump_state(pump: vp.VanePump, ports: vp.PortPressures, inertia, speed, theta
         "inertia": t_in,
         "net": shaft - t_in,
         "J_eq": tq.equivalent_inertia(js, jm, dq),
-        "flow": vp.flow_rate(pump, theta, omega),
+        "flow": vp.flow_rate(pump, motion, omega),
         "omega": omega,
         "omega_dot": omega_dot,
     }
 
 
-def _pump_summary(pump, ports, inertia, speed, coefficient) -> dict:
-    drive = pump.drive
+def _pump_summary(drive, pump, ports, inertia, speed, coefficient) -> dict:
     period = gb.period(drive)
-    i12 = float(drive.input_gear_ratio)
     fine = np.linspace(0.0, period, _PEAK_SAMPLES)
-    st = pump_state(pump, ports, inertia, speed, fine)
-    disp = vp.displacement(pump)
-    k = pump.volume_per_angle
-    phi_min, phi_max = pump.chamber_angle_range
-    dp = float(ports.discharge_pressure) - float(ports.suction_pressure)
-    # every chamber takes in Delta V at p_s and delivers it at p_d once per period (exact)
-    work_period = -dp * disp["per_period"]
-    mean_torque = work_period / period
+    st = pump_state(drive, pump, ports, inertia, speed, fine)
     omega_mean = float(np.mean(st["omega"][:-1]))
     # time-averaged flow: volume per period over the time of a period
     dt = 1.0 / st["omega"]
     t_period = float(np.trapezoid(dt, fine))
-    flow_mean = disp["per_period"] / t_period
+    flow_mean = vp.displacement(pump) / t_period
     # flywheel: net torque at the mean speed (member inertia included), J_eq already present
-    _, dq, d2q, _ = gb.impeller_angles(drive, fine)
+    dq, d2q, _ = gb.impeller_rates(drive, fine)
     js, jm = inertia
     net_const = st["shaft"] - tq.inertia_torque(js, jm, dq, d2q, omega_mean, 0.0)
     delta_e = float(fw.energy_fluctuation(net_const, fine))
     j_mean = float(np.trapezoid(st["J_eq"], fine) / period)
     cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
     out = {
-        "vanes_per_impeller": int(pump.vanes_per_impeller),
-        "chambers": pump.n_chambers,
-        "pump_vane_angle_deg": float(np.degrees(pump.vane_angle)),
-        "pump_vane_angle_max_deg": float(
-            np.degrees(vp.vane_angle_max(drive, pump.vanes_per_impeller))
-        ),
-        "chamber_angle_min_deg": float(np.degrees(phi_min)),
-        "chamber_angle_max_deg": float(np.degrees(phi_max)),
-        "chamber_volume_min_cm3": k * phi_min * 1e6,
-        "chamber_volume_max_cm3": k * phi_max * 1e6,
-        "displacement_cm3_per_rev": disp["per_input_turn"] * 1e6,
-        "displacement_per_period_cm3": disp["per_period"] * 1e6,
-        "displacement_per_impeller_rev_cm3": disp["per_impeller_rev"] * 1e6,
+        **closed_forms.pump_summary(drive, pump),
         "flow_mean_l_per_min": flow_mean * _M3_TO_L_PER_MIN,
         "flow_max_l_per_min": float(np.max(st["flow"])) * _M3_TO_L_PER_MIN,
         "flow_min_l_per_min": float(np.min(st["flow"])) * _M3_TO_L_PER_MIN,
         "flow_ripple": vp.flow_ripple(st["flow"], dt),
-        "pressure_rise_bar": dp / 1e5,
-        "hydraulic_power_W": dp * flow_mean,
-        "indicated_work_J": work_period / i12,
-        "indicated_work_per_period_J": work_period,
-        "mean_torque_Nm": mean_torque,
+        **closed_forms.work_summary(drive, pump, ports, flow_mean),
         "shaft_torque_min_Nm": float(np.min(st["shaft"])),
         "shaft_torque_max_Nm": float(np.max(st["shaft"])),
         "torque_ripple": float(tq.torque_ripple(st["shaft"])),
@@ -319,8 +264,8 @@ def _pump_summary(pump, ports, inertia, speed, coefficient) -> dict:
     return out
 
 
-def _pump_columns(pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
-    st = pump_state(pump, ports, inertia, speed, theta)
+def _pump_columns(drive, pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
+    st = pump_state(drive, pump, ports, inertia, speed, theta)
     cols = {}
     for j, tag in ((0, "a"), (1, "b")):
         cols[f"chamber_{tag}_volume_cm3"] = st["V"][j] * 1e6
@@ -333,8 +278,8 @@ def _pump_columns(pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
     cols["inertia_torque_Nm"] = st["inertia"]
     cols["shaft_torque_with_inertia_Nm"] = st["net"]
     cols["equivalent_inertia_kgm2"] = st["J_eq"]
-    tcols, tdocs, _, _ = time_domain(gb.motion(pump.drive, theta), speed,
-                                     ("impeller1", "impeller2"), gb.period(pump.drive))  # fmt: skip
+    tcols, tdocs, _, _ = time_domain(gb.motion(drive, theta), speed,
+                                     ("impeller1", "impeller2"), gb.period(drive))  # fmt: skip
     cols.update(tcols)
     return cols, {**_PUMP_DOCS, **tdocs}
 
@@ -342,19 +287,24 @@ def _pump_columns(pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
 def drive_params(cfg: dict) -> gb.GuideBar:
     """The drive's parameters from a validated config (SI); errors name the config keys."""
     d = cfg["drive"]
-    params = build_params(
-        gb.GuideBar,
-        "drive",
-        {
-            "lam": d["lambda"],
-            "gear_ratio": d["gear_ratio"],
-            "input_gear_ratio": d.get("input_gear_ratio", 1.0),
-            "phase": d.get("phase", np.pi),
-            "driver": d.get("driver", "crank"),
-        },
-        aliases={"lam": "lambda"},
+    keys = {"lam": "lambda", "gear_ratio": "gear_ratio", "input_gear_ratio": "input_gear_ratio",
+            "phase": "phase", "driver": "driver"}  # fmt: skip
+    # a key missing from cfg takes the dataclass default, which is the schema's
+    values = {field: d[key] for field, key in keys.items() if key in d}
+    return build_params(gb.GuideBar, "drive", values, aliases={"lam": "lambda"})
+
+
+def pump_params(cfg: dict, params: gb.GuideBar | None = None) -> vp.VanePump:
+    """The pump from a validated config (SI; missing machine keys take the schema's defaults).
+
+    Errors name the config keys (``machine.vane_angle``, ...).
+    """
+    params = drive_params(cfg) if params is None else params
+    machine = _defaults(cfg)[0]
+    keys = ("vanes_per_impeller", "vane_angle", "hub_radius", "casing_radius", "axial_width")
+    return build_params(
+        gb_pump.vane_pump, "machine", {"params": params, **{k: machine[k] for k in keys}}
     )
-    return params
 
 
 def evaluate(cfg: dict) -> StudyResult:
@@ -380,18 +330,7 @@ def evaluate(cfg: dict) -> StudyResult:
     machine, loads, run = _defaults(cfg)
     m7 = float(loads["impeller_torque_1"])
     m8 = float(loads["impeller_torque_2"])
-    pump = build_params(
-        vp.VanePump,
-        "machine",
-        {
-            "drive": params,
-            "vanes_per_impeller": machine["vanes_per_impeller"],
-            "vane_angle": machine["vane_angle"],
-            "hub_radius": machine["hub_radius"],
-            "casing_radius": machine["casing_radius"],
-            "axial_width": machine["axial_width"],
-        },
-    )
+    pump = pump_params(cfg, params)
     ports = build_params(
         vp.PortPressures,
         "loads",
@@ -403,17 +342,17 @@ def evaluate(cfg: dict) -> StudyResult:
     inertia = _inertias(machine)
     speed = run["speed"]
     summary = _summary(params, m7, m8)
-    summary.update(_pump_summary(pump, ports, inertia, speed, float(machine["speed_fluctuation"])))
+    summary.update(
+        _pump_summary(params, pump, ports, inertia, speed, float(machine["speed_fluctuation"]))
+    )
     columns = _columns(params, m7, m8, run["points"])
     theta = angle_grid(gb.period(params), run["points"])
-    pump_cols, pump_docs = _pump_columns(pump, ports, inertia, speed, theta)
+    pump_cols, pump_docs = _pump_columns(params, pump, ports, inertia, speed, theta)
     columns.update(pump_cols)
 
     def plot(outdir: Path) -> list[Path]:
-        from rotorkin.drives.guide_bar import figures as figures_guide_bar
-
         grid = angle_grid(gb.period(params), 1441)
-        state = pump_state(pump, ports, inertia, speed, grid)
+        state = pump_state(params, pump, ports, inertia, speed, grid)
         return figures_guide_bar.plot_all(
             params, m7, m8, Path(outdir), pump=pump, ports=ports, theta=grid, state=state,
             summary=summary,
@@ -427,4 +366,5 @@ def evaluate(cfg: dict) -> StudyResult:
         column_docs={**_DOCS, **pump_docs},
         headline=HEADLINE,
         write_figures=plot,
+        motion=gb.motion(params, theta),
     )

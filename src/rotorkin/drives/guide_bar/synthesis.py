@@ -20,7 +20,12 @@ import numpy as np
 
 from rotorkin.core.angles import fmt_deg
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import validate_model
+from rotorkin.drives.guide_bar import figures_synthesis
 from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.drives.guide_bar.schema import GuideBarConfig
+from rotorkin.drives.guide_bar.study import evaluate
+from rotorkin.synthesis import SynthesisResult, parse_quantity_arg, synthesized_raw_config
 
 __all__ = [
     "vane_angle_range",
@@ -143,18 +148,14 @@ def default_vane_angle(lam, u, phase, driver: str) -> float:
 
 
 def synthesize(cfg, raw, objective, target, harmonics, options=None):
-    """lambda for ``--target`` vane angle (objective ``vane_angle``), keeping u, Sigma, driver.
+    """lambda for the ``target`` vane angle (objective ``vane_angle``), keeping u, Sigma, driver.
 
     See :func:`rotorkin.synthesis.synthesize`. ``target`` is an angle with its
     unit (``"60 deg"``); None: :func:`default_vane_angle` (60 deg where reachable).
     The round trip evaluates the synthesized config.
     """
-    from rotorkin.drives import evaluate
-    from rotorkin.io.config import validate_config
-    from rotorkin.synthesis import SynthesisResult, parse_quantity_arg, synthesized_raw_config
-
     if harmonics is not None:
-        raise ParameterError("--harmonics", str(harmonics), "not used by the guide_bar drive")
+        raise ParameterError("harmonics", str(harmonics), "not used by the guide_bar drive")
     d = cfg["drive"]
     lam0, u, phase, driver = (
         float(d["lambda"]),
@@ -165,7 +166,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     lo, hi = (float(v) for v in vane_angle_range(u, phase, driver))
     gamma = default_vane_angle(lam0, u, phase, driver) if target is None else None
     if gamma is None:
-        gamma = parse_quantity_arg(target, "angle")
+        gamma = parse_quantity_arg(target, "angle", name="target")
     u_alt = float(gear_ratio_for_vane_angle(gamma, lam0, phase, driver)) if gamma > 0 else np.nan
     if not lo < gamma < hi:
         alt = (
@@ -174,7 +175,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
             else ""
         )
         raise ParameterError(
-            "--target",
+            "target",
             fmt_deg(gamma),
             f"{fmt_deg(lo)} < gamma_0 < {fmt_deg(hi)} (reachable with 0 < lambda < 1 at "
             f"phase = {fmt_deg(phase)}, gear_ratio = {u:g}, driver = {driver}){alt}",
@@ -183,7 +184,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     updates = {"drive": {"lambda": lam}}
     new_raw = synthesized_raw_config(raw, updates, objective)
     res0 = evaluate(cfg)
-    res1 = evaluate(validate_config(new_raw))
+    res1 = evaluate(validate_model(GuideBarConfig, new_raw))
     g0 = float(gb.vane_angle(lam0, u, phase, driver))
     g1 = float(gb.vane_angle(lam, u, phase, driver))
     g1_run = float(np.radians(res1.summary["vane_angle_deg"]))
@@ -223,13 +224,11 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     )
     if target is None:
         notes = (
-            f"--target not given: gamma_0 = {fmt_deg(gamma)} (60 deg where reachable and not "
+            f"target not given: gamma_0 = {fmt_deg(gamma)} (60 deg where reachable and not "
             "the design's own; else the middle of the reachable range)",
         ) + notes
 
     def plot(outdir):
-        from rotorkin.drives.guide_bar import figures_synthesis
-
         return figures_synthesis.plot_guide_bar(
             outdir, (lam0, lam), u, phase, driver, gamma, float(d["input_gear_ratio"])
         )

@@ -1,0 +1,156 @@
+"""The differential vane pump on this drive: what the pump needs from the drive (JHIT 2012).
+
+The pump (:mod:`rotorkin.machines.vane_pump`) is built from the impellers'
+motion and plain numbers. This module gives it those numbers:
+
+* the smallest and largest relative angle ``r = q_2 - q_1`` over a period,
+  taken at the two equal-speed points of the drive
+  (:func:`~rotorkin.drives.guide_bar.kinematics.equal_speed_angles`), where ``r`` is
+  stationary (closed form, no sampling);
+* the default vane angle, the drive's theoretical vane angle gamma_0 (section 3,
+  eq. 5, 6; :func:`~rotorkin.drives.guide_bar.kinematics.vane_angle`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorkin.core.angles import fmt_deg
+from rotorkin.core.errors import ParameterError
+from rotorkin.drives.guide_bar import kinematics as gb
+from rotorkin.drives.guide_bar.schema import VanePumpMachine
+from rotorkin.machines import vane_pump as vp
+
+__all__ = ["CHECKS", "relative_angle_extremes", "default_vane_angle", "inadmissible", "vane_pump",
+           "displacement"]  # fmt: skip
+
+#: The machine section's defaults (SI), the one source of the pump's defaults.
+_MACHINE = VanePumpMachine().model_dump()
+
+
+def relative_angle_extremes(params: gb.GuideBar):
+    """Smallest and largest relative angle ``r = q_2 - q_1`` over a period [rad].
+
+    ``r`` is stationary exactly at the two equal-speed points of the drive
+    (driving angles ``-Sigma/2`` and ``pi - Sigma/2`` of mechanism 1), so its
+    extremes are its values there (closed form, no sampling).
+
+    Parameters
+    ----------
+    params : GuideBar
+        Floats or arrays (one value per design).
+
+    Returns
+    -------
+    (r_min, r_max) : tuple of float or ndarray
+        [rad], the broadcast shape of the parameters; ``r_max - r_min = 2 pi/u - 2 gamma_0``.
+    """
+    shape = np.broadcast_shapes(*(np.shape(getattr(params, f)) for f in gb.FIELDS))
+    t = np.stack([np.broadcast_to(v, shape) for v in gb.equal_speed_angles(params.phase)])
+    q = gb.impeller_angles(params, t * np.asarray(params.input_gear_ratio, dtype=float))[0]
+    r = q[1] - q[0]  # (2 points, ...)
+    lo, hi = np.min(r, axis=0), np.max(r, axis=0)
+    return (float(lo), float(hi)) if np.ndim(lo) == 0 else (lo, hi)
+
+
+def default_vane_angle(params: gb.GuideBar):
+    """The pump's default vane angle: the drive's theoretical gamma_0 (section 3) [rad]."""
+    return gb.vane_angle(params.lam, params.gear_ratio, params.phase, params.driver)
+
+
+#: The checks of :func:`inadmissible`: the pump's (:data:`rotorkin.machines.vane_pump.CHECKS`)
+#: and, last, the default vane angle gamma_0 too wide for ``vanes_per_impeller``.
+CHECKS = (*vp.CHECKS, "vanes_per_impeller")
+
+
+def inadmissible(
+    params: gb.GuideBar,
+    vanes_per_impeller=_MACHINE["vanes_per_impeller"],
+    vane_angle=_MACHINE["vane_angle"],
+    hub_radius=_MACHINE["hub_radius"],
+    casing_radius=_MACHINE["casing_radius"],
+    axial_width=_MACHINE["axial_width"],
+):
+    """The first check of :data:`CHECKS` each design fails, as index + 1 (0: admissible).
+
+    ``vane_angle = None`` takes :func:`default_vane_angle`; where that is too wide
+    for the vanes the fault is ``vanes_per_impeller`` (the last check).
+
+    Returns
+    -------
+    ndarray of int16
+        The broadcast shape of the drive's and the pump's parameters.
+    """
+    r_min, r_max = relative_angle_extremes(params)
+    default = vane_angle is None
+    gamma = default_vane_angle(params) if default else vane_angle
+    reason = vp.inadmissible(r_min, r_max, gamma, vanes_per_impeller, hub_radius, casing_radius,
+                             axial_width)  # fmt: skip
+    if default:
+        reason[reason == vp.CHECKS.index("vane_angle") + 1] = len(CHECKS)
+    return reason
+
+
+def vane_pump(
+    params: gb.GuideBar,
+    vanes_per_impeller: int = _MACHINE["vanes_per_impeller"],
+    vane_angle: float | None = _MACHINE["vane_angle"],
+    hub_radius: float = _MACHINE["hub_radius"],
+    casing_radius: float = _MACHINE["casing_radius"],
+    axial_width: float = _MACHINE["axial_width"],
+) -> vp.VanePump:
+    """The pump on this drive; ``vane_angle = None`` takes the drive's gamma_0 [rad].
+
+    Parameters
+    ----------
+    params : GuideBar
+        The drive (already validated).
+    vanes_per_impeller, vane_angle, hub_radius, casing_radius, axial_width
+        As :class:`rotorkin.machines.vane_pump.VanePump` ([-], [rad], [m], [m], [m]).
+
+    Raises
+    ------
+    ParameterError
+        Named by field (:func:`inadmissible`): the pump's, and with the default vane
+        angle a ``vanes_per_impeller`` too large for gamma_0.
+    """
+    r_min, r_max = relative_angle_extremes(params)
+    reason = inadmissible(params, vanes_per_impeller, vane_angle, hub_radius, casing_radius,
+                          axial_width)  # fmt: skip
+    gamma = default_vane_angle(params) if vane_angle is None else vane_angle
+    if np.any(reason == len(CHECKS)):
+        g0 = float(np.ravel(gamma)[0])
+        swing = float(np.ravel(np.subtract(r_max, r_min))[0])
+        gmax = float(vp.vane_angle_max(vanes_per_impeller, swing))
+        z_max = int(np.floor(2.0 * np.pi / (2.0 * g0 + swing) * (1.0 + 1e-12)))
+        raise ParameterError(
+            "vanes_per_impeller",
+            str(vanes_per_impeller),
+            f"1 <= vanes_per_impeller <= {z_max} with the default vane_angle = gamma_0 "
+            f"= {fmt_deg(g0)} (Z (2 vane_angle + swing {fmt_deg(swing)}) <= 360 deg); "
+            f"or give vane_angle <= {fmt_deg(gmax)}",
+        )
+    gamma = float(gamma) if np.ndim(gamma) == 0 else gamma
+    return vp.VanePump(r_min, r_max, gamma, vanes_per_impeller, hub_radius, casing_radius,
+                       axial_width)  # fmt: skip
+
+
+def displacement(params: gb.GuideBar, pump: vp.VanePump) -> dict:
+    """Volume discharged, per period, per input-gear turn and per impeller revolution [m^3].
+
+    Per period ``2 pi i12``: :func:`rotorkin.machines.vane_pump.displacement`. Per
+    input turn: that over ``i12``. An impeller advances ``2 pi/u`` per period, so
+    per impeller revolution: ``u`` times it.
+
+    Returns
+    -------
+    dict
+        ``"per_period"``, ``"per_input_turn"``, ``"per_impeller_rev"`` [m^3].
+    """
+    per_period = vp.displacement(pump)
+    out = {
+        "per_period": per_period,
+        "per_input_turn": per_period / np.asarray(params.input_gear_ratio, dtype=float),
+        "per_impeller_rev": per_period * np.asarray(params.gear_ratio, dtype=float),
+    }
+    return {k: float(v) if np.ndim(v) == 0 else v for k, v in out.items()}
