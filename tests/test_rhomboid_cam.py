@@ -507,6 +507,20 @@ def test_study_columns():
                                cols["blade_torque_Nm"] * cols["dpsi"], atol=1e-12)  # fmt: skip
 
 
+def test_study_motion_is_both_blade_pairs_on_the_column_grid():
+    res = evaluate(_cfg(a=[0.02], b=[0.01]))
+    mo, cols = res.motion, res.columns
+    assert mo is not None and mo.members == ("blade pair 1", "blade pair 2")
+    np.testing.assert_allclose(np.degrees(mo.theta), cols["alpha_deg"], rtol=0, atol=1e-12)
+    al = np.radians(cols["alpha_deg"])
+    psi = psi_ref(al, np.radians(40), (0.02,), (0.01,))
+    np.testing.assert_allclose(mo.q[0], al + psi / 2, atol=1e-12)  # eq. 21
+    np.testing.assert_allclose(mo.q[1], al - psi / 2, atol=1e-12)
+    np.testing.assert_allclose(mo.dq[0], cols["phi1_speed_coeff"], atol=1e-14)
+    np.testing.assert_allclose(mo.d2q[1], cols["phi2_accel_per_rad"], atol=1e-14)
+    np.testing.assert_allclose(mo.d3q[0], cols["phi1_jerk_per_rad2"], atol=1e-14)
+
+
 def test_study_non_monotone():
     s = evaluate(_cfg(a=[0.4])).summary
     assert s["psi_monotone"] is False

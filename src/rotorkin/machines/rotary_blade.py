@@ -1,10 +1,11 @@
 """Rotary-blade engine: two blade pairs on one axis, working chambers between the blades.
 
-The machine of Zhuravlev, Donchenko, Sherstyukov (2012, ``papers/rhomboid_cam.md``):
-a Stirling-type engine with external heat supply whose two blade pairs turn about
-one axis at the angles ``phi_1`` and ``phi_2`` given by a drive (the rhomboid
-lever-cam converter, :mod:`rotorkin.drives.rhomboid_cam.kinematics`). The paper gives no
-geometry of the working space; the model here is ours.
+The machine of Zhuravlev, Donchenko, Sherstyukov (2012): a Stirling-type engine
+with external heat supply whose two blade pairs turn about one axis at the angles
+``phi_1`` and ``phi_2``. This module needs only their motion (a
+:class:`rotorkin.core.motion.Motion` of the two pairs against the output-shaft
+angle, from whichever drive produces it) and plain numbers; it knows no drive. The
+paper gives no geometry of the working space; the model here is ours.
 
 Geometry (not in the paper):
 
@@ -30,8 +31,9 @@ Geometry (not in the paper):
 
 Pressure models:
 
-* ``linear``: the paper's blade-torque model (eq. 29) gives the torque ``M_1`` on
-  pair 1 directly, and ``M_2 = -M_1`` (eq. 24) - see :func:`linear_member_torques`.
+* given member torques: a drive's own load model may give the torques ``(M_1, M_2)``
+  on the pairs directly; :func:`rotorkin.analysis.torque.shaft_torque_from_members`
+  turns them into the shaft torque.
 * ``isothermal`` (ideal Stirling cycle, ours): each chamber holds a fixed gas mass
   ``m_j``; while it *expands* (``dV_j > 0``) the gas is at the hot temperature
   ``T_h``, while it is *compressed* (``dV_j < 0``) at the cold temperature
@@ -69,7 +71,6 @@ __all__ = [
     "isothermal_cycle_work",
     "isothermal_pressure",
     "isothermal_stroke_work",
-    "linear_member_torques",
     "sector_constant",
     "volume_gradient",
     "volume_range",
@@ -196,8 +197,8 @@ def check_swing(machine: RotaryBlade, psi_lo: float, psi_hi: float) -> None:
 
     The chamber angles ``psi - t`` and ``2 pi/B - psi - t`` must stay > 0 for
     ``psi_lo <= psi <= psi_hi``, i.e. ``t < t_max = min(psi_lo, 2 pi/B - psi_hi)``.
-    For the rhomboid drive (``psi_hi = pi - psi_lo``) and ``B = 2`` that is
-    ``t < psi_min``.
+    For a swing symmetric about pi/2 (``psi_hi = pi - psi_lo``) and ``B = 2`` that
+    is ``t < psi_lo``.
 
     Raises
     ------
@@ -329,8 +330,8 @@ def displacement_per_rev(machine: RotaryBlade, psi_travel_per_rev) -> np.ndarray
 
     The volume every chamber takes in while it expands, summed over the chambers:
     ``sum_j integral max(dV_j, 0) = B k TV``, where ``TV`` is the total travel
-    ``integral |d psi|`` of ``psi`` per revolution. For a law monotone between
-    ``psi_min`` and ``psi_max`` with two cycles per revolution (the rhomboid drive),
+    ``integral |d psi|`` of ``psi`` per revolution. For a ``psi`` that swings
+    monotonically between ``psi_min`` and ``psi_max`` twice per revolution,
     ``TV = 4 (psi_max - psi_min)`` and this is ``2B x 2 x (V_max - V_min)``.
 
     Parameters
@@ -344,9 +345,9 @@ def displacement_per_rev(machine: RotaryBlade, psi_travel_per_rev) -> np.ndarray
 def chamber_strokes(machine: RotaryBlade, psi_stroke) -> np.ndarray:
     """Stroke of each chamber: +1 expanding, -1 compressed, 0 at rest; shape ``(2B, ...)``.
 
-    ``psi_stroke`` is +1 while ``psi`` rises (see
-    :func:`rotorkin.drives.rhomboid_cam.kinematics.stroke_direction`); even chambers expand
-    with ``psi``, odd ones against it.
+    ``psi_stroke`` is +1 while ``psi`` rises and -1 while it falls (the sign of
+    ``d psi / d theta``, from the drive); even chambers expand with ``psi``, odd ones
+    against it.
     """
     s = np.asarray(psi_stroke, dtype=float)
     return _expand(chamber_signs(machine), s.ndim) * s
@@ -410,16 +411,6 @@ def gas_member_torques(machine: RotaryBlade, pressure) -> np.ndarray:
     """
     pressure = np.asarray(pressure, dtype=float)
     return member_torques(pressure, volume_gradient(machine, pressure.ndim - 1))
-
-
-def linear_member_torques(blade_torque) -> np.ndarray:
-    """Member torques of the paper's linear model: ``(M_1, -M_1)`` [N m] (eq. 24).
-
-    ``blade_torque`` is ``M_1`` of eq. 29
-    (:func:`rotorkin.drives.rhomboid_cam.kinematics.blade_torque`), shape ``(...)``.
-    """
-    m = np.asarray(blade_torque, dtype=float)
-    return np.stack([m, -m])
 
 
 def isothermal_cycle_work(gas: IsothermalGas, charge, volume_at_turns) -> np.ndarray:

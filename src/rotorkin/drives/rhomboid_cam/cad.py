@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.drives.rhomboid_cam import cam as rhomboid
+from rotorkin.drives.rhomboid_cam.study import drive_params
 from rotorkin.render.cad import check_thickness, check_tolerance
 
 __all__ = ["cad_parts"]
@@ -16,9 +18,6 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     :class:`ParameterError` named by config key (``cam.roller_radius``,
     ``cam.thickness``, ``export.tolerance``, drive and machine keys).
     """
-    from rotorkin.drives.rhomboid_cam import cam as rhomboid
-    from rotorkin.drives.rhomboid_cam.study import drive_params
-
     params = drive_params(cfg)
     cam = cfg.get("cam") or {}
     r = float(cam.get("roller_radius", 0.01))

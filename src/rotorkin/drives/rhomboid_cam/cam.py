@@ -33,6 +33,7 @@ length are as in :mod:`rotorkin.drives.rhomboid_cam.kinematics`.
 from __future__ import annotations
 
 import numpy as np
+from scipy.optimize import minimize_scalar
 
 from rotorkin.cams import planar
 from rotorkin.cams.planar import Curve, Part, ProfileCheck
@@ -136,8 +137,6 @@ def pressure_angles(link_length, psi_min, a, b, alpha):
 
 def _refine(fun, grid, i, h):
     """Minimise the scalar ``fun`` near ``grid[i]`` (bracket +-h); returns (x, f)."""
-    from scipy.optimize import minimize_scalar
-
     res = minimize_scalar(
         fun, bounds=(grid[i] - h, grid[i] + h), method="bounded", options={"xatol": 1e-12}
     )

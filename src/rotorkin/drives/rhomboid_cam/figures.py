@@ -1,7 +1,8 @@
 """Figures of the rhomboid lever-cam converter (Zhuravlev et al. 2012: Fig. 1, eq. 13-34)
 and of the rotary-blade engine built on it (chambers, p-V diagram, torques, blade layout).
 
-matplotlib is imported lazily inside the functions (Agg backend).
+matplotlib is imported when a figure is drawn (:func:`rotorkin.render.figures.pyplot`);
+the backend is the caller's.
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.render.figures import pyplot, save, save_in
 
 __all__ = [
     "plot_all",
@@ -26,17 +28,7 @@ __all__ = [
     "fig_blade_layout",
 ]
 
-_DPI = 120
 _COLOURS = ("C0", "C1", "C2", "C3")
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def sample_law(psi_min):
@@ -65,7 +57,7 @@ def _tag(params) -> str:
 
 def fig_cam_profile(params, outdir: Path, alphas_deg=(0.0, 30.0, 60.0)) -> Path:
     """Cam pitch curve with rhombus, rollers and blade axes at a few shaft angles (cf. Fig. 1)."""
-    plt = _plt()
+    plt = pyplot()
     law = (params.link_length, params.psi_min, params.a, params.b)
     t = np.linspace(0.0, 2.0 * np.pi, 1441)
     xy = rc.profile_point(t, *law)[0] * 1e3
@@ -101,16 +93,12 @@ def fig_cam_profile(params, outdir: Path, alphas_deg=(0.0, 30.0, 60.0)) -> Path:
     ax.set_title(f"Cam pitch curve and rhomboid (cf. Fig. 1)\n{_tag(params)}", fontsize=10)
     ax.grid(True, alpha=0.4)
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
-    fig.tight_layout()
-    path = Path(outdir) / "fig01_cam_profile.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save(fig, Path(outdir) / "fig01_cam_profile.png")
 
 
 def fig_psi_law(params, outdir: Path, points: int = 1441) -> Path:
     """``psi``, ``psi'``, ``psi''``: the config's law and a 1st+3rd-harmonic law (eq. 13-18)."""
-    plt = _plt()
+    plt = pyplot()
     al = np.linspace(0.0, np.pi, points)
     sa, sb = sample_law(params.psi_min)
     eq = "eq. 13" if (params.a or params.b) else "eq. 16"
@@ -133,16 +121,12 @@ def fig_psi_law(params, outdir: Path, points: int = 1441) -> Path:
     axes[-1].set_xlabel("alpha [deg]")
     axes[-1].set_xticks(np.arange(0, 181, 30))
     fig.suptitle(f"Angle between the blade axes psi(alpha)\n{_tag(params)}", fontsize=10)
-    fig.tight_layout()
-    path = Path(outdir) / "fig02_psi_law.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save(fig, Path(outdir) / "fig02_psi_law.png")
 
 
 def fig_blade_motion(params, outdir: Path, points: int = 1441) -> Path:
     """Blade angles, speed coefficients ``1 +- psi'/2``, accelerations ``+-psi''/2`` (eq. 22)."""
-    plt = _plt()
+    plt = pyplot()
     al = np.linspace(0.0, np.pi, points)
     q, d1, d2, _ = rc.blade_angles(al, params.psi_min, params.a, params.b)
     ad = np.degrees(al)
@@ -160,16 +144,12 @@ def fig_blade_motion(params, outdir: Path, points: int = 1441) -> Path:
     axes[-1].set_xlabel("alpha [deg]")
     axes[-1].set_xticks(np.arange(0, 181, 30))
     fig.suptitle(f"Blade motion\n{_tag(params)}", fontsize=10)
-    fig.tight_layout()
-    path = Path(outdir) / "fig03_blade_motion.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save(fig, Path(outdir) / "fig03_blade_motion.png")
 
 
 def fig_work_loop(params, torque_high, torque_low, outdir: Path, points: int = 1441) -> Path:
     """Blade torque against ``psi`` (compression and expansion) and ``dA/dalpha`` (eq. 24-34)."""
-    plt = _plt()
+    plt = pyplot()
     law = (params.psi_min, params.a, params.b)
     al = np.linspace(0.0, np.pi, points)
     psi, d1 = rc.psi_law(al, *law)[:2]
@@ -212,11 +192,7 @@ def fig_work_loop(params, torque_high, torque_low, outdir: Path, points: int = 1
     bx.grid(True, alpha=0.4)
     bx.legend(fontsize=8)
     fig.suptitle(f"{_tag(params)}; M1 = {torque_high:g} N m, M2 = {torque_low:g} N m", fontsize=10)
-    fig.tight_layout()
-    path = Path(outdir) / "fig04_work_loop.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save(fig, Path(outdir) / "fig04_work_loop.png")
 
 
 def plot_all(params, torque_high, torque_low, outdir: Path) -> list[Path]:
@@ -263,17 +239,9 @@ def _families(machine):
     )
 
 
-def _save(fig, plt, outdir, name, rect=(0.0, 0.0, 1.0, 1.0)) -> Path:
-    fig.tight_layout(rect=rect)
-    path = Path(outdir) / name
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
-
-
 def fig_chamber_volumes(machine, loads, state, summary, outdir: Path) -> Path:
     """Chamber volumes and ``dV/dalpha`` over one output-shaft revolution."""
-    plt = _plt()
+    plt = pyplot()
     al = np.linspace(0.0, 2.0 * np.pi, 1441)
     st = state(al)
     ad = np.degrees(al)
@@ -306,12 +274,12 @@ def fig_chamber_volumes(machine, loads, state, summary, outdir: Path) -> Path:
         a.grid(True, alpha=0.4)
     ax.legend(fontsize=8, loc="upper center", ncol=2)
     fig.suptitle(f"Rotary-blade engine: chambers\n{_machine_tag(machine, loads)}", fontsize=9)
-    return _save(fig, plt, outdir, "fig05_chamber_volumes.png")
+    return save(fig, Path(outdir) / "fig05_chamber_volumes.png")
 
 
 def fig_pv_diagram(machine, loads, state, summary, outdir: Path) -> Path:
     """p-V diagram of the chambers, isothermal model (the ideal Stirling loop)."""
-    plt = _plt()
+    plt = pyplot()
     al = np.linspace(0.0, np.pi, 4001)
     st = state(al)
     g = loads.gas
@@ -354,12 +322,12 @@ def fig_pv_diagram(machine, loads, state, summary, outdir: Path) -> Path:
         fontsize=9,
     )
     fig.suptitle(_machine_tag(machine, loads), fontsize=8)
-    return _save(fig, plt, outdir, "fig06_pv_diagram.png")
+    return save(fig, Path(outdir) / "fig06_pv_diagram.png")
 
 
 def fig_shaft_torque(machine, loads, curves, summary, outdir: Path) -> Path:
     """Output-shaft torque with and without inertia, ``J_eq`` and the energy swing."""
-    plt = _plt()
+    plt = pyplot()
     al = curves["alpha"]
     ad = np.degrees(al)
     gas, inert = curves["state"].torque, curves["inertia_torque"]
@@ -403,14 +371,14 @@ def fig_shaft_torque(machine, loads, curves, summary, outdir: Path) -> Path:
     for a in (ax, bx, cx):
         a.grid(True, alpha=0.4)
     fig.suptitle(f"Output-shaft torque and flywheel\n{_machine_tag(machine, loads)}", fontsize=9)
-    return _save(fig, plt, outdir, "fig07_shaft_torque.png")
+    return save(fig, Path(outdir) / "fig07_shaft_torque.png")
 
 
 def fig_blade_layout(params, machine, loads, state, outdir: Path,
                      alphas_deg=(0.0, 30.0, 60.0, 90.0)) -> Path:  # fmt: skip
     """Cross-sections of the working space at a few shaft angles: blades and chambers."""
-    plt = _plt()
-    from matplotlib.patches import Circle, Wedge
+    plt = pyplot()
+    Circle, Wedge = plt.Circle, plt.matplotlib.patches.Wedge
 
     al = np.radians(np.asarray(alphas_deg, dtype=float))
     st = state(al)
@@ -461,7 +429,8 @@ def fig_blade_layout(params, machine, loads, state, outdir: Path,
         f"{_machine_tag(machine, loads)}",
         fontsize=9,
     )
-    return _save(fig, plt, outdir, "fig08_blade_layout.png", rect=(0.0, 0.03, 1.0, 1.0))
+    fig.tight_layout(rect=(0.0, 0.03, 1.0, 1.0))
+    return save_in(fig, outdir, "fig08_blade_layout.png")
 
 
 def plot_machine(params, machine, loads, state, curves, summary, outdir: Path) -> list[Path]:

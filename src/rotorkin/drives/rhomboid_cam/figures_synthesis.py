@@ -4,22 +4,20 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.drives.rhomboid_cam import cam
+from rotorkin.drives.rhomboid_cam import kinematics as rc
 from rotorkin.render.figures import BASELINE as _BASE
 from rotorkin.render.figures import SYNTHESIZED as _SYN
 from rotorkin.render.figures import degree_axis as _deg_axis
-from rotorkin.render.figures import pyplot as _plt
-from rotorkin.render.figures import save_in as _save
+from rotorkin.render.figures import pyplot, save_in
+from rotorkin.synthesis import DWELL_TOLERANCE
 
 __all__ = ["plot_rhomboid"]
 
 
 def plot_rhomboid(outdir, link_length, psi_min, a, b, roller_radius, objective, pa_limit):
     """psi laws, blade speed and acceleration; pitch curves, profiles and pressure angles."""
-    from rotorkin.drives.rhomboid_cam import cam as cam
-    from rotorkin.drives.rhomboid_cam import kinematics as rc
-    from rotorkin.synthesis import DWELL_TOLERANCE
-
-    plt = _plt()
+    plt = pyplot()
     alpha = np.linspace(0.0, np.pi, 1441)
     x = np.degrees(alpha)
     laws = (((), ()), (tuple(a), tuple(b)))
@@ -49,7 +47,7 @@ def plot_rhomboid(outdir, link_length, psi_min, a, b, roller_radius, objective, 
         f"Rhomboid cam law synthesized for {objective}, psi_min = {np.degrees(psi_min):.4g} deg"
     )
     fig.tight_layout()
-    paths = [_save(fig, outdir, "synthesis_psi_law.png")]
+    paths = [save_in(fig, outdir, "synthesis_psi_law.png")]
 
     fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(12, 5.6))
     full = np.linspace(0.0, 2.0 * np.pi, 1441)
@@ -78,5 +76,5 @@ def plot_rhomboid(outdir, link_length, psi_min, a, b, roller_radius, objective, 
     ax1.set_title("(b) pressure angle (B and D: the same, 90 deg later; C = A)")
     ax1.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
-    paths.append(_save(fig, outdir, "synthesis_cam.png"))
+    paths.append(save_in(fig, outdir, "synthesis_cam.png"))
     return paths

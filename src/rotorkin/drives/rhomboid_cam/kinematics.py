@@ -53,6 +53,7 @@ __all__ = [
     "first_harmonic",
     "indicator_work",
     "indicator_work_closed_form",
+    "linear_member_torques",
     "mean_shaft_torque",
     "motion",
     "period",
@@ -451,6 +452,22 @@ def blade_torque(psi, stroke, torque_high, torque_low, psi_min):
     x = np.where(h == 0.0, 0.0, (np.asarray(psi) - _HALF_PI) / np.where(h == 0.0, 1.0, h))
     m1, m2 = np.asarray(torque_high, dtype=float), np.asarray(torque_low, dtype=float)
     return np.asarray(stroke) * 0.5 * (m1 - m2) - 0.5 * (m1 + m2) * x
+
+
+def linear_member_torques(blade_torque):
+    """Torques on blade pairs 1 and 2 of the linear model, ``(M_1, -M_1)`` [N m] (eq. 24).
+
+    Parameters
+    ----------
+    blade_torque : array_like
+        ``M_1`` of eq. 29 (:func:`blade_torque`) [N m], any shape.
+
+    Returns
+    -------
+    ndarray, shape (2, ...)
+    """
+    m = np.asarray(blade_torque, dtype=float)
+    return np.stack([m, -m])
 
 
 def shaft_torque(alpha, psi_min, a, b, torque_high, torque_low):

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam.study import drive_params
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.render.scenes import (
     COLOR_1,
@@ -52,8 +53,6 @@ _GROW, _SHRINK, _RHOMBUS = "#fdae6b", "#9ecae1", "#6a3d9a"
 
 
 def _models(cfg):
-    from rotorkin.drives.rhomboid_cam.study import drive_params
-
     m = cfg["machine"]
     params = drive_params(cfg)
     keys = ("blade_thickness", "inner_radius", "outer_radius", "axial_width", "blades_per_pair")

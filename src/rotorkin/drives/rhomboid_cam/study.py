@@ -28,7 +28,10 @@ import numpy as np
 from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import torque as at
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import RunSection
+from rotorkin.drives.rhomboid_cam import figures as figures_rhomboid_cam
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam.schema import RhomboidLoads, RotaryBladeMachine
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain
@@ -222,7 +225,7 @@ def machine_state(params, machine, loads: Loads, alpha, stroke=None) -> State:
     if loads.model == "linear":
         psi = rc.psi_law(alpha, *law)[0]
         m1 = rc.blade_torque(psi, stroke, loads.torque_high, loads.torque_low, params.psi_min)
-        members = rb.linear_member_torques(m1)
+        members = rc.linear_member_torques(m1)
     else:
         strokes = rb.chamber_strokes(machine, stroke)
         pressure = rb.isothermal_pressure(loads.gas, loads.charge, volume, strokes)
@@ -408,9 +411,6 @@ def _machine_columns(params, machine, loads, points, speed):
 
 def _defaults(cfg: dict) -> dict:
     """``cfg`` with the machine, loads and run keys it lacks filled from the config schema."""
-    from rotorkin.core.schema import RunSection
-    from rotorkin.drives.rhomboid_cam.schema import RhomboidLoads, RotaryBladeMachine
-
     out = dict(cfg)
     for name, model in (("machine", RotaryBladeMachine), ("loads", RhomboidLoads),
                         ("run", RunSection)):  # fmt: skip
@@ -471,8 +471,6 @@ def evaluate(cfg: dict) -> StudyResult:
         return machine_state(params, machine, loads, alpha)
 
     def plot(outdir: Path) -> list[Path]:
-        from rotorkin.drives.rhomboid_cam import figures as figures_rhomboid_cam
-
         figs = figures_rhomboid_cam.plot_all(params, m1, m2, Path(outdir))
         return figs + figures_rhomboid_cam.plot_machine(
             params, machine, loads, state, curves, summary, Path(outdir)
@@ -486,4 +484,5 @@ def evaluate(cfg: dict) -> StudyResult:
         column_docs=docs,
         headline=HEADLINE,
         write_figures=plot,
+        motion=rc.motion(params, angle_grid(rc.period(params), cfg["run"]["points"])),
     )

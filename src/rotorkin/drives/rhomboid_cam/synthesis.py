@@ -47,10 +47,20 @@ is then checked on a 10x finer grid by the drive's own functions.
 from __future__ import annotations
 
 import numpy as np
+from scipy.optimize import NonlinearConstraint, differential_evolution, minimize
 
 from rotorkin.core.angles import fmt_deg
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import validate_model
+from rotorkin.drives.rhomboid_cam import cam, figures_synthesis, study
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam.schema import RhomboidConfig
+from rotorkin.synthesis import (
+    DWELL_TOLERANCE,
+    SynthesisResult,
+    dwell_fraction,
+    synthesized_raw_config,
+)
 
 __all__ = [
     "OBJECTIVES",
@@ -150,8 +160,6 @@ def objective_values(law: Law, objective: str, x, L: float = 1.0):
     ``min_accel``: ``max |psi''|/2``; ``dwell_min``/``dwell_max``: minus the dwell
     fraction; ``min_pressure_angle``: the peak pressure angle [rad].
     """
-    from rotorkin.synthesis import DWELL_TOLERANCE, dwell_fraction
-
     if objective == "min_accel":
         return 0.5 * np.max(np.abs(law.psi(x, 2)), axis=-1)
     if objective in ("dwell_min", "dwell_max"):
@@ -216,8 +224,6 @@ def optimize_law(
         The optimum and ``{"objective": value, "baseline": value, "pa_limit": rad,
         "constraints": (3,) margins, "evaluations": int}``.
     """
-    from scipy.optimize import NonlinearConstraint, differential_evolution, minimize
-
     L, r = float(link_length), float(roller_radius)
     n = int(harmonics)
     alpha = np.arange(_GRID) * np.pi / _GRID
@@ -343,9 +349,6 @@ def law_report(link_length, psi_min, a, b, roller_radius) -> dict:
         ``min_convex_radius``, ``min_concave_radius``, ``min_clearance`` [m],
         ``undercut``, ``monotone`` (bool), ``psi_lowest``, ``psi_highest`` [rad].
     """
-    from rotorkin.drives.rhomboid_cam import cam as cam
-    from rotorkin.synthesis import DWELL_TOLERANCE, dwell_fraction
-
     alpha = np.arange(_FINE) * np.pi / _FINE
     psi, d1, d2, d3 = rc.psi_law(alpha, psi_min, a, b)
     tol = DWELL_TOLERANCE * (np.pi - 2.0 * psi_min)
@@ -394,10 +397,6 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     See :func:`rotorkin.synthesis.synthesize`; ``options`` may hold
     ``max_pressure_angle`` [rad].
     """
-    from rotorkin.drives import evaluate
-    from rotorkin.io.config import validate_config
-    from rotorkin.synthesis import SynthesisResult, synthesized_raw_config
-
     if target is not None:
         raise ParameterError(
             "--target",
@@ -410,8 +409,10 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
         raise ParameterError("--harmonics", str(n), f"1 <= harmonics <= {rc.MAX_HARMONICS}")
     d = cfg["drive"]
     L, pmin, r = float(d["link_length"]), float(d["psi_min"]), float(cfg["cam"]["roller_radius"])
-    base_cfg = validate_config(synthesized_raw_config(raw, {"drive": {"a": [], "b": []}}))
-    res0 = evaluate(base_cfg)  # validates the design with the paper's law
+    base_cfg = validate_model(
+        RhomboidConfig, synthesized_raw_config(raw, {"drive": {"a": [], "b": []}})
+    )
+    res0 = study.evaluate(base_cfg)  # validates the design with the paper's law
     rep0 = law_report(L, pmin, (), (), r)
     if rep0["undercut"]:
         raise ParameterError(
@@ -432,7 +433,9 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     x, info = optimize_law(L, pmin, r, objective, n, pa_limit=limit)
     a, b = tuple(x[:n].tolist()), tuple(x[n:].tolist())
     updates = {"drive": {"a": list(a), "b": list(b)}}
-    res1 = evaluate(validate_config(synthesized_raw_config(raw, updates, objective)))
+    res1 = study.evaluate(
+        validate_model(RhomboidConfig, synthesized_raw_config(raw, updates, objective))
+    )
     rep1 = law_report(L, pmin, a, b, r)
     key, sign, label = _MEASURE[objective]
     better = sign * rep1[key] < sign * rep0[key]
@@ -494,8 +497,6 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
         notes.append("no admissible law better than the first-harmonic law was found")
 
     def plot(outdir):
-        from rotorkin.drives.rhomboid_cam import figures_synthesis
-
         return figures_synthesis.plot_rhomboid(
             outdir, L, pmin, a, b, r, objective, info["pa_limit"]
         )
