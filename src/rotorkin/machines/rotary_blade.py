@@ -59,12 +59,17 @@ __all__ = [
     "IsothermalGas",
     "RotaryBlade",
     "chamber_angles",
+    "chamber_figures",
     "chamber_offsets",
     "chamber_signs",
     "chamber_strokes",
     "chamber_volume_derivative",
     "chamber_volumes",
+    "CHECKS",
+    "SWING_CHECKS",
+    "blade_thickness_max",
     "check_swing",
+    "class_volume_range",
     "displacement_per_rev",
     "gas_charge",
     "gas_member_torques",
@@ -73,20 +78,105 @@ __all__ = [
     "isothermal_stroke_work",
     "sector_constant",
     "volume_gradient",
+    "swing_violation",
+    "violation",
     "volume_range",
 ]
 
 _TWO_PI = 2.0 * np.pi
 
 
+#: Parameters of :class:`RotaryBlade` in the order :func:`violation` checks them.
+CHECKS = (
+    "blades_per_pair",
+    "outer_radius",
+    "inner_radius",
+    "axial_width",
+    "blade_thickness",
+    "inertia_shaft",
+    "inertia_blade_pair_1",
+    "inertia_blade_pair_2",
+)
+#: What :func:`swing_violation` reports, in order.
+SWING_CHECKS = ("blade_thickness", "blades_per_pair")
+
+
 def _finite(x) -> bool:
     return bool(np.isfinite(x))
+
+
+def _first_violation(bad) -> np.ndarray:
+    """Per element, ``i + 1`` of the first true mask in ``bad`` (0: none is true)."""
+    bad = np.broadcast_arrays(*[np.asarray(b, dtype=bool) for b in bad])
+    out = np.zeros(bad[0].shape, dtype=np.int16)
+    for i, b in enumerate(bad):
+        out[(out == 0) & b] = i + 1
+    return out
+
+
+def violation(blade_thickness, inner_radius, outer_radius, axial_width, blades_per_pair=2,
+              inertia_shaft=0.0, inertia_blade_pair_1=0.0, inertia_blade_pair_2=0.0):  # fmt: skip
+    """Which parameter of each design is out of its admissible range.
+
+    Parameters
+    ----------
+    blade_thickness : array_like
+        ``t`` [rad]; admissible ``0 <= t < pi / B``.
+    inner_radius, outer_radius : array_like
+        ``R_i``, ``R_o`` [m]; ``0 <= R_i < R_o``, ``R_o > 0``.
+    axial_width : array_like
+        ``w`` [m], > 0.
+    blades_per_pair : array_like of int
+        ``B >= 1``.
+    inertia_shaft, inertia_blade_pair_1, inertia_blade_pair_2 : array_like
+        [kg m^2], >= 0.
+
+    Returns
+    -------
+    ndarray of int16
+        Broadcast shape of the inputs: 0 where the design is admissible, else
+        ``i + 1`` for the first violated parameter ``CHECKS[i]`` (in the order of
+        :data:`CHECKS`).
+    """
+    with np.errstate(invalid="ignore"):
+        B = np.asarray(blades_per_pair)
+        Bf = np.where(B >= 1, B, 1).astype(float)
+        ro, ri = np.asarray(outer_radius, dtype=float), np.asarray(inner_radius, dtype=float)
+        w, t = np.asarray(axial_width, dtype=float), np.asarray(blade_thickness, dtype=float)
+        bad = [
+            ~((B >= 1) & (B == np.floor(B))),
+            ~(np.isfinite(ro) & (ro > 0.0)),
+            ~(np.isfinite(ri) & (ri >= 0.0) & (ri < ro)),
+            ~(np.isfinite(w) & (w > 0.0)),
+            ~(np.isfinite(t) & (t >= 0.0) & (t < np.pi / Bf)),
+        ]
+        for j in (inertia_shaft, inertia_blade_pair_1, inertia_blade_pair_2):
+            j = np.asarray(j, dtype=float)
+            bad.append(~(np.isfinite(j) & (j >= 0.0)))
+    return _first_violation(bad)
+
+
+def _value(x, where):
+    """Element ``where`` (a flat index) of the broadcast parameter ``x``."""
+    return np.broadcast_to(np.asarray(x), where[1]).flat[where[0]]
+
+
+def _number(x):
+    """A parameter as float (scalar) or float array (many designs)."""
+    a = np.asarray(x, dtype=float)
+    return float(a) if a.ndim == 0 else a
 
 
 # --- parameters ---------------------------------------------------------------------------
 @dataclass(frozen=True)
 class RotaryBlade:
     """Geometry and inertias of the rotary-blade engine.
+
+    A thin holder of the parameters, validated by :func:`violation`; each field
+    may also be an array (many designs, broadcast together) for the functions
+    that treat the chambers by kind (:func:`sector_constant`,
+    :func:`blade_thickness_max`, :func:`class_volume_range`,
+    :func:`displacement_per_rev`).
 
     Attributes
     ----------
@@ -118,37 +208,19 @@ class RotaryBlade:
 
     def __post_init__(self):
         B = self.blades_per_pair
-        if isinstance(B, bool) or not isinstance(B, int | np.integer) or B < 1:
+        if isinstance(B, bool) or not np.issubdtype(np.asarray(B).dtype, np.integer):
             raise ParameterError("blades_per_pair", repr(B), "an integer >= 1")
-        ro = float(self.outer_radius)
-        if not (_finite(ro) and ro > 0.0):
-            raise ParameterError("outer_radius", fmt_mm(ro), "outer_radius > 0 mm")
-        ri = float(self.inner_radius)
-        if not (_finite(ri) and 0.0 <= ri < ro):
-            raise ParameterError(
-                "inner_radius", fmt_mm(ri), f"0 mm <= inner_radius < outer_radius = {fmt_mm(ro)}"
-            )
-        w = float(self.axial_width)
-        if not (_finite(w) and w > 0.0):
-            raise ParameterError("axial_width", fmt_mm(w), "axial_width > 0 mm")
-        t = float(self.blade_thickness)
-        if not (_finite(t) and 0.0 <= t < np.pi / B):
-            raise ParameterError(
-                "blade_thickness",
-                fmt_deg(t),
-                f"0 deg <= blade_thickness < {fmt_deg(np.pi / B)} "
-                f"(the {2 * B} blades must fit around the rotor)",
-            )
-        for name in ("inertia_shaft", "inertia_blade_pair_1", "inertia_blade_pair_2"):
-            j = float(getattr(self, name))
-            if not (_finite(j) and j >= 0.0):
-                raise ParameterError(name, f"{j:g} kg*m^2", f"{name} >= 0 kg*m^2")
-            object.__setattr__(self, name, j)
-        object.__setattr__(self, "blades_per_pair", int(B))
-        object.__setattr__(self, "blade_thickness", t)
-        object.__setattr__(self, "inner_radius", ri)
-        object.__setattr__(self, "outer_radius", ro)
-        object.__setattr__(self, "axial_width", w)
+        fields = {name: getattr(self, name) for name in CHECKS}
+        code = violation(**fields)
+        if np.any(code):
+            k = int(np.flatnonzero(code)[0])
+            name = CHECKS[code.flat[k] - 1]
+            at = (k, code.shape)
+            raise _machine_error(name, {n: _value(v, at) for n, v in fields.items()})
+        B = np.asarray(B)
+        object.__setattr__(self, "blades_per_pair", int(B) if B.ndim == 0 else B)
+        for name in CHECKS[1:]:
+            object.__setattr__(self, name, _number(getattr(self, name)))
 
     @property
     def chambers(self) -> int:
@@ -192,6 +264,58 @@ class IsothermalGas:
         object.__setattr__(self, "charge_pressure", p)
 
 
+def _machine_error(name, v) -> ParameterError:
+    """The :class:`ParameterError` of one design whose ``name`` :func:`violation` flags."""
+    B = int(v["blades_per_pair"]) if float(v["blades_per_pair"]).is_integer() else None
+    if name == "blades_per_pair":
+        return ParameterError(name, repr(v[name]), "an integer >= 1")
+    if name == "outer_radius":
+        return ParameterError(name, fmt_mm(v[name]), "outer_radius > 0 mm")
+    if name == "inner_radius":
+        return ParameterError(
+            name,
+            fmt_mm(v[name]),
+            f"0 mm <= inner_radius < outer_radius = {fmt_mm(v['outer_radius'])}",
+        )
+    if name == "axial_width":
+        return ParameterError(name, fmt_mm(v[name]), "axial_width > 0 mm")
+    if name == "blade_thickness":
+        return ParameterError(
+            name,
+            fmt_deg(v[name]),
+            f"0 deg <= blade_thickness < {fmt_deg(np.pi / B)} "
+            f"(the {2 * B} blades must fit around the rotor)",
+        )
+    return ParameterError(name, f"{float(v[name]):g} kg*m^2", f"{name} >= 0 kg*m^2")
+
+
+def blade_thickness_max(blades_per_pair, psi_lo, psi_hi):
+    """Thickest blade that fits a swing of ``psi``: ``min(psi_lo, 2 pi/B - psi_hi)`` [rad].
+
+    The chamber angles ``psi - t`` and ``2 pi/B - psi - t`` stay > 0 for
+    ``psi_lo <= psi <= psi_hi`` exactly when ``t`` is below this. All arguments
+    broadcast.
+    """
+    B = np.asarray(blades_per_pair, dtype=float)
+    return np.minimum(psi_lo, _TWO_PI / B - np.asarray(psi_hi, dtype=float))
+
+
+def swing_violation(blades_per_pair, blade_thickness, psi_lo, psi_hi) -> np.ndarray:
+    """Whether the blades collide in a swing of ``psi``, and which parameter to change.
+
+    Returns
+    -------
+    ndarray of int16
+        0 where ``t < blade_thickness_max``; else 1 (``SWING_CHECKS[0]``,
+        ``blade_thickness``) where thinner blades would fit, 2 (``blades_per_pair``)
+        where none would. All arguments broadcast.
+    """
+    t_max = blade_thickness_max(blades_per_pair, psi_lo, psi_hi)
+    with np.errstate(invalid="ignore"):
+        bad = ~(np.asarray(blade_thickness, dtype=float) < t_max)
+    return _first_violation([bad & (t_max > 0.0), bad])
+
+
 def check_swing(machine: RotaryBlade, psi_lo: float, psi_hi: float) -> None:
     """Refuse blades that collide somewhere in the drive's swing of ``psi``.
 
@@ -207,11 +331,12 @@ def check_swing(machine: RotaryBlade, psi_lo: float, psi_hi: float) -> None:
         ``blades_per_pair`` with the largest ``B`` that fits.
     """
     B, t = machine.blades_per_pair, machine.blade_thickness
-    t_max = min(float(psi_lo), _TWO_PI / B - float(psi_hi))
-    if t < t_max:
+    code = int(swing_violation(B, t, psi_lo, psi_hi))
+    if code == 0:
         return
+    t_max = float(blade_thickness_max(B, psi_lo, psi_hi))
     swing = f"psi from {fmt_deg(psi_lo)} to {fmt_deg(psi_hi)}"
-    if t_max > 0.0:
+    if SWING_CHECKS[code - 1] == "blade_thickness":
         raise ParameterError(
             "blade_thickness",
             fmt_deg(t),
@@ -310,19 +435,58 @@ def volume_gradient(machine: RotaryBlade, ndim: int = 0) -> np.ndarray:
     return np.stack([g, -g]).reshape((2, -1) + (1,) * ndim)
 
 
+def class_volume_range(machine: RotaryBlade, psi_lo, psi_hi):
+    """Smallest and largest volume of the even and the odd chambers over a swing of ``psi``.
+
+    ``V = k gamma`` with the chamber angles ``psi - t`` (even, smallest at
+    ``psi_lo``) and ``2 pi/B - psi - t`` (odd, smallest at ``psi_hi``) [m^3]. The
+    machine's fields and the swing may be arrays (many designs), broadcast together.
+
+    Returns
+    -------
+    (v_min, v_max) : ndarray, shape (2, ...)
+        Even chambers first, then odd.
+    """
+    k, t = sector_constant(machine), machine.blade_thickness
+    odd = _TWO_PI / np.asarray(machine.blades_per_pair, dtype=float)
+    v_lo = np.stack(np.broadcast_arrays(k * (psi_lo - t), k * (-psi_lo + (odd - t))))
+    v_hi = np.stack(np.broadcast_arrays(k * (psi_hi - t), k * (-psi_hi + (odd - t))))
+    return np.minimum(v_lo, v_hi), np.maximum(v_lo, v_hi)
+
+
+def chamber_figures(machine: RotaryBlade, psi_lo, psi_hi) -> dict:
+    """Volume figures of the working chambers over a swing of ``psi``, over all chambers.
+
+    From :func:`class_volume_range`; arrays of designs broadcast.
+
+    Returns
+    -------
+    dict of ndarray
+        ``volume_max``, ``volume_min`` [m^3] (largest and smallest volume of any
+        chamber), ``swept_volume`` [m^3] (largest ``V_max - V_min`` of a chamber),
+        ``compression_ratio`` (smallest ``V_max / V_min`` of a chamber).
+    """
+    v_min, v_max = class_volume_range(machine, psi_lo, psi_hi)
+    return {
+        "volume_max": np.max(v_max, axis=0),
+        "volume_min": np.min(v_min, axis=0),
+        "swept_volume": np.max(v_max - v_min, axis=0),
+        "compression_ratio": np.min(v_max / v_min, axis=0),
+    }
+
+
 def volume_range(machine: RotaryBlade, psi_lo: float, psi_hi: float):
     """Smallest and largest volume of each chamber over a swing of ``psi`` [m^3].
 
-    Even chambers are smallest at ``psi_lo``, odd ones at ``psi_hi``.
+    Even chambers are smallest at ``psi_lo``, odd ones at ``psi_hi``
+    (:func:`class_volume_range`, repeated around the rotor).
 
     Returns
     -------
     (v_min, v_max) : ndarray, shape (2B,)
     """
-    k, s, c = sector_constant(machine), chamber_signs(machine), chamber_offsets(machine)
-    v_lo = k * (s * psi_lo + c)
-    v_hi = k * (s * psi_hi + c)
-    return np.minimum(v_lo, v_hi), np.maximum(v_lo, v_hi)
+    B = machine.blades_per_pair
+    return tuple(np.tile(v, B) for v in class_volume_range(machine, psi_lo, psi_hi))
 
 
 def displacement_per_rev(machine: RotaryBlade, psi_travel_per_rev) -> np.ndarray:

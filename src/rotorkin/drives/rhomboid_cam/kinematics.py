@@ -44,6 +44,7 @@ from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion, compose
 
 __all__ = [
+    "CHECKS",
     "MAX_HARMONICS",
     "RhomboidCam",
     "blade_angles",
@@ -55,24 +56,33 @@ __all__ = [
     "indicator_work_closed_form",
     "linear_member_torques",
     "mean_shaft_torque",
+    "law_peaks",
     "motion",
     "period",
+    "polar_curvature",
     "profile_curvature",
     "profile_point",
     "profile_radius",
     "profile_radius_eq19",
+    "profile_radius_range",
     "psi_extremes",
     "psi_is_monotone",
     "psi_law",
     "psi_stationary_points",
     "psi_total_variation",
+    "radius_from_psi",
     "rhombus_vertices",
     "shaft_torque",
     "stroke_direction",
+    "violation",
 ]
 
 #: Largest number of higher harmonics accepted in ``a`` and in ``b`` each.
 MAX_HARMONICS = 20
+#: Parameters of :class:`RhomboidCam` in the order :func:`violation` checks them.
+CHECKS = ("link_length", "psi_min")
+#: Stationary points of the first-harmonic law (eq. 16) in one period [rad].
+_FIRST_HARMONIC_STATIONARY = np.array([0.0, 0.5 * np.pi, np.pi])
 
 _HALF_PI = 0.5 * np.pi
 
@@ -218,11 +228,28 @@ def profile_radius(alpha, link_length, psi_min, a=(), b=()):
     (rho, drho, d2rho, d3rho) : tuple of ndarray
         [m, m/rad^n].
     """
+    return radius_from_psi(link_length, psi_law(alpha, psi_min, a, b))
+
+
+def radius_from_psi(link_length, psi):
+    """``rho = 2l cos(psi/2)`` (eq. 3) and its derivatives from those of ``psi`` (chain rule).
+
+    Parameters
+    ----------
+    link_length : array_like
+        Side ``2l`` of the rhombus [m].
+    psi : sequence of 4 array_like
+        ``psi, psi', psi'', psi'''`` [rad, rad/rad^n], broadcast with ``link_length``.
+
+    Returns
+    -------
+    (rho, drho, d2rho, d3rho) : tuple of ndarray
+        [m, m/rad^n].
+    """
     L = np.asarray(link_length, dtype=float)
-    p = psi_law(alpha, psi_min, a, b)
-    h = 0.5 * p[0]
+    h = 0.5 * np.asarray(psi[0])
     c, s = np.cos(h), np.sin(h)
-    return compose((L * c, -0.5 * L * s, -0.25 * L * c, 0.125 * L * s), p)
+    return compose((L * c, -0.5 * L * s, -0.25 * L * c, 0.125 * L * s), psi)
 
 
 def profile_radius_eq19(alpha, link_length, psi_min, a=(), b=()):
@@ -235,6 +262,20 @@ def profile_radius_eq19(alpha, link_length, psi_min, a=(), b=()):
     """
     L = np.asarray(link_length, dtype=float)
     return L * np.sin(0.5 * psi_law(alpha, psi_min, a, b)[0])
+
+
+def profile_radius_range(link_length, psi_lo, psi_hi):
+    """Smallest and largest radius of the pitch curve, ``2l cos(psi/2)`` at the extremes of psi.
+
+    ``rho`` falls as ``psi`` rises (``0 < psi < pi``), so the smallest radius is at
+    ``psi_hi`` and the largest at ``psi_lo`` (eq. 3) [m]. All arguments broadcast.
+
+    Returns
+    -------
+    (rho_min, rho_max) : ndarray
+    """
+    L = np.asarray(link_length, dtype=float)
+    return L * np.cos(0.5 * np.asarray(psi_hi)), L * np.cos(0.5 * np.asarray(psi_lo))
 
 
 def profile_point(alpha, link_length, psi_min, a=(), b=()):
@@ -264,8 +305,51 @@ def profile_curvature(alpha, link_length, psi_min, a=(), b=()):
     negative where concave; ``1/|kappa|`` is the radius of curvature, to be
     compared with the roller radius for undercut.
     """
-    r0, r1, r2, _ = profile_radius(alpha, link_length, psi_min, a, b)
-    return (r0**2 + 2.0 * r1**2 - r0 * r2) / (r0**2 + r1**2) ** 1.5
+    return polar_curvature(*profile_radius(alpha, link_length, psi_min, a, b)[:3])
+
+
+def polar_curvature(rho, drho, d2rho):
+    """Signed curvature of a polar curve ``rho(alpha)`` [1/m].
+
+    ``kappa = (rho^2 + 2 rho'^2 - rho rho'') / (rho^2 + rho'^2)^(3/2)``; positive
+    where the curve turns towards the origin (convex for a closed cam).
+    """
+    return (rho**2 + 2.0 * drho**2 - rho * d2rho) / (rho**2 + drho**2) ** 1.5
+
+
+def law_peaks(alpha, link_length, psi_min, a=(), b=()):
+    """Peaks of the blade-motion coefficients and of the pitch-curve curvature.
+
+    Over the last axis of the broadcast of ``alpha`` with the parameters, e.g.
+    ``alpha`` shape ``(m,)`` against ``link_length``, ``psi_min`` shape ``(n, 1)``
+    gives ``(n,)`` arrays. The blade pairs turn at ``phi_i' = 1 +- psi'/2`` (eq. 22);
+    their second and third derivatives are ``+-psi''/2`` and ``+-psi'''/2``.
+
+    Returns
+    -------
+    dict of ndarray
+        ``speed_coeff_max`` ``1 + max|psi'|/2``, ``speed_coeff_min`` ``1 - max|psi'|/2``,
+        ``accel_coeff_max`` ``max|psi''|/2`` [1/rad], ``jerk_coeff_max``
+        ``max|psi'''|/2`` [1/rad^2]; from :func:`profile_curvature`:
+        ``convex_radius_min`` ``1 / max kappa`` and ``concave_radius_min``
+        ``1 / max(-kappa)`` (inf where the curve is nowhere concave) [m], and
+        ``convex`` (bool: ``kappa >= 0`` everywhere).
+    """
+    _, d1, d2, d3 = psi_law(alpha, psi_min, a, b)
+    kappa = profile_curvature(alpha, link_length, psi_min, a, b)
+    d1 = np.max(np.abs(d1), axis=-1)
+    concave = -np.min(kappa, axis=-1)
+    with np.errstate(divide="ignore"):
+        concave_r = np.where(concave > 0.0, 1.0 / np.where(concave > 0.0, concave, 1.0), np.inf)
+    return {
+        "speed_coeff_max": 1.0 + 0.5 * d1,
+        "speed_coeff_min": 1.0 - 0.5 * d1,
+        "accel_coeff_max": 0.5 * np.max(np.abs(d2), axis=-1),
+        "jerk_coeff_max": 0.5 * np.max(np.abs(d3), axis=-1),
+        "convex_radius_min": 1.0 / np.max(kappa, axis=-1),
+        "concave_radius_min": concave_r,
+        "convex": concave <= 0.0,
+    }
 
 
 def _unit(angle):
@@ -357,8 +441,16 @@ def psi_extremes(psi_min, a=(), b=()):
     -------
     (psi_lo, alpha_lo, psi_hi, alpha_hi) : float
         [rad]. For monotone laws ``psi_lo = psi_min`` at pi/2 and
-        ``psi_hi = pi - psi_min`` at 0.
+        ``psi_hi = pi - psi_min`` at 0. For the first-harmonic law (``a``, ``b``
+        empty) ``psi_min`` may be an array: ``psi_lo``, ``psi_hi`` have its shape.
     """
+    if not _higher(a, b)[0].size:
+        pm = np.asarray(psi_min, dtype=float)
+        z = psi_law(_FIRST_HARMONIC_STATIONARY[:2], pm[..., None])[0]
+        lo, hi = z[..., 1], z[..., 0]
+        if pm.ndim == 0:
+            lo, hi = float(lo), float(hi)
+        return lo, _HALF_PI, hi, 0.0
     x = np.concatenate([psi_stationary_points(psi_min, a, b), _grid(a, b)])
     psi = psi_law(x, float(psi_min), a, b)[0]
     i, j = int(np.argmin(psi)), int(np.argmax(psi))
@@ -369,8 +461,14 @@ def psi_total_variation(psi_min, a=(), b=()):
     """Total travel ``integral_0^pi |psi'| d alpha`` of the chamber angle [rad].
 
     Sum of ``|Delta psi|`` between consecutive stationary points; equals
-    ``2 (pi - 2 psi_min)`` for a law monotone between its extremes.
+    ``2 (pi - 2 psi_min)`` for a law monotone between its extremes. For the
+    first-harmonic law ``psi_min`` may be an array (the result has its shape).
     """
+    if not _higher(a, b)[0].size:
+        pm = np.asarray(psi_min, dtype=float)
+        z = psi_law(_FIRST_HARMONIC_STATIONARY, pm[..., None])[0]
+        travel = np.abs(z[..., 1] - z[..., 0]) + np.abs(z[..., 2] - z[..., 1])
+        return float(travel) if pm.ndim == 0 else travel
     z = psi_stationary_points(psi_min, a, b)
     return float(np.sum(np.abs(np.diff(psi_law(z, float(psi_min), a, b)[0]))))
 
@@ -495,8 +593,10 @@ def indicator_work(psi_min, a, b, torque_high, torque_low, nodes=None):
 
     Parameters
     ----------
-    psi_min : float
-        Scalar [rad].
+    psi_min : array_like
+        [rad]; scalar when ``a`` or ``b`` hold harmonics (their stationary points
+        depend on the law), any shape for the first-harmonic law (stationary at
+        0, pi/2, pi), broadcast with the torques.
     a, b : sequence of float
         [rad].
     torque_high, torque_low : array_like
@@ -507,20 +607,27 @@ def indicator_work(psi_min, a, b, torque_high, torque_low, nodes=None):
     Returns
     -------
     ndarray
-        [J], shape of the broadcast torques.
+        [J], shape of the broadcast of ``psi_min`` and the torques.
     """
-    z = psi_stationary_points(psi_min, a, b)
+    k = _higher(a, b)[0].size
+    if k:
+        psi_min = np.asarray(float(psi_min))
+        z = psi_stationary_points(psi_min, a, b)
+    else:
+        psi_min = np.asarray(psi_min, dtype=float)
+        z = _FIRST_HARMONIC_STATIONARY
     lo, hi = z[:-1], z[1:]
-    n = nodes or 64 + 16 * max(len(np.atleast_1d(a)), len(np.atleast_1d(b)))
+    n = nodes or 64 + 16 * k
     x, w = np.polynomial.legendre.leggauss(n)
     half = 0.5 * (hi - lo)[:, None]
     al = 0.5 * (hi + lo)[:, None] + half * x
-    psi, d1 = psi_law(al, float(psi_min), a, b)[:2]
-    ends = psi_law(z, float(psi_min), a, b)[0]
-    s = np.sign(np.diff(ends))[:, None]
+    pm = psi_min[..., None, None]
+    psi, d1 = psi_law(al, pm, a, b)[:2]
+    ends = psi_law(z, psi_min[..., None], a, b)[0]
+    s = np.sign(np.diff(ends, axis=-1))[..., None]
     m1 = np.asarray(torque_high, dtype=float)[..., None, None]
     m2 = np.asarray(torque_low, dtype=float)[..., None, None]
-    M = blade_torque(psi, s, m1, m2, psi_min)
+    M = blade_torque(psi, s, m1, m2, pm)
     return np.sum(M * d1 * w * half, axis=(-2, -1))
 
 
@@ -540,6 +647,37 @@ def mean_shaft_torque(psi_min, a, b, torque_high, torque_low):
 
 
 # --- parameters ---------------------------------------------------------------------------
+def violation(link_length, psi_min):
+    """Which parameter of each design is out of its admissible range.
+
+    ``link_length`` (``2l``) [m] must be finite and > 0, ``psi_min`` [rad] in
+    ``(0, pi/2)`` (``pi/2`` is the constant law). The harmonics ``a``, ``b`` are
+    checked per law by :func:`check_law`.
+
+    Returns
+    -------
+    ndarray of int16
+        Broadcast shape of the inputs: 0 where admissible, else ``i + 1`` for the
+        first violated parameter ``CHECKS[i]``.
+    """
+    with np.errstate(invalid="ignore"):
+        L = np.asarray(link_length, dtype=float)
+        p = np.asarray(psi_min, dtype=float)
+        bad = np.broadcast_arrays(
+            ~(np.isfinite(L) & (L > 0.0)), ~(np.isfinite(p) & (p > 0.0) & (p < _HALF_PI))
+        )
+    out = np.zeros(bad[0].shape, dtype=np.int16)
+    for i, b in enumerate(bad):
+        out[(out == 0) & b] = i + 1
+    return out
+
+
+def _number(x):
+    """A parameter as float (scalar) or float array (many designs)."""
+    a = np.asarray(x, dtype=float)
+    return float(a) if a.ndim == 0 else a
+
+
 def _coeff_tuple(name, values):
     try:
         arr = np.asarray(values, dtype=float)
@@ -562,6 +700,10 @@ def _coeff_tuple(name, values):
 class RhomboidCam:
     """Parameters of the rhomboid lever-cam converter.
 
+    A thin holder of the parameters, validated by :func:`violation` and
+    :func:`check_law`; ``link_length`` and ``psi_min`` may be arrays (many
+    first-harmonic laws, broadcast together) when ``a`` and ``b`` are empty.
+
     Attributes
     ----------
     link_length : float
@@ -581,20 +723,28 @@ class RhomboidCam:
     b: tuple = ()
 
     def __post_init__(self):
-        L = float(self.link_length)
-        if not (np.isfinite(L) and L > 0.0):
-            raise ParameterError("link_length", fmt_mm(L), "link_length > 0 mm")
-        p = float(self.psi_min)
-        if not (np.isfinite(p) and 0.0 < p < _HALF_PI):
+        code = violation(self.link_length, self.psi_min)
+        if np.any(code):
+            k = int(np.flatnonzero(code)[0])
+            name = CHECKS[code.flat[k] - 1]
+            value = np.broadcast_to(np.asarray(getattr(self, name)), code.shape).flat[k]
+            if name == "link_length":
+                raise ParameterError(name, fmt_mm(value), "link_length > 0 mm")
             raise ParameterError(
-                "psi_min",
-                fmt_deg(p),
+                name,
+                fmt_deg(value),
                 "0 deg < psi_min < 90 deg (psi_min = 90 deg is the constant law: no motion)",
             )
+        L, p = _number(self.link_length), _number(self.psi_min)
         a = _coeff_tuple("a", self.a)
         b = _coeff_tuple("b", self.b)
         object.__setattr__(self, "link_length", L)
         object.__setattr__(self, "psi_min", p)
         object.__setattr__(self, "a", a)
         object.__setattr__(self, "b", b)
-        check_law(p, a, b)
+        if a or b:
+            if np.ndim(p) != 0:
+                raise ParameterError(
+                    "psi_min", f"{np.size(p)} values", "a single value when a, b hold harmonics"
+                )
+            check_law(p, a, b)

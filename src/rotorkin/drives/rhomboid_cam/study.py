@@ -79,9 +79,8 @@ def _summary(params, m1, m2) -> dict:
     a1, b1 = rc.first_harmonic(*law)
     lo, alo, hi, ahi = rc.psi_extremes(*law)
     fine = np.linspace(0.0, rc.period(params), _PEAK_SAMPLES)
-    _, d1, d2, d3 = rc.psi_law(fine, *law)
-    kappa = rc.profile_curvature(fine, L, *law)
-    convex, concave = float(np.max(kappa)), float(-np.min(kappa))
+    peaks = {k: v.item() for k, v in rc.law_peaks(fine, L, *law).items()}
+    rho_min, rho_max = rc.profile_radius_range(L, lo, hi)
     work = float(rc.indicator_work(*law, m1, m2))
     return {
         "psi_min_deg": _deg(params.psi_min),
@@ -96,20 +95,20 @@ def _summary(params, m1, m2) -> dict:
         "b1_rad": float(b1) + 0.0,  # no negative zero
         "highest_harmonic": 2 * max(len(params.a), len(params.b)) + 1,
         "link_length_mm": L * 1e3,
-        "profile_radius_min_mm": float(L * np.cos(0.5 * hi)) * 1e3,
-        "profile_radius_max_mm": float(L * np.cos(0.5 * lo)) * 1e3,
-        "profile_convex_radius_min_mm": 1e3 / convex,
-        "profile_concave_radius_min_mm": 1e3 / concave if concave > 0.0 else float("inf"),
-        "profile_convex": bool(concave <= 0.0),
+        "profile_radius_min_mm": float(rho_min) * 1e3,
+        "profile_radius_max_mm": float(rho_max) * 1e3,
+        "profile_convex_radius_min_mm": peaks["convex_radius_min"] * 1e3,
+        "profile_concave_radius_min_mm": peaks["concave_radius_min"] * 1e3,
+        "profile_convex": peaks["convex"],
         "indicator_work_J": work,
         "indicator_work_closed_form_J": float(
             rc.indicator_work_closed_form(params.psi_min, m1, m2)
         ),
         "mean_shaft_torque_Nm": work / np.pi,
-        "blade_speed_coeff_max": float(1.0 + 0.5 * np.max(np.abs(d1))),
-        "blade_speed_coeff_min": float(1.0 - 0.5 * np.max(np.abs(d1))),
-        "blade_accel_coeff_max": float(0.5 * np.max(np.abs(d2))),
-        "blade_jerk_coeff_max": float(0.5 * np.max(np.abs(d3))),
+        "blade_speed_coeff_max": peaks["speed_coeff_max"],
+        "blade_speed_coeff_min": peaks["speed_coeff_min"],
+        "blade_accel_coeff_max": peaks["accel_coeff_max"],
+        "blade_jerk_coeff_max": peaks["jerk_coeff_max"],
         "torque_high_Nm": float(m1),
         "torque_low_Nm": float(m2),
     }
@@ -167,7 +166,7 @@ def _columns(params, m1, m2, points) -> dict:
     cols["drho_mm_per_rad"] = drho * 1e3
     cols["x_mm"] = xy[0] * 1e3
     cols["y_mm"] = xy[1] * 1e3
-    cols["rho_b_mm"] = L * np.sin(0.5 * psi) * 1e3
+    cols["rho_b_mm"] = rc.profile_radius_eq19(alpha, L, *law) * 1e3
     cols["curvature_per_m"] = rc.profile_curvature(alpha, L, *law)
     cols["stroke"] = stroke
     cols["blade_torque_Nm"] = torque
@@ -251,6 +250,12 @@ def indicated_work_per_period(params, machine, loads: Loads, nodes: int = 64) ->
     return float(np.sum(machine_state(params, machine, loads, al, s).torque * w * half))
 
 
+def _inertia_torque(machine, mo, omega):
+    """Torque the shaft spends on the inertia of shaft and blade pairs [N m]."""
+    J = machine.member_inertias
+    return at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, omega[0], omega[1])
+
+
 def _cm3(v) -> float:
     return float(v) * 1e6
 
@@ -283,14 +288,14 @@ def _machine_setup(cfg, params):
 def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tuple[dict, dict]:
     """Engine summary on a fine grid over one period, and the curves the figures draw."""
     law = (params.psi_min, params.a, params.b)
-    lo, hi, v_min, v_max = extremes
+    lo, hi, _, _ = extremes
     period = rc.period(params)
     alpha = np.linspace(0.0, period, _PEAK_SAMPLES)
     st = machine_state(params, machine, loads, alpha)
     mo = st.motion
     _, _, td_summary, omega = time_domain(mo, speed, _SLUGS, period)
     J = machine.member_inertias
-    t_inertia = at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, omega[0], omega[1])
+    t_inertia = _inertia_torque(machine, mo, omega)
     w_mean = float(np.mean(omega[0][:-1]))
     steady = st.torque - at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, w_mean, 0.0)
     j_eq = at.equivalent_inertia(machine.inertia_shaft, J, mo.dq)
@@ -301,17 +306,18 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tu
     revs = 2.0 * np.pi / period  # periods per output-shaft revolution
     work_rev = revs * work_period
     with_inertia = st.torque - t_inertia
+    vol = rb.chamber_figures(machine, lo, hi)
     s = {
         "pressure_model": loads.model,
         "blades_per_pair": machine.blades_per_pair,
         "chambers": machine.chambers,
         "blade_thickness_deg": _deg(machine.blade_thickness),
-        "blade_thickness_max_deg": _deg(min(lo, 2.0 * np.pi / machine.blades_per_pair - hi)),
+        "blade_thickness_max_deg": _deg(rb.blade_thickness_max(machine.blades_per_pair, lo, hi)),
         "sector_volume_cm3_per_rad": _cm3(rb.sector_constant(machine)),
-        "chamber_volume_max_cm3": _cm3(np.max(v_max)),
-        "chamber_volume_min_cm3": _cm3(np.min(v_min)),
-        "chamber_swept_volume_cm3": _cm3(np.max(v_max - v_min)),
-        "compression_ratio_geometric": float(np.min(v_max / v_min)),
+        "chamber_volume_max_cm3": _cm3(vol["volume_max"]),
+        "chamber_volume_min_cm3": _cm3(vol["volume_min"]),
+        "chamber_swept_volume_cm3": _cm3(vol["swept_volume"]),
+        "compression_ratio_geometric": float(vol["compression_ratio"]),
         "displacement_cm3_per_rev": _cm3(
             rb.displacement_per_rev(machine, revs * rc.psi_total_variation(*law))
         ),
@@ -366,7 +372,7 @@ def _machine_columns(params, machine, loads, points, speed):
     mo = st.motion
     cols, docs, _, omega = time_domain(mo, speed, _SLUGS, period)
     J = machine.member_inertias
-    t_inertia = at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, omega[0], omega[1])
+    t_inertia = _inertia_torque(machine, mo, omega)
     out, out_docs = {}, {}
     for j in range(machine.chambers):
         kind = "psi - t" if j % 2 == 0 else "2 pi/B - psi - t"

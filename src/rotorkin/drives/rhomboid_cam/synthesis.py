@@ -132,12 +132,8 @@ class Law:
 
 
 def _curvature(L, psi, d1, d2):
-    """Signed curvature of the pitch curve ``rho = L cos(psi/2)`` [1/m] (as the drive's)."""
-    c, s = np.cos(0.5 * psi), np.sin(0.5 * psi)
-    r0 = L * c
-    r1 = -0.5 * L * s * d1
-    r2 = -0.25 * L * c * d1**2 - 0.5 * L * s * d2
-    return (r0**2 + 2.0 * r1**2 - r0 * r2) / (r0**2 + r1**2) ** 1.5
+    """Signed curvature of the pitch curve ``rho = L cos(psi/2)`` [1/m], the drive's formula."""
+    return rc.polar_curvature(*rc.radius_from_psi(L, (psi, d1, d2, 0.0))[:3])
 
 
 def _pressure_batch(law: Law, L: float, x):
@@ -150,8 +146,8 @@ def _pressure_batch(law: Law, L: float, x):
     over the grid (batched over laws; the final check uses the cams module itself).
     """
     x = np.atleast_2d(x)
-    t = np.abs(np.tan(0.5 * law.psi(x)) * law.psi(x, 1)) * 0.5
-    return np.arctan(np.max(t, axis=-1))
+    rho, drho = rc.radius_from_psi(L, (law.psi(x), law.psi(x, 1), 0.0, 0.0))[:2]
+    return np.arctan(np.max(np.abs(drho) / rho, axis=-1))
 
 
 def objective_values(law: Law, objective: str, x, L: float = 1.0):
@@ -350,15 +346,16 @@ def law_report(link_length, psi_min, a, b, roller_radius) -> dict:
         ``undercut``, ``monotone`` (bool), ``psi_lowest``, ``psi_highest`` [rad].
     """
     alpha = np.arange(_FINE) * np.pi / _FINE
-    psi, d1, d2, d3 = rc.psi_law(alpha, psi_min, a, b)
+    psi = rc.psi_law(alpha, psi_min, a, b)[0]
+    peaks = rc.law_peaks(alpha, link_length, psi_min, a, b)
     tol = DWELL_TOLERANCE * (np.pi - 2.0 * psi_min)
     chk = cam.profile_check(link_length, psi_min, a, b, roller_radius)
     lo, _, hi, _ = rc.psi_extremes(psi_min, a, b)
     return {
-        "accel_peak": float(0.5 * np.max(np.abs(d2))),
-        "jerk_peak": float(0.5 * np.max(np.abs(d3))),
-        "speed_coeff_min": float(1.0 - 0.5 * np.max(np.abs(d1))),
-        "speed_coeff_max": float(1.0 + 0.5 * np.max(np.abs(d1))),
+        "accel_peak": float(peaks["accel_coeff_max"]),
+        "jerk_peak": float(peaks["jerk_coeff_max"]),
+        "speed_coeff_min": float(peaks["speed_coeff_min"]),
+        "speed_coeff_max": float(peaks["speed_coeff_max"]),
         "dwell_min": float(dwell_fraction(psi, psi_min, tol)),
         "dwell_max": float(dwell_fraction(psi, np.pi - psi_min, tol)),
         "pressure_angle_peak": float(chk.max_pressure_angle),
