@@ -161,13 +161,13 @@ def test_law_peaks_for_arrays_equal_scalar_calls_and_three_point_curvature():
     alpha = np.linspace(0.0, np.pi, 4001)
     L = np.array([[0.1], [0.12], [0.2]])
     pm = np.radians([[20.0], [40.0], [70.0]])
-    peaks = rc.law_peaks(alpha, L, pm)
+    peaks = rc.law_peaks(L, pm, (), (), alpha)
     for i in range(3):
-        one = rc.law_peaks(alpha, float(L[i, 0]), float(pm[i, 0]))
+        one = rc.law_peaks(float(L[i, 0]), float(pm[i, 0]), (), (), alpha)
         for k, v in one.items():
             assert peaks[k][i] == v, k
         # curvature of the pitch curve from the circle through three points
-        p = rc.profile_point(alpha, float(L[i, 0]), float(pm[i, 0]))[0]
+        p = rc.profile_point(float(L[i, 0]), float(pm[i, 0]), (), (), alpha)[0]
         a, b, c = p[:, :-2], p[:, 1:-1], p[:, 2:]
         ab, bc, ca = (np.hypot(*(b - a)), np.hypot(*(c - b)), np.hypot(*(a - c)))
         cross = (b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0]

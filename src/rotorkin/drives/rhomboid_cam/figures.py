@@ -60,15 +60,15 @@ def fig_cam_profile(params, outdir: Path, alphas_deg=(0.0, 30.0, 60.0)) -> Path:
     plt = pyplot()
     law = (params.link_length, params.psi_min, params.a, params.b)
     t = np.linspace(0.0, 2.0 * np.pi, 1441)
-    xy = rc.profile_point(t, *law)[0] * 1e3
+    xy = rc.profile_point(*law, t)[0] * 1e3
     rot = np.array([[0.0, 1.0], [-1.0, 0.0]]) @ xy  # eq. 19 form: turned by -90 deg
     fig, ax = plt.subplots(figsize=(11.5, 7.5))
     ax.plot(xy[0], xy[1], "k-", lw=2.0, label="pitch curve rho = 2l cos(psi/2) (eq. 3)")
     ax.plot(rot[0], rot[1], color="0.6", ls=":", lw=1.2,
             label="eq. 19 form 2l sin(psi/2): the same cam turned 90 deg")  # fmt: skip
     al = np.radians(np.asarray(alphas_deg, dtype=float))
-    v = rc.rhombus_vertices(al, *law) * 1e3  # (4, 2, n)
-    mid = rc.blade_arm_points(al, *law) * 1e3
+    v = rc.rhombus_vertices(*law, al) * 1e3  # (4, 2, n)
+    mid = rc.blade_arm_points(*law, al) * 1e3
     reach = 1.9 * 0.5 * params.link_length * 1e3
     for j, a_deg in enumerate(alphas_deg):
         c = _COLOURS[j % len(_COLOURS)]
@@ -109,7 +109,7 @@ def fig_psi_law(params, outdir: Path, points: int = 1441) -> Path:
     fig, axes = plt.subplots(3, 1, figsize=(8, 8.5), sharex=True)
     labels = ("psi [deg]", "dpsi/dalpha [-]", "d2psi/dalpha2 [1/rad]")
     for name, a, b, ls in laws:
-        p = rc.psi_law(al, params.psi_min, a, b)
+        p = rc.psi_law(params.psi_min, a, b, al)
         for ax, y, conv in zip(axes, p[:3], (np.degrees, None, None), strict=True):
             ax.plot(np.degrees(al), conv(y) if conv else y, ls, label=name)
     for ax, lab in zip(axes, labels, strict=True):
@@ -128,7 +128,7 @@ def fig_blade_motion(params, outdir: Path, points: int = 1441) -> Path:
     """Blade angles, speed coefficients ``1 +- psi'/2``, accelerations ``+-psi''/2`` (eq. 22)."""
     plt = pyplot()
     al = np.linspace(0.0, np.pi, points)
-    q, d1, d2, _ = rc.blade_angles(al, params.psi_min, params.a, params.b)
+    q, d1, d2, _ = rc.blade_angles(params.psi_min, params.a, params.b, al)
     ad = np.degrees(al)
     fig, axes = plt.subplots(3, 1, figsize=(8, 8.5), sharex=True)
     axes[0].plot(ad, ad, color="0.6", lw=0.8, label="alpha (output shaft)")
@@ -152,14 +152,14 @@ def fig_work_loop(params, torque_high, torque_low, outdir: Path, points: int = 1
     plt = pyplot()
     law = (params.psi_min, params.a, params.b)
     al = np.linspace(0.0, np.pi, points)
-    psi, d1 = rc.psi_law(al, *law)[:2]
-    s = rc.stroke_direction(al, *law)
-    m = rc.blade_torque(psi, s, torque_high, torque_low, params.psi_min)
+    psi, d1 = rc.psi_law(*law, al)[:2]
+    s = rc.stroke_direction(*law, al)
+    m = rc.blade_torque(torque_high, torque_low, params.psi_min, psi, s)
     work = float(rc.indicator_work(*law, torque_high, torque_low))
     lo, _, hi, _ = rc.psi_extremes(*law)
     g = np.linspace(lo, hi, 201)
-    mp = rc.blade_torque(g, 1.0, torque_high, torque_low, params.psi_min)
-    mc = rc.blade_torque(g, -1.0, torque_high, torque_low, params.psi_min)
+    mp = rc.blade_torque(torque_high, torque_low, params.psi_min, g, 1.0)
+    mc = rc.blade_torque(torque_high, torque_low, params.psi_min, g, -1.0)
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5))
     closed = float(rc.indicator_work_closed_form(params.psi_min, torque_high, torque_low))
     label = f"area between the lines = Delta M Delta psi = {closed:.4g} J (eq. 31, 34)"

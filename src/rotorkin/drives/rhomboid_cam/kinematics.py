@@ -29,8 +29,10 @@ Conventions (the paper is silent or garbled):
 * Torques: ``M_1`` acts on blade pair 1 and ``M_2 = -M_1`` on pair 2 (eq. 24);
   positive work is done *by* the blades on the output shaft.
 
-All functions broadcast over the input angle; the harmonic coefficients
-``a = (a3, a5, ...)`` and ``b = (b3, b5, ...)`` are 1-d sequences [rad].
+All functions take the parameters first and the input angle last, and broadcast
+the angle against array parameters (``psi_min``, ``link_length``, torques, e.g.
+shape ``(n, 1)`` against angles ``(m,)``); the harmonic coefficients
+``a = (a3, a5, ...)`` and ``b = (b3, b5, ...)`` are 1-d sequences [rad], one law.
 """
 
 from __future__ import annotations
@@ -122,7 +124,7 @@ def first_harmonic(psi_min, a=(), b=()):
     return a1, b1
 
 
-def psi_law(alpha, psi_min, a=(), b=()):
+def psi_law(psi_min, a, b, alpha):
     """Angle between the blade axes and its derivatives (eq. 13, 14, 15).
 
     ``psi = pi/2 + sum_{k odd} (a_k cos 2k alpha + b_k sin 2k alpha)`` with
@@ -180,7 +182,7 @@ def period(params) -> float:
     return float(np.pi)
 
 
-def blade_angles(alpha, psi_min, a=(), b=()):
+def blade_angles(psi_min, a, b, alpha):
     """Angles of the two blade pairs and their derivatives (eq. 21, 22).
 
     ``phi_1 = alpha + psi/2``, ``phi_2 = alpha - psi/2`` (eq. 21 with zero
@@ -191,7 +193,7 @@ def blade_angles(alpha, psi_min, a=(), b=()):
     (phi, dphi, d2phi, d3phi) : tuple of ndarray, shape (2, ...)
         Pair 1 then pair 2 [rad, rad/rad^n].
     """
-    p = psi_law(alpha, psi_min, a, b)
+    p = psi_law(psi_min, a, b, alpha)
     alpha = np.asarray(alpha, dtype=float)
     base = (alpha + 0.0 * p[0], np.ones_like(p[0]), np.zeros_like(p[0]), np.zeros_like(p[0]))
     return tuple(np.stack([u + 0.5 * v, u - 0.5 * v]) for u, v in zip(base, p, strict=True))
@@ -203,12 +205,12 @@ def motion(params, theta) -> Motion:
     ``Motion.relative`` is ``phi_2 - phi_1 = -psi``.
     """
     theta = np.asarray(theta, dtype=float)
-    q, d1, d2, d3 = blade_angles(theta, params.psi_min, params.a, params.b)
+    q, d1, d2, d3 = blade_angles(params.psi_min, params.a, params.b, theta)
     return Motion(theta, q, d1, d2, d3, members=("blade pair 1", "blade pair 2"), unit="rad")
 
 
 # --- the cam and the rhombus --------------------------------------------------------------
-def profile_radius(alpha, link_length, psi_min, a=(), b=()):
+def profile_radius(link_length, psi_min, a, b, alpha):
     """Polar radius of the cam pitch curve and its derivatives (eq. 3).
 
     ``rho(alpha) = 2l cos(psi(alpha)/2)``: the distance of roller A from O when
@@ -228,7 +230,7 @@ def profile_radius(alpha, link_length, psi_min, a=(), b=()):
     (rho, drho, d2rho, d3rho) : tuple of ndarray
         [m, m/rad^n].
     """
-    return radius_from_psi(link_length, psi_law(alpha, psi_min, a, b))
+    return radius_from_psi(link_length, psi_law(psi_min, a, b, alpha))
 
 
 def radius_from_psi(link_length, psi):
@@ -252,16 +254,16 @@ def radius_from_psi(link_length, psi):
     return compose((L * c, -0.5 * L * s, -0.25 * L * c, 0.125 * L * s), psi)
 
 
-def profile_radius_eq19(alpha, link_length, psi_min, a=(), b=()):
+def profile_radius_eq19(link_length, psi_min, a, b, alpha):
     """Pitch-curve radius in the form printed as eq. 19: ``2l sin(psi(alpha)/2)`` [m].
 
     This is ``OB`` of :func:`rhombus_vertices` as a function of the angle of
-    OA, and by eq. 10 it equals ``profile_radius(alpha + pi/2)``: the curve of
-    eq. 19 is the cam of eq. 3 turned by a quarter turn (clockwise; for the
+    OA, and by eq. 10 it equals ``rho(alpha + pi/2)`` of :func:`profile_radius`: the
+    curve of eq. 19 is the cam of eq. 3 turned by a quarter turn (clockwise; for the
     first-harmonic law, of period pi in alpha, either way). We use eq. 3.
     """
     L = np.asarray(link_length, dtype=float)
-    return L * np.sin(0.5 * psi_law(alpha, psi_min, a, b)[0])
+    return L * np.sin(0.5 * psi_law(psi_min, a, b, alpha)[0])
 
 
 def profile_radius_range(link_length, psi_lo, psi_hi):
@@ -278,7 +280,7 @@ def profile_radius_range(link_length, psi_lo, psi_hi):
     return L * np.cos(0.5 * np.asarray(psi_hi)), L * np.cos(0.5 * np.asarray(psi_lo))
 
 
-def profile_point(alpha, link_length, psi_min, a=(), b=()):
+def profile_point(link_length, psi_min, a, b, alpha):
     """Cartesian point of the pitch curve and its first two derivatives.
 
     ``x = rho cos alpha``, ``y = rho sin alpha`` with ``rho`` of eq. 3.
@@ -289,7 +291,7 @@ def profile_point(alpha, link_length, psi_min, a=(), b=()):
         ``(x, y)`` [m] and derivatives with respect to ``alpha`` [m/rad^n].
     """
     alpha = np.asarray(alpha, dtype=float)
-    r0, r1, r2, _ = profile_radius(alpha, link_length, psi_min, a, b)
+    r0, r1, r2, _ = profile_radius(link_length, psi_min, a, b, alpha)
     c, s = np.cos(alpha), np.sin(alpha)
     p = np.stack([r0 * c, r0 * s])
     dp = np.stack([r1 * c - r0 * s, r1 * s + r0 * c])
@@ -297,7 +299,7 @@ def profile_point(alpha, link_length, psi_min, a=(), b=()):
     return p, dp, d2p
 
 
-def profile_curvature(alpha, link_length, psi_min, a=(), b=()):
+def profile_curvature(link_length, psi_min, a, b, alpha):
     """Signed curvature of the cam pitch curve [1/m] (not in the paper).
 
     ``kappa = (rho^2 + 2 rho'^2 - rho rho'') / (rho^2 + rho'^2)^(3/2)``:
@@ -305,7 +307,7 @@ def profile_curvature(alpha, link_length, psi_min, a=(), b=()):
     negative where concave; ``1/|kappa|`` is the radius of curvature, to be
     compared with the roller radius for undercut.
     """
-    return polar_curvature(*profile_radius(alpha, link_length, psi_min, a, b)[:3])
+    return polar_curvature(*profile_radius(link_length, psi_min, a, b, alpha)[:3])
 
 
 def polar_curvature(rho, drho, d2rho):
@@ -317,7 +319,7 @@ def polar_curvature(rho, drho, d2rho):
     return (rho**2 + 2.0 * drho**2 - rho * d2rho) / (rho**2 + drho**2) ** 1.5
 
 
-def law_peaks(alpha, link_length, psi_min, a=(), b=()):
+def law_peaks(link_length, psi_min, a, b, alpha):
     """Peaks of the blade-motion coefficients and of the pitch-curve curvature.
 
     Over the last axis of the broadcast of ``alpha`` with the parameters, e.g.
@@ -335,8 +337,8 @@ def law_peaks(alpha, link_length, psi_min, a=(), b=()):
         ``1 / max(-kappa)`` (inf where the curve is nowhere concave) [m], and
         ``convex`` (bool: ``kappa >= 0`` everywhere).
     """
-    _, d1, d2, d3 = psi_law(alpha, psi_min, a, b)
-    kappa = profile_curvature(alpha, link_length, psi_min, a, b)
+    _, d1, d2, d3 = psi_law(psi_min, a, b, alpha)
+    kappa = profile_curvature(link_length, psi_min, a, b, alpha)
     d1 = np.max(np.abs(d1), axis=-1)
     concave = -np.min(kappa, axis=-1)
     with np.errstate(divide="ignore"):
@@ -356,7 +358,7 @@ def _unit(angle):
     return np.stack([np.cos(angle), np.sin(angle)])
 
 
-def rhombus_vertices(alpha, link_length, psi_min, a=(), b=()):
+def rhombus_vertices(link_length, psi_min, a, b, alpha):
     """Roller centres A, B, C, D of the rhombus (eq. 3, 4).
 
     ``A = 2l cos(psi/2) e(alpha)``, ``B = 2l sin(psi/2) e(alpha + pi/2)``,
@@ -370,13 +372,13 @@ def rhombus_vertices(alpha, link_length, psi_min, a=(), b=()):
     """
     alpha = np.asarray(alpha, dtype=float)
     L = np.asarray(link_length, dtype=float)
-    psi = psi_law(alpha, psi_min, a, b)[0]
+    psi = psi_law(psi_min, a, b, alpha)[0]
     va = L * np.cos(0.5 * psi) * _unit(alpha)
     vb = L * np.sin(0.5 * psi) * _unit(alpha + _HALF_PI)
     return np.stack([va, vb, -va, -vb])
 
 
-def blade_arm_points(alpha, link_length, psi_min, a=(), b=()):
+def blade_arm_points(link_length, psi_min, a, b, alpha):
     """Midpoints of the sides AB, BC, CD, DA: where the blade arms hold the rhombus.
 
     They lie at distance ``l`` from O, at ``phi_1``, ``phi_2 + pi``,
@@ -387,7 +389,7 @@ def blade_arm_points(alpha, link_length, psi_min, a=(), b=()):
     ndarray, shape (4, 2, ...)
         [m].
     """
-    v = rhombus_vertices(alpha, link_length, psi_min, a, b)
+    v = rhombus_vertices(link_length, psi_min, a, b, alpha)
     return 0.5 * (v + np.roll(v, -1, axis=0))
 
 
@@ -416,13 +418,13 @@ def psi_stationary_points(psi_min, a=(), b=()):
     if tol == 0.0:
         return fixed
     g = _grid(a, b)
-    d1 = psi_law(g, psi_min, a, b)[1]
+    d1 = psi_law(psi_min, a, b, g)[1]
     sg = np.where(np.abs(d1) <= tol, 0.0, np.sign(d1))
     i = np.flatnonzero(sg[:-1] * sg[1:] < 0.0)
     lo, hi, flo = g[i], g[i + 1], sg[i]
     for _ in range(64):
         mid = 0.5 * (lo + hi)
-        same = np.sign(psi_law(mid, psi_min, a, b)[1]) == flo
+        same = np.sign(psi_law(psi_min, a, b, mid)[1]) == flo
         lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
     roots = np.concatenate([fixed, 0.5 * (lo + hi), g[sg == 0.0]])
     roots = np.sort(roots[(roots >= 0.0) & (roots <= np.pi)])
@@ -446,13 +448,13 @@ def psi_extremes(psi_min, a=(), b=()):
     """
     if not _higher(a, b)[0].size:
         pm = np.asarray(psi_min, dtype=float)
-        z = psi_law(_FIRST_HARMONIC_STATIONARY[:2], pm[..., None])[0]
+        z = psi_law(pm[..., None], (), (), _FIRST_HARMONIC_STATIONARY[:2])[0]
         lo, hi = z[..., 1], z[..., 0]
         if pm.ndim == 0:
             lo, hi = float(lo), float(hi)
         return lo, _HALF_PI, hi, 0.0
     x = np.concatenate([psi_stationary_points(psi_min, a, b), _grid(a, b)])
-    psi = psi_law(x, float(psi_min), a, b)[0]
+    psi = psi_law(float(psi_min), a, b, x)[0]
     i, j = int(np.argmin(psi)), int(np.argmax(psi))
     return float(psi[i]), float(x[i]), float(psi[j]), float(x[j])
 
@@ -466,11 +468,11 @@ def psi_total_variation(psi_min, a=(), b=()):
     """
     if not _higher(a, b)[0].size:
         pm = np.asarray(psi_min, dtype=float)
-        z = psi_law(_FIRST_HARMONIC_STATIONARY, pm[..., None])[0]
+        z = psi_law(pm[..., None], (), (), _FIRST_HARMONIC_STATIONARY)[0]
         travel = np.abs(z[..., 1] - z[..., 0]) + np.abs(z[..., 2] - z[..., 1])
         return float(travel) if pm.ndim == 0 else travel
     z = psi_stationary_points(psi_min, a, b)
-    return float(np.sum(np.abs(np.diff(psi_law(z, float(psi_min), a, b)[0]))))
+    return float(np.sum(np.abs(np.diff(psi_law(float(psi_min), a, b, z)[0]))))
 
 
 def psi_is_monotone(psi_min, a=(), b=(), rtol=1e-9):
@@ -502,7 +504,7 @@ def check_law(psi_min, a=(), b=()):
 
 
 # --- torques and work ---------------------------------------------------------------------
-def stroke_direction(alpha, psi_min, a=(), b=()):
+def stroke_direction(psi_min, a, b, alpha):
     """+1 in expansion (``psi`` rising), -1 in compression (falling).
 
     The sign of ``psi'``; where ``psi'`` vanishes, the stroke that begins
@@ -511,15 +513,15 @@ def stroke_direction(alpha, psi_min, a=(), b=()):
     (``1e-3 / (2 k_max)`` rad); 0 for the constant law.
     """
     alpha = np.asarray(alpha, dtype=float)
-    d1, d2 = psi_law(alpha, psi_min, a, b)[1:3]
+    d1, d2 = psi_law(psi_min, a, b, alpha)[1:3]
     k = _higher(a, b)[0]
-    later = psi_law(alpha + 1e-3 / (2.0 * (k[-1] if k.size else 1.0)), psi_min, a, b)[1]
+    later = psi_law(psi_min, a, b, alpha + 1e-3 / (2.0 * (k[-1] if k.size else 1.0)))[1]
     out = np.sign(later)
     out = np.where(np.abs(d2) > 1e-10 * _scale(psi_min, a, b, 2), np.sign(d2), out)
     return np.where(np.abs(d1) > 1e-10 * _scale(psi_min, a, b, 1), np.sign(d1), out)
 
 
-def blade_torque(psi, stroke, torque_high, torque_low, psi_min):
+def blade_torque(torque_high, torque_low, psi_min, psi, stroke):
     """Torque on blade pair 1, linear in ``psi`` (eq. 29, as read from the OCR).
 
     ``M_p = a - b (psi - pi/2)/(pi/2 - psi_min)`` in expansion (``stroke = +1``),
@@ -568,15 +570,15 @@ def linear_member_torques(blade_torque):
     return np.stack([m, -m])
 
 
-def shaft_torque(alpha, psi_min, a, b, torque_high, torque_low):
+def shaft_torque(psi_min, a, b, torque_high, torque_low, alpha):
     """Torque the blades drive the output shaft with, ``dA/d alpha`` [N m] (eq. 23, 24).
 
     By virtual work ``M_1 phi_1' + M_2 phi_2' = M_1 psi'`` with ``M_2 = -M_1``;
     quasi-static, frictionless, rigid links.
     """
-    psi, d1 = psi_law(alpha, psi_min, a, b)[:2]
-    s = stroke_direction(alpha, psi_min, a, b)
-    return blade_torque(psi, s, torque_high, torque_low, psi_min) * d1
+    psi, d1 = psi_law(psi_min, a, b, alpha)[:2]
+    s = stroke_direction(psi_min, a, b, alpha)
+    return blade_torque(torque_high, torque_low, psi_min, psi, s) * d1
 
 
 def indicator_work(psi_min, a, b, torque_high, torque_low, nodes=None):
@@ -622,12 +624,12 @@ def indicator_work(psi_min, a, b, torque_high, torque_low, nodes=None):
     half = 0.5 * (hi - lo)[:, None]
     al = 0.5 * (hi + lo)[:, None] + half * x
     pm = psi_min[..., None, None]
-    psi, d1 = psi_law(al, pm, a, b)[:2]
-    ends = psi_law(z, psi_min[..., None], a, b)[0]
+    psi, d1 = psi_law(pm, a, b, al)[:2]
+    ends = psi_law(psi_min[..., None], a, b, z)[0]
     s = np.sign(np.diff(ends, axis=-1))[..., None]
     m1 = np.asarray(torque_high, dtype=float)[..., None, None]
     m2 = np.asarray(torque_low, dtype=float)[..., None, None]
-    M = blade_torque(psi, s, m1, m2, pm)
+    M = blade_torque(m1, m2, pm, psi, s)
     return np.sum(M * d1 * w * half, axis=(-2, -1))
 
 

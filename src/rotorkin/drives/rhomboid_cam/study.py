@@ -79,7 +79,7 @@ def _summary(params, m1, m2) -> dict:
     a1, b1 = rc.first_harmonic(*law)
     lo, alo, hi, ahi = rc.psi_extremes(*law)
     fine = np.linspace(0.0, rc.period(params), _PEAK_SAMPLES)
-    peaks = {k: v.item() for k, v in rc.law_peaks(fine, L, *law).items()}
+    peaks = {k: v.item() for k, v in rc.law_peaks(L, *law, fine).items()}
     rho_min, rho_max = rc.profile_radius_range(L, lo, hi)
     work = float(rc.indicator_work(*law, m1, m2))
     return {
@@ -144,12 +144,12 @@ def _columns(params, m1, m2, points) -> dict:
     law = (params.psi_min, params.a, params.b)
     L = params.link_length
     alpha = angle_grid(rc.period(params), points)
-    psi, d1, d2, d3 = rc.psi_law(alpha, *law)
-    phi, p1, p2, p3 = rc.blade_angles(alpha, *law)
-    rho, drho = rc.profile_radius(alpha, L, *law)[:2]
-    xy = rc.profile_point(alpha, L, *law)[0]
-    stroke = rc.stroke_direction(alpha, *law)
-    torque = rc.blade_torque(psi, stroke, m1, m2, params.psi_min)
+    psi, d1, d2, d3 = rc.psi_law(*law, alpha)
+    phi, p1, p2, p3 = rc.blade_angles(*law, alpha)
+    rho, drho = rc.profile_radius(L, *law, alpha)[:2]
+    xy = rc.profile_point(L, *law, alpha)[0]
+    stroke = rc.stroke_direction(*law, alpha)
+    torque = rc.blade_torque(m1, m2, params.psi_min, psi, stroke)
     cols = {
         "alpha_deg": np.degrees(alpha),
         "psi_deg": np.degrees(psi),
@@ -166,8 +166,8 @@ def _columns(params, m1, m2, points) -> dict:
     cols["drho_mm_per_rad"] = drho * 1e3
     cols["x_mm"] = xy[0] * 1e3
     cols["y_mm"] = xy[1] * 1e3
-    cols["rho_b_mm"] = rc.profile_radius_eq19(alpha, L, *law) * 1e3
-    cols["curvature_per_m"] = rc.profile_curvature(alpha, L, *law)
+    cols["rho_b_mm"] = rc.profile_radius_eq19(L, *law, alpha) * 1e3
+    cols["curvature_per_m"] = rc.profile_curvature(L, *law, alpha)
     cols["stroke"] = stroke
     cols["blade_torque_Nm"] = torque
     cols["dA_dalpha_J_per_rad"] = torque * d1
@@ -217,13 +217,13 @@ def machine_state(params, machine, loads: Loads, alpha, stroke=None) -> State:
     law = (params.psi_min, params.a, params.b)
     alpha = np.asarray(alpha, dtype=float)
     mo = rc.motion(params, alpha)
-    stroke = rc.stroke_direction(alpha, *law) if stroke is None else np.asarray(stroke)
+    stroke = rc.stroke_direction(*law, alpha) if stroke is None else np.asarray(stroke)
     volume = rb.chamber_volumes(machine, mo.q)
     dvolume = rb.chamber_volume_derivative(machine, mo.dq)
     pressure = None
     if loads.model == "linear":
-        psi = rc.psi_law(alpha, *law)[0]
-        m1 = rc.blade_torque(psi, stroke, loads.torque_high, loads.torque_low, params.psi_min)
+        psi = rc.psi_law(*law, alpha)[0]
+        m1 = rc.blade_torque(loads.torque_high, loads.torque_low, params.psi_min, psi, stroke)
         members = rc.linear_member_torques(m1)
     else:
         strokes = rb.chamber_strokes(machine, stroke)
@@ -246,7 +246,7 @@ def indicated_work_per_period(params, machine, loads: Loads, nodes: int = 64) ->
     x, w = np.polynomial.legendre.leggauss(int(nodes))
     half = 0.5 * (z[1:] - z[:-1])[:, None]
     al = 0.5 * (z[1:] + z[:-1])[:, None] + half * x
-    s = np.sign(np.diff(rc.psi_law(z, *law)[0]))[:, None] * np.ones_like(al)
+    s = np.sign(np.diff(rc.psi_law(*law, z)[0]))[:, None] * np.ones_like(al)
     return float(np.sum(machine_state(params, machine, loads, al, s).torque * w * half))
 
 
@@ -347,7 +347,7 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tu
     }
     if loads.model == "isothermal":
         z = rc.psi_stationary_points(*law)
-        v_turns = rb.chamber_volumes(machine, rc.blade_angles(z, *law)[0])
+        v_turns = rb.chamber_volumes(machine, rc.blade_angles(*law, z)[0])
         closed = rb.isothermal_cycle_work(loads.gas, loads.charge, v_turns)
         s["isothermal_work_closed_form_per_rev_J"] = float(revs * np.sum(closed))
         s["gas_charge_J_per_K"] = float(np.sum(loads.charge))

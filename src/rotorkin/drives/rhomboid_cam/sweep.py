@@ -206,7 +206,7 @@ def _sampled(L, psi_min, samples, threads) -> dict:
     alpha = sample_grid(np.pi, samples)
 
     def fn(lo, hi):
-        return rc.law_peaks(alpha, L[lo:hi, None], psi_min[lo:hi, None])
+        return rc.law_peaks(L[lo:hi, None], psi_min[lo:hi, None], (), (), alpha)
 
     res = run_blocks(fn, L.size, samples, threads)
     return {
@@ -225,8 +225,8 @@ def curves(p, points: int):
     alpha = sample_grid(np.pi, points)
     L = full(p.float("drive.link_length"), p.n)[:, None]
     pm = full(p.float("drive.psi_min"), p.n)[:, None]
-    psi, d1, d2, d3 = rc.psi_law(alpha, pm)
-    phi = rc.blade_angles(alpha, pm)[0]
+    psi, d1, d2, d3 = rc.psi_law(pm, (), (), alpha)
+    phi = rc.blade_angles(pm, (), (), alpha)[0]
     out = {
         "psi_deg": np.degrees(psi),
         "dpsi": d1,
@@ -234,7 +234,7 @@ def curves(p, points: int):
         "d3psi_per_rad2": d3,
         "phi1_deg": np.degrees(phi[0]),
         "phi2_deg": np.degrees(phi[1]),
-        "rho_mm": rc.profile_radius(alpha, L, pm)[0] * 1e3,
-        "curvature_per_m": rc.profile_curvature(alpha, L, pm),
+        "rho_mm": rc.profile_radius(L, pm, (), (), alpha)[0] * 1e3,
+        "curvature_per_m": rc.profile_curvature(L, pm, (), (), alpha),
     }
     return alpha, out

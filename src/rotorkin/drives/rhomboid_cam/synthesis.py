@@ -346,8 +346,8 @@ def law_report(link_length, psi_min, a, b, roller_radius) -> dict:
         ``undercut``, ``monotone`` (bool), ``psi_lowest``, ``psi_highest`` [rad].
     """
     alpha = np.arange(_FINE) * np.pi / _FINE
-    psi = rc.psi_law(alpha, psi_min, a, b)[0]
-    peaks = rc.law_peaks(alpha, link_length, psi_min, a, b)
+    psi = rc.psi_law(psi_min, a, b, alpha)[0]
+    peaks = rc.law_peaks(link_length, psi_min, a, b, alpha)
     tol = DWELL_TOLERANCE * (np.pi - 2.0 * psi_min)
     chk = cam.profile_check(link_length, psi_min, a, b, roller_radius)
     lo, _, hi, _ = rc.psi_extremes(psi_min, a, b)
@@ -396,14 +396,14 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     """
     if target is not None:
         raise ParameterError(
-            "--target",
+            "target",
             repr(target),
             f"no target for {objective}: the rhomboid cam's objectives are optimised "
             "(min_accel, dwell_min, dwell_max, min_pressure_angle)",
         )
     n = 2 if harmonics is None else int(harmonics)
     if n > rc.MAX_HARMONICS:
-        raise ParameterError("--harmonics", str(n), f"1 <= harmonics <= {rc.MAX_HARMONICS}")
+        raise ParameterError("harmonics", str(n), f"1 <= harmonics <= {rc.MAX_HARMONICS}")
     d = cfg["drive"]
     L, pmin, r = float(d["link_length"]), float(d["psi_min"]), float(cfg["cam"]["roller_radius"])
     base_cfg = validate_model(
@@ -421,7 +421,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     limit = (options or {}).get("max_pressure_angle")
     if limit is not None and not limit > rep0["pressure_angle_peak"] - np.radians(1.0):
         raise ParameterError(
-            "--max-pressure-angle",
+            "max_pressure_angle",
             fmt_deg(limit),
             f"> {fmt_deg(rep0['pressure_angle_peak'] - np.radians(1.0))} (the first-harmonic law "
             f"reaches {fmt_deg(rep0['pressure_angle_peak'])}; a bound far below it leaves no "
@@ -501,10 +501,10 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     alpha = np.linspace(0.0, np.pi, 721)
     table = {"alpha_deg": np.degrees(alpha)}
     for tag, (aa, bb) in (("baseline", ((), ())), ("synthesized", (a, b))):
-        psi, d1, d2, _ = rc.psi_law(alpha, pmin, aa, bb)
+        psi, d1, d2, _ = rc.psi_law(pmin, aa, bb, alpha)
         table[f"psi_{tag}_deg"] = np.degrees(psi)
         table[f"blade_accel_{tag}_per_rad"] = 0.5 * d2
-        table[f"rho_{tag}_mm"] = rc.profile_radius(alpha, L, pmin, aa, bb)[0] * 1e3
+        table[f"rho_{tag}_mm"] = rc.profile_radius(L, pmin, aa, bb, alpha)[0] * 1e3
     return SynthesisResult(
         drive_type="rhomboid_cam",
         objective=objective,
