@@ -21,6 +21,8 @@ from rotorkin.core.angles import angle_near
 from rotorkin.core.errors import ParameterError
 from rotorkin.drives import evaluate
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam import schema
+from rotorkin.machines import rotary_blade as rb
 
 TWO_PI = 2.0 * np.pi
 
@@ -547,3 +549,41 @@ def test_study_plot_writes_pngs(tmp_path, drive):
         assert p.suffix == ".png" and p.parent == tmp_path
         assert p.stat().st_size > 10_000
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+# --- one source of defaults -----------------------------------------------------------------
+def _schema_defaults(model, **required):
+    """Every field of a config section parsed through the schema (SI), defaults filled."""
+    return model(**required).model_dump()
+
+
+@pytest.mark.parametrize(
+    "holder, section",
+    [
+        ("drive", "drive"),
+        ("machine", "machine"),
+        ("gas", "loads"),
+    ],
+)
+def test_dataclass_defaults_equal_the_schema(holder, section):
+    cls = {"drive": rc.RhomboidCam, "machine": rb.RotaryBlade, "gas": rb.IsothermalGas}[holder]
+    parsed = {
+        "drive": lambda: _schema_defaults(
+            schema.RhomboidDrive, type="rhomboid_cam", link_length="120 mm", psi_min="40 deg"
+        ),
+        "machine": lambda: _schema_defaults(schema.RotaryBladeMachine),
+        "loads": lambda: _schema_defaults(schema.RhomboidLoads),
+    }[section]()
+    checked = 0
+    for f in dataclasses.fields(cls):
+        if f.default is dataclasses.MISSING:
+            continue
+        assert f.name in parsed, f"{cls.__name__}.{f.name} has no schema field"
+        want = parsed[f.name]
+        got = f.default
+        if isinstance(want, list):
+            want, got = tuple(want), tuple(got)
+        assert got == want, f"{cls.__name__}.{f.name} = {got!r}, schema: {want!r}"
+        checked += 1
+    if holder != "gas":  # IsothermalGas has no defaults; the others must have been compared
+        assert checked >= 2

@@ -115,7 +115,7 @@ def _first_violation(bad) -> np.ndarray:
 
 
 def violation(blade_thickness, inner_radius, outer_radius, axial_width, blades_per_pair=2,
-              inertia_shaft=0.0, inertia_blade_pair_1=0.0, inertia_blade_pair_2=0.0):  # fmt: skip
+              inertia_shaft=0.0, inertia_blade_pair_1=0.01, inertia_blade_pair_2=0.01):  # fmt: skip
     """Which parameter of each design is out of its admissible range.
 
     Parameters
@@ -194,7 +194,8 @@ class RotaryBlade:
     inertia_shaft : float
         Inertia of the output shaft with the cam carrier [kg m^2], >= 0.
     inertia_blade_pair_1, inertia_blade_pair_2 : float
-        Inertias of the blade pairs with their hubs and arms [kg m^2], >= 0.
+        Inertias of the blade pairs with their hubs and arms [kg m^2], >= 0 (default
+        0.01, as the config schema).
     """
 
     blade_thickness: float
@@ -203,8 +204,8 @@ class RotaryBlade:
     axial_width: float
     blades_per_pair: int = 2
     inertia_shaft: float = 0.0
-    inertia_blade_pair_1: float = 0.0
-    inertia_blade_pair_2: float = 0.0
+    inertia_blade_pair_1: float = 0.01
+    inertia_blade_pair_2: float = 0.01
 
     def __post_init__(self):
         B = self.blades_per_pair
