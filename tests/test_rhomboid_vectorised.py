@@ -191,3 +191,20 @@ def test_dataclasses_hold_arrays_of_designs():
     assert d.link_length.shape == (2,)
     with pytest.raises(ParameterError, match="^psi_min = 2 values"):
         rc.RhomboidCam(0.1, np.radians([30.0, 60.0]), (0.01,))
+
+
+def test_gas_violation_matches_the_dataclass_per_design():
+    p = np.array([2e5, -1.0, np.nan, 2e5, 2e5, 2e5])
+    th = np.array([900.0, 900.0, 900.0, 0.0, 900.0, np.inf])
+    tc = np.array([330.0, 330.0, 330.0, 330.0, -5.0, 330.0])
+    code = rb.gas_violation(p, th, tc)
+    for i in range(p.size):
+        try:
+            rb.IsothermalGas(p[i], th[i], tc[i])
+            name = ""
+        except ParameterError as exc:
+            name = exc.name
+        assert name == ("" if code[i] == 0 else rb.GAS_CHECKS[code[i] - 1])
+    assert list(code) == [0, 1, 1, 2, 3, 2]
+    with pytest.raises(ParameterError, match=r"^cold_temperature = -5 K .*cold_temperature > 0 K"):
+        rb.IsothermalGas(2e5, 900.0, -5.0)

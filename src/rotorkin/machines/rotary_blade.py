@@ -66,6 +66,7 @@ __all__ = [
     "chamber_volume_derivative",
     "chamber_volumes",
     "CHECKS",
+    "GAS_CHECKS",
     "SWING_CHECKS",
     "blade_thickness_max",
     "check_swing",
@@ -73,6 +74,7 @@ __all__ = [
     "displacement_per_rev",
     "gas_charge",
     "gas_member_torques",
+    "gas_violation",
     "isothermal_cycle_work",
     "isothermal_pressure",
     "isothermal_stroke_work",
@@ -97,12 +99,10 @@ CHECKS = (
     "inertia_blade_pair_1",
     "inertia_blade_pair_2",
 )
+#: Parameters of :class:`IsothermalGas` in the order :func:`gas_violation` checks them.
+GAS_CHECKS = ("charge_pressure", "hot_temperature", "cold_temperature")
 #: What :func:`swing_violation` reports, in order.
 SWING_CHECKS = ("blade_thickness", "blades_per_pair")
-
-
-def _finite(x) -> bool:
-    return bool(np.isfinite(x))
 
 
 def _first_violation(bad) -> np.ndarray:
@@ -238,6 +238,8 @@ class RotaryBlade:
 class IsothermalGas:
     """Loads of the isothermal (ideal Stirling) pressure model.
 
+    A thin holder validated by :func:`gas_violation`; the fields may be arrays.
+
     Attributes
     ----------
     charge_pressure : float
@@ -254,15 +256,32 @@ class IsothermalGas:
     cold_temperature: float
 
     def __post_init__(self):
-        p = float(self.charge_pressure)
-        if not (_finite(p) and p > 0.0):
-            raise ParameterError("charge_pressure", f"{p / 1e5:g} bar", "charge_pressure > 0 bar")
-        for name in ("hot_temperature", "cold_temperature"):
-            T = float(getattr(self, name))
-            if not (_finite(T) and T > 0.0):
-                raise ParameterError(name, f"{T:g} K", f"{name} > 0 K")
-            object.__setattr__(self, name, T)
-        object.__setattr__(self, "charge_pressure", p)
+        fields = {name: getattr(self, name) for name in GAS_CHECKS}
+        code = gas_violation(**fields)
+        if np.any(code):
+            k = int(np.flatnonzero(code)[0])
+            name = GAS_CHECKS[code.flat[k] - 1]
+            v = float(_value(fields[name], (k, code.shape)))
+            if name == "charge_pressure":
+                raise ParameterError(name, f"{v / 1e5:g} bar", "charge_pressure > 0 bar")
+            raise ParameterError(name, f"{v:g} K", f"{name} > 0 K")
+        for name in GAS_CHECKS:
+            object.__setattr__(self, name, _number(getattr(self, name)))
+
+
+def gas_violation(charge_pressure, hot_temperature, cold_temperature) -> np.ndarray:
+    """Which parameter of each isothermal-gas load is out of range (all must be finite, > 0).
+
+    Returns
+    -------
+    ndarray of int16
+        Broadcast shape: 0 where admissible, else ``i + 1`` for the first violated
+        parameter ``GAS_CHECKS[i]``.
+    """
+    with np.errstate(invalid="ignore"):
+        values = [np.asarray(x, dtype=float) for x in (charge_pressure, hot_temperature,
+                                                         cold_temperature)]  # fmt: skip
+        return _first_violation([~(np.isfinite(x) & (x > 0.0)) for x in values])
 
 
 def _machine_error(name, v) -> ParameterError:
