@@ -480,9 +480,11 @@ def psi_is_monotone(psi_min, a=(), b=(), rtol=1e-9):
 
     True when the total travel over a period is ``2 (psi(0) - psi(pi/2))``.
     Only then does the paper's eq. 34 (work independent of the profile) hold.
+    For the first-harmonic law ``psi_min`` may be an array (a bool array).
     """
-    swing = np.pi - 2.0 * float(psi_min)
-    return bool(psi_total_variation(psi_min, a, b) <= 2.0 * swing * (1.0 + rtol) + 1e-15)
+    swing = np.pi - 2.0 * np.asarray(psi_min, dtype=float)
+    out = psi_total_variation(psi_min, a, b) <= 2.0 * swing * (1.0 + rtol) + 1e-15
+    return bool(out) if np.ndim(out) == 0 else out
 
 
 def check_law(psi_min, a=(), b=()):

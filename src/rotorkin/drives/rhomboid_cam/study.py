@@ -31,6 +31,7 @@ from rotorkin.core.errors import ParameterError
 from rotorkin.core.schema import RunSection
 from rotorkin.drives.rhomboid_cam import figures as figures_rhomboid_cam
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam import summary as rs
 from rotorkin.drives.rhomboid_cam.schema import RhomboidLoads, RotaryBladeMachine
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.studies import StudyResult
@@ -73,45 +74,19 @@ def _deg(x) -> float:
     return float(np.degrees(x))
 
 
+def _plain(value):
+    """A summary value as a plain Python bool, int or float (for ``summary.json``)."""
+    value = np.asarray(value).item()
+    return value if isinstance(value, bool | int) else float(value)
+
+
 def _summary(params, m1, m2) -> dict:
     law = (params.psi_min, params.a, params.b)
     L = params.link_length
-    a1, b1 = rc.first_harmonic(*law)
-    lo, alo, hi, ahi = rc.psi_extremes(*law)
     fine = np.linspace(0.0, rc.period(params), _PEAK_SAMPLES)
-    peaks = {k: v.item() for k, v in rc.law_peaks(L, *law, fine).items()}
-    rho_min, rho_max = rc.profile_radius_range(L, lo, hi)
-    work = float(rc.indicator_work(*law, m1, m2))
-    return {
-        "psi_min_deg": _deg(params.psi_min),
-        "psi_max_deg": _deg(np.pi - params.psi_min),
-        "psi_lowest_deg": _deg(lo),
-        "psi_highest_deg": _deg(hi),
-        "psi_lowest_at_alpha_deg": _deg(alo),
-        "psi_highest_at_alpha_deg": _deg(ahi),
-        "psi_monotone": rc.psi_is_monotone(*law),
-        "psi_travel_per_period_deg": _deg(rc.psi_total_variation(*law)),
-        "a1_rad": float(a1),
-        "b1_rad": float(b1) + 0.0,  # no negative zero
-        "highest_harmonic": 2 * max(len(params.a), len(params.b)) + 1,
-        "link_length_mm": L * 1e3,
-        "profile_radius_min_mm": float(rho_min) * 1e3,
-        "profile_radius_max_mm": float(rho_max) * 1e3,
-        "profile_convex_radius_min_mm": peaks["convex_radius_min"] * 1e3,
-        "profile_concave_radius_min_mm": peaks["concave_radius_min"] * 1e3,
-        "profile_convex": peaks["convex"],
-        "indicator_work_J": work,
-        "indicator_work_closed_form_J": float(
-            rc.indicator_work_closed_form(params.psi_min, m1, m2)
-        ),
-        "mean_shaft_torque_Nm": work / np.pi,
-        "blade_speed_coeff_max": peaks["speed_coeff_max"],
-        "blade_speed_coeff_min": peaks["speed_coeff_min"],
-        "blade_accel_coeff_max": peaks["accel_coeff_max"],
-        "blade_jerk_coeff_max": peaks["jerk_coeff_max"],
-        "torque_high_Nm": float(m1),
-        "torque_low_Nm": float(m2),
-    }
+    s = rs.law_summary(L, *law, m1, m2)
+    s.update(rs.peak_summary(rc.law_peaks(L, *law, fine)))
+    return {k: _plain(s[k]) for k in rs.LAW_KEYS}
 
 
 _DOCS = {
@@ -306,21 +281,10 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tu
     revs = 2.0 * np.pi / period  # periods per output-shaft revolution
     work_rev = revs * work_period
     with_inertia = st.torque - t_inertia
-    vol = rb.chamber_figures(machine, lo, hi)
+    geometry = rs.engine_geometry_summary(machine, lo, hi, revs * rc.psi_total_variation(*law))
     s = {
         "pressure_model": loads.model,
-        "blades_per_pair": machine.blades_per_pair,
-        "chambers": machine.chambers,
-        "blade_thickness_deg": _deg(machine.blade_thickness),
-        "blade_thickness_max_deg": _deg(rb.blade_thickness_max(machine.blades_per_pair, lo, hi)),
-        "sector_volume_cm3_per_rad": _cm3(rb.sector_constant(machine)),
-        "chamber_volume_max_cm3": _cm3(vol["volume_max"]),
-        "chamber_volume_min_cm3": _cm3(vol["volume_min"]),
-        "chamber_swept_volume_cm3": _cm3(vol["swept_volume"]),
-        "compression_ratio_geometric": float(vol["compression_ratio"]),
-        "displacement_cm3_per_rev": _cm3(
-            rb.displacement_per_rev(machine, revs * rc.psi_total_variation(*law))
-        ),
+        **{k: _plain(v) for k, v in geometry.items()},
         "indicated_work_J": work_rev,
         "indicated_work_per_period_J": work_period,
         "indicated_power_kW": work_period / float(np.trapezoid(1.0 / omega[0], alpha)) * 1e-3,

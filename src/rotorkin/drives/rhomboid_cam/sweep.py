@@ -22,6 +22,7 @@ import numpy as np
 
 from rotorkin.core.batch import flag, full, run_blocks, sample_grid
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam import summary as rs
 from rotorkin.machines import rotary_blade as rb
 
 __all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "unsupported", "metric_names", "reasons",
@@ -43,44 +44,7 @@ KEYS = frozenset(
     }
 )
 
-_METRICS = (
-    "psi_min_deg",
-    "psi_max_deg",
-    "psi_lowest_deg",
-    "psi_highest_deg",
-    "psi_lowest_at_alpha_deg",
-    "psi_highest_at_alpha_deg",
-    "psi_monotone",
-    "psi_travel_per_period_deg",
-    "a1_rad",
-    "b1_rad",
-    "highest_harmonic",
-    "link_length_mm",
-    "profile_radius_min_mm",
-    "profile_radius_max_mm",
-    "profile_convex_radius_min_mm",
-    "profile_concave_radius_min_mm",
-    "profile_convex",
-    "indicator_work_J",
-    "indicator_work_closed_form_J",
-    "mean_shaft_torque_Nm",
-    "blade_speed_coeff_max",
-    "blade_speed_coeff_min",
-    "blade_accel_coeff_max",
-    "blade_jerk_coeff_max",
-    "torque_high_Nm",
-    "torque_low_Nm",
-    "blades_per_pair",
-    "chambers",
-    "blade_thickness_deg",
-    "blade_thickness_max_deg",
-    "sector_volume_cm3_per_rad",
-    "chamber_volume_max_cm3",
-    "chamber_volume_min_cm3",
-    "chamber_swept_volume_cm3",
-    "compression_ratio_geometric",
-    "displacement_cm3_per_rev",
-)
+_METRICS = rs.LAW_KEYS + rs.GEOMETRY_KEYS
 
 CURVES = (
     "psi_deg",
@@ -153,71 +117,26 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
     """Summary metrics of admissible designs ``p``, arrays (n,)."""
     names = set(names)
     n = p.n
-    deg = np.degrees
     L, pm = p.float("drive.link_length"), p.float("drive.psi_min")
     m1, m2 = p.float("loads.torque_high"), p.float("loads.torque_low")
-    lo, alo, hi, ahi = rc.psi_extremes(pm)
-    travel = rc.psi_total_variation(pm)
-    work = rc.indicator_work(full(pm, n), (), (), full(m1, n), full(m2, n))
-    machine = _machine(p)
-    vol = rb.chamber_figures(machine, lo, hi)
-    rho_min, rho_max = rc.profile_radius_range(L, lo, hi)
+    val = rs.law_summary(L, full(pm, n), (), (), full(m1, n), full(m2, n))
+    lo, _, hi, _ = rc.psi_extremes(pm)
     revs = 2.0 * np.pi / period(p)  # periods per output-shaft revolution
-    val = {
-        "psi_min_deg": deg(pm),
-        "psi_max_deg": deg(np.pi - pm),
-        "psi_lowest_deg": deg(lo),
-        "psi_highest_deg": deg(hi),
-        "psi_lowest_at_alpha_deg": deg(alo),
-        "psi_highest_at_alpha_deg": deg(ahi),
-        "psi_monotone": 1.0,
-        "psi_travel_per_period_deg": deg(travel),
-        "a1_rad": rc.first_harmonic(pm)[0],
-        "b1_rad": rc.first_harmonic(pm)[1] + 0.0,
-        "highest_harmonic": 1.0,
-        "link_length_mm": L * 1e3,
-        "profile_radius_min_mm": rho_min * 1e3,
-        "profile_radius_max_mm": rho_max * 1e3,
-        "indicator_work_J": work,
-        "indicator_work_closed_form_J": rc.indicator_work_closed_form(pm, m1, m2),
-        "mean_shaft_torque_Nm": work / np.pi,
-        "torque_high_Nm": m1,
-        "torque_low_Nm": m2,
-        "blades_per_pair": np.asarray(machine.blades_per_pair, dtype=float),
-        "chambers": 2.0 * np.asarray(machine.blades_per_pair, dtype=float),
-        "blade_thickness_deg": deg(machine.blade_thickness),
-        "blade_thickness_max_deg": deg(rb.blade_thickness_max(machine.blades_per_pair, lo, hi)),
-        "sector_volume_cm3_per_rad": rb.sector_constant(machine) * 1e6,
-        "chamber_volume_max_cm3": vol["volume_max"] * 1e6,
-        "chamber_volume_min_cm3": vol["volume_min"] * 1e6,
-        "chamber_swept_volume_cm3": vol["swept_volume"] * 1e6,
-        "compression_ratio_geometric": vol["compression_ratio"],
-        "displacement_cm3_per_rev": rb.displacement_per_rev(machine, revs * travel) * 1e6,
-    }
-    sampled = {"profile_convex_radius_min_mm", "profile_concave_radius_min_mm", "profile_convex",
-               "blade_speed_coeff_max", "blade_speed_coeff_min", "blade_accel_coeff_max",
-               "blade_jerk_coeff_max"}  # fmt: skip
-    if names & sampled:
+    travel = revs * rc.psi_total_variation(pm)
+    val.update(rs.engine_geometry_summary(_machine(p), lo, hi, travel))
+    if names & set(rs.PEAK_KEYS):
         val.update(_sampled(full(L, n), full(pm, n), samples, threads))
     return {name: full(val[name], n) for name in names}
 
 
 def _sampled(L, psi_min, samples, threads) -> dict:
+    """The :data:`~.summary.PEAK_KEYS` on ``samples`` shaft angles per design, in blocks."""
     alpha = sample_grid(np.pi, samples)
 
     def fn(lo, hi):
         return rc.law_peaks(L[lo:hi, None], psi_min[lo:hi, None], (), (), alpha)
 
-    res = run_blocks(fn, L.size, samples, threads)
-    return {
-        "profile_convex_radius_min_mm": res["convex_radius_min"] * 1e3,
-        "profile_concave_radius_min_mm": res["concave_radius_min"] * 1e3,
-        "profile_convex": res["convex"].astype(float),
-        "blade_speed_coeff_max": res["speed_coeff_max"],
-        "blade_speed_coeff_min": res["speed_coeff_min"],
-        "blade_accel_coeff_max": res["accel_coeff_max"],
-        "blade_jerk_coeff_max": res["jerk_coeff_max"],
-    }
+    return rs.peak_summary(run_blocks(fn, L.size, samples, threads))
 
 
 def curves(p, points: int):
