@@ -119,30 +119,24 @@ def _columns(params, m1, m2, points) -> dict:
     law = (params.psi_min, params.a, params.b)
     L = params.link_length
     alpha = angle_grid(rc.period(params), points)
-    psi, d1, d2, d3 = rc.psi_law(*law, alpha)
-    phi, p1, p2, p3 = rc.blade_angles(*law, alpha)
-    rho, drho = rc.profile_radius(L, *law, alpha)[:2]
+    psi, d1 = rc.psi_law(*law, alpha)[:2]
+    _, p1, p2, p3 = rc.blade_angles(*law, alpha)
+    drho = rc.profile_radius(L, *law, alpha)[1]
     xy = rc.profile_point(L, *law, alpha)[0]
     stroke = rc.stroke_direction(*law, alpha)
     torque = rc.blade_torque(m1, m2, params.psi_min, psi, stroke)
-    cols = {
-        "alpha_deg": np.degrees(alpha),
-        "psi_deg": np.degrees(psi),
-        "dpsi": d1,
-        "d2psi_per_rad": d2,
-        "d3psi_per_rad2": d3,
-    }
-    for k in (0, 1):
-        cols[f"phi{k + 1}_deg"] = np.degrees(phi[k])
+    law_cols = rs.law_curves(L, *law, alpha)
+    cols = {"alpha_deg": np.degrees(alpha)}
+    cols.update({k: law_cols[k] for k in rs.CURVE_KEYS[:6]})
     for name, arr in (("speed_coeff", p1), ("accel_per_rad", p2), ("jerk_per_rad2", p3)):
         for k in (0, 1):
             cols[f"phi{k + 1}_{name}"] = arr[k]
-    cols["rho_mm"] = rho * 1e3
+    cols["rho_mm"] = law_cols["rho_mm"]
     cols["drho_mm_per_rad"] = drho * 1e3
     cols["x_mm"] = xy[0] * 1e3
     cols["y_mm"] = xy[1] * 1e3
     cols["rho_b_mm"] = rc.profile_radius_eq19(L, *law, alpha) * 1e3
-    cols["curvature_per_m"] = rc.profile_curvature(L, *law, alpha)
+    cols["curvature_per_m"] = law_cols["curvature_per_m"]
     cols["stroke"] = stroke
     cols["blade_torque_Nm"] = torque
     cols["dA_dalpha_J_per_rad"] = torque * d1

@@ -18,6 +18,8 @@ __all__ = [
     "LAW_KEYS",
     "PEAK_KEYS",
     "GEOMETRY_KEYS",
+    "CURVE_KEYS",
+    "law_curves",
     "law_summary",
     "peak_summary",
     "engine_geometry_summary",
@@ -72,6 +74,44 @@ GEOMETRY_KEYS = (
     "compression_ratio_geometric",
     "displacement_cm3_per_rev",
 )
+
+
+#: Keys of :func:`law_curves`, in the order of ``motion.csv``.
+CURVE_KEYS = (
+    "psi_deg",
+    "dpsi",
+    "d2psi_per_rad",
+    "d3psi_per_rad2",
+    "phi1_deg",
+    "phi2_deg",
+    "rho_mm",
+    "curvature_per_m",
+)
+
+
+def law_curves(link_length, psi_min, a, b, alpha) -> dict:
+    """The law, the blade-pair angles and the pitch curve against the shaft angle.
+
+    Parameters broadcast against ``alpha`` [rad] (e.g. ``(n, 1)`` against ``(m,)``).
+
+    Returns
+    -------
+    dict
+        :data:`CURVE_KEYS` -> arrays: ``psi`` [deg] and its derivatives (eq. 13, 14),
+        ``phi_1``, ``phi_2`` [deg] (eq. 21), ``rho`` [mm] (eq. 3) and its curvature [1/m].
+    """
+    psi, d1, d2, d3 = rc.psi_law(psi_min, a, b, alpha)
+    phi = rc.blade_angles(psi_min, a, b, alpha)[0]
+    return {
+        "psi_deg": np.degrees(psi),
+        "dpsi": d1,
+        "d2psi_per_rad": d2,
+        "d3psi_per_rad2": d3,
+        "phi1_deg": np.degrees(phi[0]),
+        "phi2_deg": np.degrees(phi[1]),
+        "rho_mm": rc.profile_radius(link_length, psi_min, a, b, alpha)[0] * 1e3,
+        "curvature_per_m": rc.profile_curvature(link_length, psi_min, a, b, alpha),
+    }
 
 
 def law_summary(link_length, psi_min, a, b, torque_high, torque_low) -> dict:

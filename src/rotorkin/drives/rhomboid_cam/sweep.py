@@ -144,16 +144,4 @@ def curves(p, points: int):
     alpha = sample_grid(np.pi, points)
     L = full(p.float("drive.link_length"), p.n)[:, None]
     pm = full(p.float("drive.psi_min"), p.n)[:, None]
-    psi, d1, d2, d3 = rc.psi_law(pm, (), (), alpha)
-    phi = rc.blade_angles(pm, (), (), alpha)[0]
-    out = {
-        "psi_deg": np.degrees(psi),
-        "dpsi": d1,
-        "d2psi_per_rad": d2,
-        "d3psi_per_rad2": d3,
-        "phi1_deg": np.degrees(phi[0]),
-        "phi2_deg": np.degrees(phi[1]),
-        "rho_mm": rc.profile_radius(L, pm, (), (), alpha)[0] * 1e3,
-        "curvature_per_m": rc.profile_curvature(L, pm, (), (), alpha),
-    }
-    return alpha, out
+    return alpha, rs.law_curves(L, pm, (), (), alpha)
