@@ -22,7 +22,7 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     cam = cfg.get("cam") or {}
     r = float(cam.get("roller_radius", 0.01))
     law = (params.psi_min, params.a, params.b)
-    check = rhomboid.check_profile(params.link_length, *law, r)
+    check = rhomboid.check_profile(params.link_length, *law, r, name="cam.roller_radius")
     q = rhomboid.actual_profile(params.link_length, *law, r, np.linspace(0.0, np.pi, 4097))
     diameter = 2.0 * float(np.max(np.hypot(q[0], q[1])))
     thickness = check_thickness(cfg, diameter, "the cam's outer diameter")

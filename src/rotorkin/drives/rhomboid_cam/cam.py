@@ -350,7 +350,7 @@ _LIMIT_REASONS = {
 }
 
 
-def check_profile(link_length, psi_min, a, b, roller_radius, name="cam.roller_radius"):
+def check_profile(link_length, psi_min, a, b, roller_radius, name="roller_radius"):
     """Raise :class:`ParameterError` named ``name`` unless the roller fits the cam.
 
     Errors: ``r < 0``; a roller that fails any of: ``r <`` the smallest convex radius

@@ -164,7 +164,7 @@ def objective_values(law: Law, objective: str, x, L: float = 1.0):
         return -dwell_fraction(law.psi(x), extreme, tol)
     if objective == "min_pressure_angle":
         return _pressure_batch(law, L, x)
-    raise ParameterError("--objective", repr(objective), "one of " + ", ".join(OBJECTIVES))
+    raise ParameterError("objective", repr(objective), "one of " + ", ".join(OBJECTIVES))
 
 
 def constraint_values(law: Law, x, L, roller_radius, pa_limit, quarter):
