@@ -103,7 +103,8 @@ def test_parameter_arrays_against_angle_arrays(pms, alpha, L):
     rho = rc.profile_radius(Ls, pm, (), (), alpha)
     kappa = rc.profile_curvature(Ls, pm, (), (), alpha)
     torque = rc.shaft_torque(pm, (), (), 100.0, 40.0, alpha)
-    for x in (*psi, *rho, kappa, torque):
+    stroke = rc.stroke_direction(pm, (), (), alpha)
+    for x in (*psi, *rho, kappa, torque, stroke):
         assert x.shape == (pms.size, alpha.size)
     for i in range(pms.size):
         for j in range(alpha.size):
@@ -112,6 +113,7 @@ def test_parameter_arrays_against_angle_arrays(pms, alpha, L):
             same(rho[2][i, j], rc.profile_radius(float(Ls[i, 0]), *args)[2])
             same(kappa[i, j], rc.profile_curvature(float(Ls[i, 0]), *args))
             same(torque[i, j], rc.shaft_torque(args[0], (), (), 100.0, 40.0, args[3]))
+            assert stroke[i, j] == rc.stroke_direction(*args)
     np.testing.assert_allclose(psi[0], psi_series(pm, (), (), alpha), rtol=0, atol=1e-12)
 
 

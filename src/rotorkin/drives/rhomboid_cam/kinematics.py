@@ -164,12 +164,17 @@ def psi_law(psi_min, a, b, alpha):
 
 
 def _scale(psi_min, a, b, order):
-    """Upper bound of ``|d^n psi / d alpha^n|`` (sum of |coefficients| times (2k)^n)."""
+    """Upper bound of ``|d^n psi / d alpha^n|`` (sum of |coefficients| times (2k)^n).
+
+    Per design: the shape of ``psi_min`` (a float for a scalar).
+    """
     k, ak, bk = _higher(a, b)
     a1, b1 = first_harmonic(psi_min, a, b)
+    first = np.abs(np.asarray(a1, dtype=float)) + abs(b1)
+    higher = np.broadcast_to(np.abs(ak) + np.abs(bk), first.shape + ak.shape)
     w = np.concatenate(([2.0], 2.0 * k))
-    amp = np.concatenate(([np.max(np.abs(a1)) + abs(b1)], np.abs(ak) + np.abs(bk)))
-    return float(np.sum(w**order * amp))
+    out = np.sum(w**order * np.concatenate([first[..., None], higher], axis=-1), axis=-1)
+    return float(out) if out.ndim == 0 else out
 
 
 def period(params) -> float:
