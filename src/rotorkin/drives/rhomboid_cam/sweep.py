@@ -13,7 +13,8 @@ design x angle array).
 
 Every formula is the drive's (:mod:`rotorkin.drives.rhomboid_cam.kinematics`) or the
 machine's (:mod:`rotorkin.machines.rotary_blade`), called with arrays of parameters:
-the kernel only gathers the designs' values and names the summary keys.
+the kernel only gathers the designs' values; the summary keys and curves are built by
+:mod:`rotorkin.drives.rhomboid_cam.summary`, as in the study.
 """
 
 from __future__ import annotations
@@ -46,16 +47,7 @@ KEYS = frozenset(
 
 _METRICS = rs.LAW_KEYS + rs.GEOMETRY_KEYS
 
-CURVES = (
-    "psi_deg",
-    "dpsi",
-    "d2psi_per_rad",
-    "d3psi_per_rad2",
-    "phi1_deg",
-    "phi2_deg",
-    "rho_mm",
-    "curvature_per_m",
-)
+CURVES = rs.CURVE_KEYS
 ANGLE = ("alpha_deg", "Output-shaft angle alpha: polar angle of diagonal OA, from +x.")
 
 _MACHINE = ("blade_thickness", "inner_radius", "outer_radius", "axial_width", "blades_per_pair")
@@ -75,8 +67,8 @@ def metric_names(cfg: dict) -> tuple[str, ...]:
 
 
 def period(p) -> float:
-    """Period of psi in the output-shaft angle: pi [rad]."""
-    return float(np.pi)
+    """Period of psi in the output-shaft angle [rad] (:func:`~.kinematics.period`: pi)."""
+    return rc.period(p)
 
 
 def reasons(p, code: dict) -> np.ndarray:
