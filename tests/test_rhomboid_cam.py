@@ -539,6 +539,7 @@ def test_study_errors_name_the_config_key():
         evaluate(_cfg(link_length=0.0))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("drive", [{}, {"a": [0.4]}, {"a": [0.05], "b": [0.02]}])
 def test_study_plot_writes_pngs(tmp_path, drive):
     paths = evaluate(_cfg(**drive)).write_figures(tmp_path)

@@ -499,6 +499,7 @@ def test_study_fills_missing_machine_and_loads_keys():
     assert s["shaft_speed_mean_rpm"] == pytest.approx(3000.0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("model", "count"), [("linear", 7), ("isothermal", 8)])
 def test_plots(tmp_path, model, count):
     paths = evaluate(cfg(model)).write_figures(tmp_path)
@@ -509,6 +510,7 @@ def test_plots(tmp_path, model, count):
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+@pytest.mark.slow
 def test_plots_other_blade_counts(tmp_path):
     for B, psi_min, t in ((3, np.radians(75), 0.1), (1, PSI_MIN, 0.1)):
         c = cfg("isothermal", drive={"psi_min": psi_min},
