@@ -24,7 +24,7 @@ LAWS = [
 
 def _pitch_xy(t, law):
     """Pitch point from eq. 3 written out here: rho = 2l cos(psi/2) at polar angle t."""
-    psi = rc.psi_law(t, *law)[0]
+    psi = rc.psi_law(*law, t)[0]
     rho = L * np.cos(0.5 * psi)
     return np.stack([rho * np.cos(t), rho * np.sin(t)])
 
@@ -69,9 +69,9 @@ def test_pitch_curvature_against_finite_differences(law):
     t = np.linspace(0.0, 2 * np.pi, 181)
     d1, d2 = _fd(lambda x: _pitch_xy(x, law), t)
     kappa_fd = (d1[0] * d2[1] - d1[1] * d2[0]) / np.hypot(*d1) ** 3
-    radius = rhomboid.pitch_radius_of_curvature(t, L, *law)
+    radius = rhomboid.pitch_radius_of_curvature(L, *law, t)
     np.testing.assert_allclose(1.0 / radius, kappa_fd, rtol=1e-5, atol=1e-4)
-    p, dp, d2p = rhomboid.pitch_curve(t, L, *law)
+    p, dp, d2p = rhomboid.pitch_curve(L, *law, t)
     np.testing.assert_allclose(planar.signed_curvature(dp, d2p), kappa_fd, rtol=1e-5, atol=1e-4)
 
 
@@ -83,7 +83,7 @@ def test_actual_profile_is_at_roller_distance(law):
     p = _pitch_xy(t, law)
     d1, _ = _fd(lambda x: _pitch_xy(x, law), t)
     n = np.stack([d1[1], -d1[0]]) / np.hypot(*d1)
-    q = rhomboid.actual_profile(t, L, *law, r)
+    q = rhomboid.actual_profile(L, *law, r, t)
     np.testing.assert_allclose(q, p - r * n, atol=1e-9)
 
 
@@ -128,7 +128,7 @@ def test_undercut_intervals_locate_the_sign_change():
 # --- the rhomboid cam --------------------------------------------------------------------------
 def _roller_xy(alpha, law):
     """Roller centres A..D from the rhombus geometry (eq. 3, 4), written out here."""
-    psi = rc.psi_law(alpha, *law)[0]
+    psi = rc.psi_law(*law, alpha)[0]
     ra, rb = L * np.cos(psi / 2), L * np.sin(psi / 2)
     e = lambda t: np.stack([np.cos(t), np.sin(t)])  # noqa: E731
     A, B = ra * e(alpha), rb * e(alpha + np.pi / 2)
@@ -199,7 +199,7 @@ def test_profile_check_extremes_against_dense_polygon(law):
     r_min, a_min, mu_max, a_mu = _dense_extremes(law, 0.005)
     np.testing.assert_allclose(chk.min_convex_radius, r_min, rtol=1e-6)
     # the same convex minimum may occur at several symmetric angles: compare the radius there
-    at = rhomboid.pitch_radius_of_curvature(chk.min_convex_radius_alpha, L, *law)
+    at = rhomboid.pitch_radius_of_curvature(L, *law, chk.min_convex_radius_alpha)
     np.testing.assert_allclose(at, r_min, rtol=1e-6)
     np.testing.assert_allclose(chk.max_pressure_angle, mu_max, atol=1e-7)
     np.testing.assert_allclose(
@@ -222,16 +222,16 @@ def test_undercut_trips_at_the_right_angle(law):
     with pytest.raises(ParameterError) as info:
         rhomboid.check_profile(L, *law, r)
     err = info.value
-    assert err.name == "cam.roller_radius"
+    assert err.name == "roller_radius"
     # the named angle is one where the dense polygon has its smallest convex radius
     named = float(str(err).split("at alpha = ")[1].split(" deg")[0])
-    R_named = 1 / rc.profile_curvature(np.radians(named), L, *law)
+    R_named = 1 / rc.profile_curvature(L, *law, np.radians(named))
     np.testing.assert_allclose(R_named, r_min, rtol=1e-4)
     # the cusp really is there: the offset polygon runs backwards around that angle
     a0 = np.radians(named)
     t = np.linspace(a0 - 0.5, a0 + 0.5, 20001)
     big = r_min * 1.05
-    q = rhomboid.actual_profile(t, L, *law, big)
+    q = rhomboid.actual_profile(L, *law, big, t)
     back = np.sum(np.diff(q, axis=1) * np.diff(_pitch_xy(t, law), axis=1), axis=0) < 0
     assert back.any() and not back[0] and not back[-1]
     tm = 0.5 * (t[1:] + t[:-1])
@@ -242,7 +242,7 @@ def test_undercut_trips_at_the_right_angle(law):
 
 def test_check_profile_other_errors():
     law = LAWS[0]
-    with pytest.raises(ParameterError, match="cam.roller_radius"):
+    with pytest.raises(ParameterError, match="^roller_radius = "):
         rhomboid.check_profile(L, *law, -0.001)
     chk = rhomboid.check_profile(L, *law, 0.0)  # a knife edge
     assert chk.extra["roller_gap"] == L
@@ -250,7 +250,7 @@ def test_check_profile_other_errors():
     r = 0.045
     assert rhomboid.profile_check(L, *law, r).min_clearance < 0.0
     t = np.linspace(0, 2 * np.pi, 4001)
-    prof = rhomboid.actual_profile(t, L, *law, r)
+    prof = rhomboid.actual_profile(L, *law, r, t)
     far = np.abs(np.angle(np.exp(1j * t))) > np.pi / 2  # the other side of the cam
     centre = _roller_xy(0.0, law)[0]
     assert np.min(np.hypot(*(prof[:, far] - centre[:, None]))) < r  # independent: overlap

@@ -75,7 +75,7 @@ def test_checks_printed(tmp_path, capsys):
     psi, dpsi = np.pi / 2 + a1 * np.cos(2 * a), -2 * a1 * np.sin(2 * a)
     mu = np.degrees(np.max(np.abs(np.arctan(np.tan(psi / 2) * dpsi / 2))))
     assert f"{mu:.4g}" in out and "max pressure angle" in out
-    r_min = 1e3 / np.max(rc.profile_curvature(a, 0.12, np.radians(40)))
+    r_min = 1e3 / np.max(rc.profile_curvature(0.12, np.radians(40), (), (), a))
     assert f"{r_min:.4g}" in out and "min convex radius" in out
     code, out, _ = _run(capsys, "-e", "eccentric-reactor", "-f", "csv", "-o", str(tmp_path))
     line = next(ln for ln in out.splitlines() if "max pressure angle" in ln)
@@ -105,7 +105,7 @@ def test_undercut_message_names_the_angle(tmp_path, capsys):
     assert code == 2
     # the smallest convex radius of curvature of the pitch curve, found independently
     a = np.linspace(0, np.pi / 2, 400_001)
-    k = rc.profile_curvature(a, 0.12, np.radians(40))
+    k = rc.profile_curvature(0.12, np.radians(40), (), (), a)
     assert f"at alpha = {np.degrees(a[np.argmax(k)]):.4g} deg" in err
     assert f"smallest convex radius of curvature is {1e3 / k.max():.4g} mm" in err
     # the admissible range is set by the waist: rho_min = 2l cos(psi_max / 2), psi_max = 140 deg

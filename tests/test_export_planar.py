@@ -34,7 +34,7 @@ def _rhomboid_curves(cfg, n=300_000):
     r = cfg["cam"]["roller_radius"]
 
     def pitch(t):
-        rho = L * np.cos(0.5 * rc.psi_law(t, *law)[0])
+        rho = L * np.cos(0.5 * rc.psi_law(*law, t)[0])
         return np.stack([rho * np.cos(t), rho * np.sin(t)])
 
     t = np.linspace(0, 2 * np.pi, n, endpoint=False)
@@ -52,7 +52,7 @@ def _areas_mm2(cfg):
     r = cfg["cam"]["roller_radius"]
 
     def rho(t):
-        return L * np.cos(0.5 * rc.psi_law(t, *law)[0])
+        return L * np.cos(0.5 * rc.psi_law(*law, t)[0])
 
     def speed(t, h=1e-6):
         dr = (rho(t + h) - rho(t - h)) / (2 * h)

@@ -41,16 +41,16 @@ def test_eq3_eq4_half_diagonals(law):
     """Eq. 3 rho_A = 2l cos(psi/2) and eq. 4 rho_B = 2l sin(psi/2) (the OCR prints cos in eq. 4;
     sin is what eq. 7 requires). Built here from the blade arm points l e(phi_1), l e(phi_2):
     A is their vector sum (O, arm 1, A, arm 2 form a rhombus of side l). Tol 1e-12 m."""
-    psi = rc.psi_law(ALPHA, *law)[0]
+    psi = rc.psi_law(*law, ALPHA)[0]
     phi1, phi2 = ALPHA + psi / 2, ALPHA - psi / 2  # eq. 21
     l = L / 2
     A = l * np.stack([np.cos(phi1) + np.cos(phi2), np.sin(phi1) + np.sin(phi2)])
-    v = rc.rhombus_vertices(ALPHA, L, *law)
+    v = rc.rhombus_vertices(L, *law, ALPHA)
     np.testing.assert_allclose(v[0], A, atol=1e-12)
     np.testing.assert_allclose(np.hypot(*v[0]), L * np.cos(psi / 2), atol=1e-12)
     np.testing.assert_allclose(np.hypot(*v[1]), L * np.sin(psi / 2), atol=1e-12)
     np.testing.assert_allclose(
-        rc.profile_radius(ALPHA, L, *law)[0], L * np.cos(psi / 2), atol=1e-15
+        rc.profile_radius(L, *law, ALPHA)[0], L * np.cos(psi / 2), atol=1e-15
     )
 
 
@@ -59,7 +59,7 @@ def test_eq5_eq6_end_conditions(law):
     """Eq. 5: psi = psi_max = pi - psi_min at alpha = 0, psi_min at +-pi/2; eq. 6: psi' = 0 there.
     Tol 1e-12 rad (sin(k pi) rounding)."""
     psi_min = law[0]
-    p = rc.psi_law(np.array([0.0, np.pi / 2, -np.pi / 2]), *law)
+    p = rc.psi_law(*law, np.array([0.0, np.pi / 2, -np.pi / 2]))
     np.testing.assert_allclose(p[0], [np.pi - psi_min, psi_min, psi_min], atol=1e-12)
     np.testing.assert_allclose(p[1], 0.0, atol=1e-12)
 
@@ -67,7 +67,7 @@ def test_eq5_eq6_end_conditions(law):
 @pytest.mark.parametrize("law", laws())
 def test_eq7_diagonals(law):
     """Eq. 7: rho_A^2 + rho_B^2 = 4 l^2 = (2l)^2. Tol 1e-14 m^2."""
-    v = rc.rhombus_vertices(ALPHA, L, *law)
+    v = rc.rhombus_vertices(L, *law, ALPHA)
     np.testing.assert_allclose(np.sum(v[0] ** 2, 0) + np.sum(v[1] ** 2, 0), L**2, atol=1e-14)
 
 
@@ -75,13 +75,13 @@ def test_eq7_diagonals(law):
 def test_eq8_eq10(law):
     """Eq. 8: cos psi(alpha + pi/2) = -cos psi(alpha); eq. 10: psi(alpha + pi/2) = pi - psi(alpha).
     Tol 1e-12."""
-    p0 = rc.psi_law(ALPHA, *law)[0]
-    p1 = rc.psi_law(ALPHA + np.pi / 2, *law)[0]
+    p0 = rc.psi_law(*law, ALPHA)[0]
+    p1 = rc.psi_law(*law, ALPHA + np.pi / 2)[0]
     np.testing.assert_allclose(np.cos(p1), -np.cos(p0), atol=1e-12)
     np.testing.assert_allclose(p1, np.pi - p0, atol=1e-12)
     # consequence used for the cam: vertex B lies on the curve, OB = rho(alpha + pi/2)
-    v = rc.rhombus_vertices(ALPHA, L, *law)
-    rho_b = rc.profile_radius(ALPHA + np.pi / 2, L, *law)[0]
+    v = rc.rhombus_vertices(L, *law, ALPHA)
+    rho_b = rc.profile_radius(L, *law, ALPHA + np.pi / 2)[0]
     np.testing.assert_allclose(np.hypot(*v[1]), rho_b, atol=1e-12)
 
 
@@ -92,7 +92,7 @@ def test_eq11_eq12_no_even_harmonics(law):
     polynomials, 256 samples > twice the highest order). Tol 1e-12."""
     n = 256
     al = np.arange(n) * np.pi / n
-    c = np.fft.rfft(rc.psi_law(al, *law)[0]) / n  # bin j: frequency 2 j in alpha
+    c = np.fft.rfft(rc.psi_law(*law, al)[0]) / n  # bin j: frequency 2 j in alpha
     assert c[0].real == pytest.approx(np.pi / 2, abs=1e-12)
     np.testing.assert_allclose(np.abs(c[2::2]), 0.0, atol=1e-12)
     assert np.abs(c[1]) > 1e-3  # the first harmonic is there
@@ -106,7 +106,7 @@ def test_eq15_coefficient_sums(law):
     psi_min, a, b = law
     n = 256
     al = np.arange(n) * np.pi / n
-    c = 2 * np.fft.rfft(rc.psi_law(al, *law)[0]) / n
+    c = 2 * np.fft.rfft(rc.psi_law(*law, al)[0]) / n
     a1, b1 = c[1].real, -c[1].imag
     assert a1 + sum(a) == pytest.approx(np.pi / 2 - psi_min, abs=1e-12)
     assert b1 + 3 * (b[0] if b else 0) + 5 * (b[1] if len(b) > 1 else 0) == pytest.approx(
@@ -121,7 +121,7 @@ def test_eq15_coefficient_sums(law):
 def test_eq16_first_harmonic_law():
     """Eq. 16: psi = pi/2 + (pi/2 - psi_min) cos 2 alpha (the patented profile, eq. 1).
     Tol 1e-14 rad (1e-13 for the derivatives, scaled by 4 and 8)."""
-    p = rc.psi_law(ALPHA, PSI_MIN)
+    p = rc.psi_law(PSI_MIN, (), (), ALPHA)
     h = np.pi / 2 - PSI_MIN
     np.testing.assert_allclose(p[0], np.pi / 2 + h * np.cos(2 * ALPHA), atol=1e-14)
     np.testing.assert_allclose(p[1], -2 * h * np.sin(2 * ALPHA), atol=1e-14)
@@ -141,9 +141,9 @@ def test_eq17_eq18(a3, b3):
         - 3 * b3 * np.sin(2 * al)
         + b3 * np.sin(6 * al)
     )
-    np.testing.assert_allclose(rc.psi_law(al, PSI_MIN, (a3,), (b3,))[0], eq18, atol=1e-14)
+    np.testing.assert_allclose(rc.psi_law(PSI_MIN, (a3,), (b3,), al)[0], eq18, atol=1e-14)
     # "substituting alpha + pi/2 ... confirms condition (10) and restrictions (5), (6)"
-    p = rc.psi_law(np.array([0.0, np.pi / 2]), PSI_MIN, (a3,), (b3,))
+    p = rc.psi_law(PSI_MIN, (a3,), (b3,), np.array([0.0, np.pi / 2]))
     np.testing.assert_allclose(p[0], [np.pi - PSI_MIN, PSI_MIN], atol=1e-14)
     np.testing.assert_allclose(p[1], 0.0, atol=1e-14)
 
@@ -164,9 +164,9 @@ def test_eq19_profile(a3, b3):
     )
     eq19 = L * np.sin(arg)
     law = (PSI_MIN, (a3,), (b3,))
-    np.testing.assert_allclose(rc.profile_radius_eq19(al, L, *law), eq19, atol=1e-15)
-    np.testing.assert_allclose(rc.profile_radius(al + np.pi / 2, L, *law)[0], eq19, atol=1e-15)
-    p3 = rc.profile_point(al + np.pi / 2, L, *law)[0]
+    np.testing.assert_allclose(rc.profile_radius_eq19(L, *law, al), eq19, atol=1e-15)
+    np.testing.assert_allclose(rc.profile_radius(L, *law, al + np.pi / 2)[0], eq19, atol=1e-15)
+    p3 = rc.profile_point(L, *law, al + np.pi / 2)[0]
     turned = np.stack([p3[1], -p3[0]])  # rotation by -90 deg
     p19 = eq19 * np.stack([np.cos(al), np.sin(al)])
     np.testing.assert_allclose(turned, p19, atol=1e-15)
@@ -176,12 +176,14 @@ def test_eq8_constant_law_is_a_circle():
     """After eq. 8: a constant law can only be psi = pi/2; the rhombus is a square and the cam a
     circle of radius 2l sqrt(2)/2. The plain functions accept psi_min = pi/2. Tol 1e-15."""
     pm = np.pi / 2
-    p = rc.psi_law(ALPHA, pm)
+    p = rc.psi_law(pm, (), (), ALPHA)
     np.testing.assert_allclose(p[0], np.pi / 2, atol=1e-15)
     for d in p[1:]:
         np.testing.assert_allclose(d, 0.0, atol=1e-15)
-    np.testing.assert_allclose(rc.profile_radius(ALPHA, L, pm)[0], L * np.sqrt(2) / 2, atol=1e-15)
-    v = rc.rhombus_vertices(ALPHA, L, pm)
+    np.testing.assert_allclose(
+        rc.profile_radius(L, pm, (), (), ALPHA)[0], L * np.sqrt(2) / 2, atol=1e-15
+    )
+    v = rc.rhombus_vertices(L, pm, (), (), ALPHA)
     np.testing.assert_allclose(np.hypot(*v[1]), L * np.sqrt(2) / 2, atol=1e-15)  # square
     assert float(rc.indicator_work(pm, (), (), 100.0, 40.0)) == 0.0
 
@@ -190,8 +192,8 @@ def test_eq8_constant_law_is_a_circle():
 def test_eq21_eq22_blade_angles(law):
     """Eq. 21 phi_1 - phi_2 = psi, phi_1 + phi_2 = 2 alpha (constants taken zero); eq. 22
     d phi_1 = (1 + psi'/2) d alpha, d phi_2 = (1 - psi'/2) d alpha. Tol 1e-14."""
-    phi, d1, d2, _ = rc.blade_angles(ALPHA, *law)
-    p = rc.psi_law(ALPHA, *law)
+    phi, d1, d2, _ = rc.blade_angles(*law, ALPHA)
+    p = rc.psi_law(*law, ALPHA)
     np.testing.assert_allclose(phi[0] - phi[1], p[0], atol=1e-14)
     np.testing.assert_allclose(phi[0] + phi[1], 2 * ALPHA, atol=1e-14)
     np.testing.assert_allclose(d1[0], 1 + p[1] / 2, atol=1e-14)
@@ -205,12 +207,12 @@ def test_eq20_eq24_work_rate(law):
     Any M_1: the blade torque model's value at each alpha. Tol 1e-12 N m."""
     m1, m2 = 100.0, 40.0
     al = ALPHA
-    dphi = rc.blade_angles(al, *law)[1]
-    psi, dpsi = rc.psi_law(al, *law)[:2]
-    M1 = rc.blade_torque(psi, rc.stroke_direction(al, *law), m1, m2, law[0])
+    dphi = rc.blade_angles(*law, al)[1]
+    psi, dpsi = rc.psi_law(*law, al)[:2]
+    M1 = rc.blade_torque(m1, m2, law[0], psi, rc.stroke_direction(*law, al))
     eq23 = M1 * dphi[0] + (-M1) * dphi[1]
     np.testing.assert_allclose(eq23, M1 * dpsi, atol=1e-12)
-    np.testing.assert_allclose(rc.shaft_torque(al, *law, m1, m2), eq23, atol=1e-12)
+    np.testing.assert_allclose(rc.shaft_torque(*law, m1, m2, al), eq23, atol=1e-12)
 
 
 @pytest.mark.parametrize("m1, m2", [(100.0, 40.0), (250.0, -30.0), (10.0, 10.0)])
@@ -235,7 +237,7 @@ def test_eq34_first_and_third_harmonic_work(a3, b3):
     because these laws are monotone between their extremes (checked on a dense grid).
     Tol 1e-12 relative."""
     g = np.linspace(1e-6, np.pi / 2 - 1e-6, 100001)
-    assert np.all(np.diff(rc.psi_law(g, PSI_MIN, (a3,), (b3,))[0]) < 0)
+    assert np.all(np.diff(rc.psi_law(PSI_MIN, (a3,), (b3,), g)[0]) < 0)
     A = float(rc.indicator_work(PSI_MIN, (a3,), (b3,), 100.0, 40.0))
     assert A == pytest.approx(60.0 * (np.pi - 2 * PSI_MIN), rel=1e-12)
 

@@ -21,6 +21,8 @@ from rotorkin.core.angles import angle_near
 from rotorkin.core.errors import ParameterError
 from rotorkin.drives import evaluate
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam import schema
+from rotorkin.machines import rotary_blade as rb
 
 TWO_PI = 2.0 * np.pi
 
@@ -97,7 +99,7 @@ def test_psi_law_against_term_by_term_series(seed):
     rng = np.random.default_rng(seed)
     psi_min, a, b = random_law(rng, n=3)
     al = rng.uniform(-4, 4, 200)
-    np.testing.assert_allclose(rc.psi_law(al, psi_min, a, b)[0], psi_ref(al, psi_min, a, b),
+    np.testing.assert_allclose(rc.psi_law(psi_min, a, b, al)[0], psi_ref(al, psi_min, a, b),
                                rtol=0, atol=1e-13)  # fmt: skip
 
 
@@ -107,9 +109,9 @@ def test_psi_derivatives_by_finite_differences(seed):
     psi_min, a, b = random_law(rng, n=3)
     al = rng.uniform(-4, 4, 50)
     h = 1e-5
-    p = rc.psi_law(al, psi_min, a, b)
-    pp = rc.psi_law(al + h, psi_min, a, b)
-    pm = rc.psi_law(al - h, psi_min, a, b)
+    p = rc.psi_law(psi_min, a, b, al)
+    pp = rc.psi_law(psi_min, a, b, al + h)
+    pm = rc.psi_law(psi_min, a, b, al - h)
     # central differences of the independent series (order 1) and of the closed forms (2, 3):
     # truncation ~ h^2 |f'''| / 6 < 1e-8 for frequencies up to 14
     fd1 = (psi_ref(al + h, psi_min, a, b) - psi_ref(al - h, psi_min, a, b)) / (2 * h)
@@ -129,9 +131,9 @@ def test_periodicity_and_symmetry(seed):
     rng = np.random.default_rng(seed)
     psi_min, a, b = random_law(rng)
     al = rng.uniform(-4, 4, 100)
-    p0 = rc.psi_law(al, psi_min, a, b)
-    p1 = rc.psi_law(al + np.pi, psi_min, a, b)
-    p2 = rc.psi_law(al + np.pi / 2, psi_min, a, b)
+    p0 = rc.psi_law(psi_min, a, b, al)
+    p1 = rc.psi_law(psi_min, a, b, al + np.pi)
+    p2 = rc.psi_law(psi_min, a, b, al + np.pi / 2)
     for k in range(4):
         np.testing.assert_allclose(p1[k], p0[k], atol=1e-10)
         # eq. 10 differentiated: psi^(k)(alpha + pi/2) = -psi^(k)(alpha) for k >= 1
@@ -148,16 +150,16 @@ def test_shapes_0d_1d_3d():
     al3 = np.random.default_rng(7).uniform(0, 3, (2, 3, 4))
     par = rc.RhomboidCam(0.12, psi_min, a, b)
     fns = [
-        lambda x: rc.psi_law(x, psi_min, a, b),
-        lambda x: rc.blade_angles(x, psi_min, a, b),
-        lambda x: rc.profile_radius(x, 0.12, psi_min, a, b),
-        lambda x: rc.profile_point(x, 0.12, psi_min, a, b),
-        lambda x: (rc.profile_curvature(x, 0.12, psi_min, a, b),),
-        lambda x: (rc.profile_radius_eq19(x, 0.12, psi_min, a, b),),
-        lambda x: (rc.rhombus_vertices(x, 0.12, psi_min, a, b),),
-        lambda x: (rc.blade_arm_points(x, 0.12, psi_min, a, b),),
-        lambda x: (rc.stroke_direction(x, psi_min, a, b),),
-        lambda x: (rc.shaft_torque(x, psi_min, a, b, 100.0, 40.0),),
+        lambda x: rc.psi_law(psi_min, a, b, x),
+        lambda x: rc.blade_angles(psi_min, a, b, x),
+        lambda x: rc.profile_radius(0.12, psi_min, a, b, x),
+        lambda x: rc.profile_point(0.12, psi_min, a, b, x),
+        lambda x: (rc.profile_curvature(0.12, psi_min, a, b, x),),
+        lambda x: (rc.profile_radius_eq19(0.12, psi_min, a, b, x),),
+        lambda x: (rc.rhombus_vertices(0.12, psi_min, a, b, x),),
+        lambda x: (rc.blade_arm_points(0.12, psi_min, a, b, x),),
+        lambda x: (rc.stroke_direction(psi_min, a, b, x),),
+        lambda x: (rc.shaft_torque(psi_min, a, b, 100.0, 40.0, x),),
         lambda x: (rc.motion(par, x).q, rc.motion(par, x).d3q),
     ]
     for f in fns:
@@ -175,7 +177,7 @@ def test_shapes_0d_1d_3d():
 def test_psi_min_broadcasts_with_alpha():
     pm = np.array([[0.3], [0.7], [1.2]])
     al = np.linspace(0, 3, 5)
-    got = rc.psi_law(al, pm, (0.02,), (0.01,))[0]
+    got = rc.psi_law(pm, (0.02,), (0.01,), al)[0]
     assert got.shape == (3, 5)
     for i in range(3):
         np.testing.assert_allclose(got[i], psi_ref(al, pm[i, 0], (0.02,), (0.01,)), atol=1e-14)
@@ -187,12 +189,12 @@ def test_blade_angles(seed):
     rng = np.random.default_rng(seed)
     psi_min, a, b = random_law(rng)
     al = rng.uniform(-4, 4, 40)
-    phi, d1, d2, d3 = rc.blade_angles(al, psi_min, a, b)
+    phi, d1, d2, d3 = rc.blade_angles(psi_min, a, b, al)
     psi = psi_ref(al, psi_min, a, b)
     np.testing.assert_allclose(phi[0], al + psi / 2, atol=1e-13)
     np.testing.assert_allclose(phi[1], al - psi / 2, atol=1e-13)
     h = 1e-5
-    fp, fm = rc.blade_angles(al + h, psi_min, a, b), rc.blade_angles(al - h, psi_min, a, b)
+    fp, fm = rc.blade_angles(psi_min, a, b, al + h), rc.blade_angles(psi_min, a, b, al - h)
     for k, tol in ((0, 1e-7), (1, 1e-6), (2, 1e-5)):
         np.testing.assert_allclose((fp[k] - fm[k]) / (2 * h), (d1, d2, d3)[k], atol=tol)
 
@@ -203,9 +205,9 @@ def test_rhombus_against_circle_construction(seed):
     psi_min, a, b = random_law(rng)
     L = rng.uniform(0.05, 0.3)
     al = rng.uniform(-4, 4, 12)
-    verts = rc.rhombus_vertices(al, L, psi_min, a, b)
-    mids = rc.blade_arm_points(al, L, psi_min, a, b)
-    rho = rc.profile_radius(al, L, psi_min, a, b)[0]
+    verts = rc.rhombus_vertices(L, psi_min, a, b, al)
+    mids = rc.blade_arm_points(L, psi_min, a, b, al)
+    rho = rc.profile_radius(L, psi_min, a, b, al)[0]
     psi = psi_ref(al, psi_min, a, b)
     for j, alpha in enumerate(al):
         v, closure, m = rhombus_from_blades(alpha + psi[j] / 2, alpha - psi[j] / 2, L)
@@ -228,11 +230,11 @@ def test_all_four_vertices_lie_on_the_cam(seed):
     psi_min, a, b = random_law(rng)
     L = 0.15
     al = rng.uniform(-4, 4, 30)
-    v = rc.rhombus_vertices(al, L, psi_min, a, b)
+    v = rc.rhombus_vertices(L, psi_min, a, b, al)
     for i in range(4):
         ang = angle_near(v[i, 1], v[i, 0], al + i * np.pi / 2)
         np.testing.assert_allclose(ang, al + i * np.pi / 2, atol=1e-12)
-        r = rc.profile_radius(ang, L, psi_min, a, b)[0]
+        r = rc.profile_radius(L, psi_min, a, b, ang)[0]
         np.testing.assert_allclose(np.hypot(v[i, 0], v[i, 1]), r, rtol=1e-12)
 
 
@@ -243,10 +245,10 @@ def test_profile_derivatives_by_finite_differences(seed):
     L = 0.12
     al = rng.uniform(-4, 4, 30)
     h = 1e-5
-    r, rp, rm = (rc.profile_radius(x, L, psi_min, a, b) for x in (al, al + h, al - h))
+    r, rp, rm = (rc.profile_radius(L, psi_min, a, b, x) for x in (al, al + h, al - h))
     for k in range(3):
         np.testing.assert_allclose((rp[k] - rm[k]) / (2 * h), r[k + 1], atol=1e-8 * 10**k)
-    p, pp, pm = (rc.profile_point(x, L, psi_min, a, b) for x in (al, al + h, al - h))
+    p, pp, pm = (rc.profile_point(L, psi_min, a, b, x) for x in (al, al + h, al - h))
     np.testing.assert_allclose(p[0], np.stack([r[0] * np.cos(al), r[0] * np.sin(al)]), atol=1e-15)
     for k in range(2):
         np.testing.assert_allclose((pp[k] - pm[k]) / (2 * h), p[k + 1], atol=1e-8)
@@ -258,9 +260,9 @@ def test_curvature_against_three_point_circle(seed):
     psi_min, a, b = random_law(rng)
     L = 0.12
     al = rng.uniform(0, np.pi, 20)
-    kappa = rc.profile_curvature(al, L, psi_min, a, b)
+    kappa = rc.profile_curvature(L, psi_min, a, b, al)
     h = 2e-4
-    p0, p1, p2 = (rc.profile_point(x, L, psi_min, a, b)[0].T for x in (al - h, al, al + h))
+    p0, p1, p2 = (rc.profile_point(L, psi_min, a, b, x)[0].T for x in (al - h, al, al + h))
     u, w = p1 - p0, p2 - p1
     cross = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]  # > 0: turning left (convex, ccw curve)
     sides = np.linalg.norm(u, axis=1) * np.linalg.norm(w, axis=1) * np.linalg.norm(p2 - p0, axis=1)
@@ -271,8 +273,8 @@ def test_curvature_against_three_point_circle(seed):
 def test_eq19_form_is_quarter_turn():
     psi_min, a, b = 0.7, (0.05, 0.01), (0.02,)
     al = np.linspace(-3, 3, 41)
-    np.testing.assert_allclose(rc.profile_radius_eq19(al, 0.1, psi_min, a, b),
-                               rc.profile_radius(al + np.pi / 2, 0.1, psi_min, a, b)[0],
+    np.testing.assert_allclose(rc.profile_radius_eq19(0.1, psi_min, a, b, al),
+                               rc.profile_radius(0.1, psi_min, a, b, al + np.pi / 2)[0],
                                atol=1e-15)  # fmt: skip
 
 
@@ -295,7 +297,7 @@ def test_stationary_points_against_brentq():
     expected = np.concatenate([[0.0], roots, [np.pi]])
     np.testing.assert_allclose(z, expected, atol=1e-8)
     assert z.size == 7  # 4 extra extremes: the law swings back and forth twice per half
-    np.testing.assert_allclose(rc.psi_law(z, psi_min, a, b)[1], 0.0, atol=1e-12)
+    np.testing.assert_allclose(rc.psi_law(psi_min, a, b, z)[1], 0.0, atol=1e-12)
 
 
 @pytest.mark.parametrize("seed", SEEDS)
@@ -327,19 +329,19 @@ def test_monotone_detection():
 def test_blade_torque_levels():
     """Ends of the two lines of eq. 29 as read: M_p from M1 to -M2, M_c from -M1 to M2."""
     pm, m1, m2 = 0.6, 100.0, 40.0
-    got = rc.blade_torque(np.array([pm, np.pi - pm, np.pi - pm, pm]), np.array([1, 1, -1, -1]),
-                          m1, m2, pm)  # fmt: skip
+    psi = np.array([pm, np.pi - pm, np.pi - pm, pm])
+    got = rc.blade_torque(m1, m2, pm, psi, np.array([1, 1, -1, -1]))
     np.testing.assert_allclose(got, [m1, -m2, -m1, m2], atol=1e-12)
-    assert rc.blade_torque(1.0, 1, m1, m2, np.pi / 2) == pytest.approx((m1 - m2) / 2)
+    assert rc.blade_torque(m1, m2, np.pi / 2, 1.0, 1) == pytest.approx((m1 - m2) / 2)
 
 
 def test_stroke_direction():
     al = np.array([0.0, 0.3, np.pi / 2, 2.0, np.pi])
-    np.testing.assert_array_equal(rc.stroke_direction(al, 0.7), [-1, -1, 1, 1, -1])
-    np.testing.assert_array_equal(rc.stroke_direction(al, np.pi / 2), 0.0)
+    np.testing.assert_array_equal(rc.stroke_direction(0.7, (), (), al), [-1, -1, 1, 1, -1])
+    np.testing.assert_array_equal(rc.stroke_direction(np.pi / 2, (), (), al), 0.0)
     # dwell law psi' ~ -sin^3 2 alpha: flat at 0, the stroke is read from psi'''
     a3 = (-(np.pi / 2 - 0.7) / 8,)
-    np.testing.assert_array_equal(rc.stroke_direction(al, 0.7, a3), [-1, -1, 1, 1, -1])
+    np.testing.assert_array_equal(rc.stroke_direction(0.7, a3, (), al), [-1, -1, 1, 1, -1])
 
 
 @pytest.mark.parametrize("seed", SEEDS)
@@ -386,10 +388,10 @@ def test_shaft_torque_by_virtual_work():
     psi_min, a, b = 0.6, (0.04,), (0.01,)
     m1, m2 = 100.0, 40.0
     al = np.linspace(0, np.pi, 200001)
-    t = rc.shaft_torque(al, psi_min, a, b, m1, m2)
-    psi, dpsi = psi_ref(al, psi_min, a, b), rc.psi_law(al, psi_min, a, b)[1]
+    t = rc.shaft_torque(psi_min, a, b, m1, m2, al)
+    psi, dpsi = psi_ref(al, psi_min, a, b), rc.psi_law(psi_min, a, b, al)[1]
     mb = torque_ref(psi, dpsi, m1, m2, psi_min)
-    dphi = rc.blade_angles(al, psi_min, a, b)[1]
+    dphi = rc.blade_angles(psi_min, a, b, al)[1]
     inner = np.abs(dpsi) > 1e-9
     np.testing.assert_allclose(t[inner], (mb * dphi[0] - mb * dphi[1])[inner], atol=1e-10)
     mean = np.sum(0.5 * (t[1:] + t[:-1]) * np.diff(al)) / np.pi
@@ -507,6 +509,20 @@ def test_study_columns():
                                cols["blade_torque_Nm"] * cols["dpsi"], atol=1e-12)  # fmt: skip
 
 
+def test_study_motion_is_both_blade_pairs_on_the_column_grid():
+    res = evaluate(_cfg(a=[0.02], b=[0.01]))
+    mo, cols = res.motion, res.columns
+    assert mo is not None and mo.members == ("blade pair 1", "blade pair 2")
+    np.testing.assert_allclose(np.degrees(mo.theta), cols["alpha_deg"], rtol=0, atol=1e-12)
+    al = np.radians(cols["alpha_deg"])
+    psi = psi_ref(al, np.radians(40), (0.02,), (0.01,))
+    np.testing.assert_allclose(mo.q[0], al + psi / 2, atol=1e-12)  # eq. 21
+    np.testing.assert_allclose(mo.q[1], al - psi / 2, atol=1e-12)
+    np.testing.assert_allclose(mo.dq[0], cols["phi1_speed_coeff"], atol=1e-14)
+    np.testing.assert_allclose(mo.d2q[1], cols["phi2_accel_per_rad"], atol=1e-14)
+    np.testing.assert_allclose(mo.d3q[0], cols["phi1_jerk_per_rad2"], atol=1e-14)
+
+
 def test_study_non_monotone():
     s = evaluate(_cfg(a=[0.4])).summary
     assert s["psi_monotone"] is False
@@ -523,6 +539,7 @@ def test_study_errors_name_the_config_key():
         evaluate(_cfg(link_length=0.0))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("drive", [{}, {"a": [0.4]}, {"a": [0.05], "b": [0.02]}])
 def test_study_plot_writes_pngs(tmp_path, drive):
     paths = evaluate(_cfg(**drive)).write_figures(tmp_path)
@@ -533,3 +550,41 @@ def test_study_plot_writes_pngs(tmp_path, drive):
         assert p.suffix == ".png" and p.parent == tmp_path
         assert p.stat().st_size > 10_000
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+# --- one source of defaults -----------------------------------------------------------------
+def _schema_defaults(model, **required):
+    """Every field of a config section parsed through the schema (SI), defaults filled."""
+    return model(**required).model_dump()
+
+
+@pytest.mark.parametrize(
+    "holder, section",
+    [
+        ("drive", "drive"),
+        ("machine", "machine"),
+        ("gas", "loads"),
+    ],
+)
+def test_dataclass_defaults_equal_the_schema(holder, section):
+    cls = {"drive": rc.RhomboidCam, "machine": rb.RotaryBlade, "gas": rb.IsothermalGas}[holder]
+    parsed = {
+        "drive": lambda: _schema_defaults(
+            schema.RhomboidDrive, type="rhomboid_cam", link_length="120 mm", psi_min="40 deg"
+        ),
+        "machine": lambda: _schema_defaults(schema.RotaryBladeMachine),
+        "loads": lambda: _schema_defaults(schema.RhomboidLoads),
+    }[section]()
+    checked = 0
+    for f in dataclasses.fields(cls):
+        if f.default is dataclasses.MISSING:
+            continue
+        assert f.name in parsed, f"{cls.__name__}.{f.name} has no schema field"
+        want = parsed[f.name]
+        got = f.default
+        if isinstance(want, list):
+            want, got = tuple(want), tuple(got)
+        assert got == want, f"{cls.__name__}.{f.name} = {got!r}, schema: {want!r}"
+        checked += 1
+    if holder != "gas":  # IsothermalGas has no defaults; the others must have been compared
+        assert checked >= 2

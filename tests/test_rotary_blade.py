@@ -239,7 +239,7 @@ def test_shapes_0d_1d_3d():
     mo3 = rc.motion(params, al3)
     v3 = rb.chamber_volumes(m, mo3.q)
     dv3 = rb.chamber_volume_derivative(m, mo3.dq)
-    st3 = rb.chamber_strokes(m, rc.stroke_direction(al3, PSI_MIN, (0.02,)))
+    st3 = rb.chamber_strokes(m, rc.stroke_direction(PSI_MIN, (0.02,), (), al3))
     g = gas()
     charge = rb.gas_charge(g, np.full(4, 4e-4))
     p3 = rb.isothermal_pressure(g, charge, v3, st3)
@@ -248,7 +248,7 @@ def test_shapes_0d_1d_3d():
     flat = al3.reshape(-1)
     mo1 = rc.motion(params, flat)
     v1 = rb.chamber_volumes(m, mo1.q)
-    st1 = rb.chamber_strokes(m, rc.stroke_direction(flat, PSI_MIN, (0.02,)))
+    st1 = rb.chamber_strokes(m, rc.stroke_direction(PSI_MIN, (0.02,), (), flat))
     p1 = rb.isothermal_pressure(g, charge, v1, st1)
     np.testing.assert_array_equal(v3.reshape(4, -1), v1)
     np.testing.assert_array_equal(p3.reshape(4, -1), p1)
@@ -499,6 +499,7 @@ def test_study_fills_missing_machine_and_loads_keys():
     assert s["shaft_speed_mean_rpm"] == pytest.approx(3000.0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("model", "count"), [("linear", 7), ("isothermal", 8)])
 def test_plots(tmp_path, model, count):
     paths = evaluate(cfg(model)).write_figures(tmp_path)
@@ -509,6 +510,7 @@ def test_plots(tmp_path, model, count):
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+@pytest.mark.slow
 def test_plots_other_blade_counts(tmp_path):
     for B, psi_min, t in ((3, np.radians(75), 0.1), (1, PSI_MIN, 0.1)):
         c = cfg("isothermal", drive={"psi_min": psi_min},

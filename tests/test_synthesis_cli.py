@@ -130,10 +130,13 @@ def test_wobble_files(tmp_path):
         (["-e", "rhomboid-engine"], ["--objective is missing", "dwell_min"]),
         (
             ["-e", "guide-bar-pump", "--objective", "vane_angle", "--target", "10 deg"],
-            ["target = 10 deg", "45 deg < gamma_0 < 90 deg"],
+            ["--target = 10 deg", "45 deg < gamma_0 < 90 deg"],
         ),
         (["-e", "guide-bar-pump", "--objective", "vane_angle", "--target", "ten"], ["'ten'"]),
-        (["-e", "rhomboid-engine", "--objective", "min_accel", "--target", "1"], ["--target"]),
+        (
+            ["-e", "rhomboid-engine", "--objective", "min_accel", "--target", "1"],
+            ["--target = '1'"],
+        ),
         (
             ["-e", "rhomboid-engine", "--objective", "min_accel", "--harmonics", "0"],
             ["--harmonics"],

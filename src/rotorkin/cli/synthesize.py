@@ -194,19 +194,18 @@ def write_synthesis(result, new_raw: dict, outdir: Path, meta: dict) -> list[Pat
 
 def _print(result, outdir, written):
     from rich.console import Console
-    from rich.markup import escape
     from rich.table import Table
 
     console = Console(markup=False, highlight=False)
-    console.print(escape(result.title), highlight=False, soft_wrap=True)
+    console.print(result.title, highlight=False, soft_wrap=True)
     table = Table()
     table.add_column("metric")
     table.add_column("baseline", justify="right")
     table.add_column("synthesized", justify="right")
     for metric, base, synth in result.rows:
-        table.add_row(escape(metric), escape(fmt(base)), escape(fmt(synth)))
+        table.add_row(metric, fmt(base), fmt(synth))
     console.print(table)
     for line in result.notes:
-        console.print(escape(line), highlight=False, soft_wrap=True)
+        console.print(line, highlight=False, soft_wrap=True)
     names = ", ".join(p.name for p in written)
     console.print(f"wrote {outdir}/: {names}", highlight=False, soft_wrap=True)

@@ -1,10 +1,11 @@
 """Rotary-blade engine: two blade pairs on one axis, working chambers between the blades.
 
-The machine of Zhuravlev, Donchenko, Sherstyukov (2012, ``papers/rhomboid_cam.md``):
-a Stirling-type engine with external heat supply whose two blade pairs turn about
-one axis at the angles ``phi_1`` and ``phi_2`` given by a drive (the rhomboid
-lever-cam converter, :mod:`rotorkin.drives.rhomboid_cam.kinematics`). The paper gives no
-geometry of the working space; the model here is ours.
+The machine of Zhuravlev, Donchenko, Sherstyukov (2012): a Stirling-type engine
+with external heat supply whose two blade pairs turn about one axis at the angles
+``phi_1`` and ``phi_2``. This module needs only their motion (a
+:class:`rotorkin.core.motion.Motion` of the two pairs against the output-shaft
+angle, from whichever drive produces it) and plain numbers; it knows no drive. The
+paper gives no geometry of the working space; the model here is ours.
 
 Geometry (not in the paper):
 
@@ -30,8 +31,9 @@ Geometry (not in the paper):
 
 Pressure models:
 
-* ``linear``: the paper's blade-torque model (eq. 29) gives the torque ``M_1`` on
-  pair 1 directly, and ``M_2 = -M_1`` (eq. 24) - see :func:`linear_member_torques`.
+* given member torques: a drive's own load model may give the torques ``(M_1, M_2)``
+  on the pairs directly; :func:`rotorkin.analysis.torque.shaft_torque_from_members`
+  turns them into the shaft torque.
 * ``isothermal`` (ideal Stirling cycle, ours): each chamber holds a fixed gas mass
   ``m_j``; while it *expands* (``dV_j > 0``) the gas is at the hot temperature
   ``T_h``, while it is *compressed* (``dV_j < 0``) at the cold temperature
@@ -57,35 +59,124 @@ __all__ = [
     "IsothermalGas",
     "RotaryBlade",
     "chamber_angles",
+    "chamber_figures",
     "chamber_offsets",
     "chamber_signs",
     "chamber_strokes",
     "chamber_volume_derivative",
     "chamber_volumes",
+    "CHECKS",
+    "GAS_CHECKS",
+    "SWING_CHECKS",
+    "blade_thickness_max",
     "check_swing",
+    "class_volume_range",
     "displacement_per_rev",
     "gas_charge",
     "gas_member_torques",
+    "gas_violation",
     "isothermal_cycle_work",
     "isothermal_pressure",
     "isothermal_stroke_work",
-    "linear_member_torques",
     "sector_constant",
     "volume_gradient",
+    "swing_violation",
+    "violation",
     "volume_range",
 ]
 
 _TWO_PI = 2.0 * np.pi
 
 
-def _finite(x) -> bool:
-    return bool(np.isfinite(x))
+#: Parameters of :class:`RotaryBlade` in the order :func:`violation` checks them.
+CHECKS = (
+    "blades_per_pair",
+    "outer_radius",
+    "inner_radius",
+    "axial_width",
+    "blade_thickness",
+    "inertia_shaft",
+    "inertia_blade_pair_1",
+    "inertia_blade_pair_2",
+)
+#: Parameters of :class:`IsothermalGas` in the order :func:`gas_violation` checks them.
+GAS_CHECKS = ("charge_pressure", "hot_temperature", "cold_temperature")
+#: What :func:`swing_violation` reports, in order.
+SWING_CHECKS = ("blade_thickness", "blades_per_pair")
+
+
+def _first_violation(bad) -> np.ndarray:
+    """Per element, ``i + 1`` of the first true mask in ``bad`` (0: none is true)."""
+    bad = np.broadcast_arrays(*[np.asarray(b, dtype=bool) for b in bad])
+    out = np.zeros(bad[0].shape, dtype=np.int16)
+    for i, b in enumerate(bad):
+        out[(out == 0) & b] = i + 1
+    return out
+
+
+def violation(blade_thickness, inner_radius, outer_radius, axial_width, blades_per_pair=2,
+              inertia_shaft=0.0, inertia_blade_pair_1=0.01, inertia_blade_pair_2=0.01):  # fmt: skip
+    """Which parameter of each design is out of its admissible range.
+
+    Parameters
+    ----------
+    blade_thickness : array_like
+        ``t`` [rad]; admissible ``0 <= t < pi / B``.
+    inner_radius, outer_radius : array_like
+        ``R_i``, ``R_o`` [m]; ``0 <= R_i < R_o``, ``R_o > 0``.
+    axial_width : array_like
+        ``w`` [m], > 0.
+    blades_per_pair : array_like of int
+        ``B >= 1``.
+    inertia_shaft, inertia_blade_pair_1, inertia_blade_pair_2 : array_like
+        [kg m^2], >= 0.
+
+    Returns
+    -------
+    ndarray of int16
+        Broadcast shape of the inputs: 0 where the design is admissible, else
+        ``i + 1`` for the first violated parameter ``CHECKS[i]`` (in the order of
+        :data:`CHECKS`).
+    """
+    with np.errstate(invalid="ignore"):
+        B = np.asarray(blades_per_pair)
+        Bf = np.where(B >= 1, B, 1).astype(float)
+        ro, ri = np.asarray(outer_radius, dtype=float), np.asarray(inner_radius, dtype=float)
+        w, t = np.asarray(axial_width, dtype=float), np.asarray(blade_thickness, dtype=float)
+        bad = [
+            ~((B >= 1) & (B == np.floor(B))),
+            ~(np.isfinite(ro) & (ro > 0.0)),
+            ~(np.isfinite(ri) & (ri >= 0.0) & (ri < ro)),
+            ~(np.isfinite(w) & (w > 0.0)),
+            ~(np.isfinite(t) & (t >= 0.0) & (t < np.pi / Bf)),
+        ]
+        for j in (inertia_shaft, inertia_blade_pair_1, inertia_blade_pair_2):
+            j = np.asarray(j, dtype=float)
+            bad.append(~(np.isfinite(j) & (j >= 0.0)))
+    return _first_violation(bad)
+
+
+def _value(x, where):
+    """Element ``where`` (a flat index) of the broadcast parameter ``x``."""
+    return np.broadcast_to(np.asarray(x), where[1]).flat[where[0]]
+
+
+def _number(x):
+    """A parameter as float (scalar) or float array (many designs)."""
+    a = np.asarray(x, dtype=float)
+    return float(a) if a.ndim == 0 else a
 
 
 # --- parameters ---------------------------------------------------------------------------
 @dataclass(frozen=True)
 class RotaryBlade:
     """Geometry and inertias of the rotary-blade engine.
+
+    A thin holder of the parameters, validated by :func:`violation`; each field
+    may also be an array (many designs, broadcast together) for the functions
+    that treat the chambers by kind (:func:`sector_constant`,
+    :func:`blade_thickness_max`, :func:`class_volume_range`,
+    :func:`displacement_per_rev`).
 
     Attributes
     ----------
@@ -103,7 +194,8 @@ class RotaryBlade:
     inertia_shaft : float
         Inertia of the output shaft with the cam carrier [kg m^2], >= 0.
     inertia_blade_pair_1, inertia_blade_pair_2 : float
-        Inertias of the blade pairs with their hubs and arms [kg m^2], >= 0.
+        Inertias of the blade pairs with their hubs and arms [kg m^2], >= 0 (default
+        0.01, as the config schema).
     """
 
     blade_thickness: float
@@ -112,42 +204,24 @@ class RotaryBlade:
     axial_width: float
     blades_per_pair: int = 2
     inertia_shaft: float = 0.0
-    inertia_blade_pair_1: float = 0.0
-    inertia_blade_pair_2: float = 0.0
+    inertia_blade_pair_1: float = 0.01
+    inertia_blade_pair_2: float = 0.01
 
     def __post_init__(self):
         B = self.blades_per_pair
-        if isinstance(B, bool) or not isinstance(B, int | np.integer) or B < 1:
+        if isinstance(B, bool) or not np.issubdtype(np.asarray(B).dtype, np.integer):
             raise ParameterError("blades_per_pair", repr(B), "an integer >= 1")
-        ro = float(self.outer_radius)
-        if not (_finite(ro) and ro > 0.0):
-            raise ParameterError("outer_radius", fmt_mm(ro), "outer_radius > 0 mm")
-        ri = float(self.inner_radius)
-        if not (_finite(ri) and 0.0 <= ri < ro):
-            raise ParameterError(
-                "inner_radius", fmt_mm(ri), f"0 mm <= inner_radius < outer_radius = {fmt_mm(ro)}"
-            )
-        w = float(self.axial_width)
-        if not (_finite(w) and w > 0.0):
-            raise ParameterError("axial_width", fmt_mm(w), "axial_width > 0 mm")
-        t = float(self.blade_thickness)
-        if not (_finite(t) and 0.0 <= t < np.pi / B):
-            raise ParameterError(
-                "blade_thickness",
-                fmt_deg(t),
-                f"0 deg <= blade_thickness < {fmt_deg(np.pi / B)} "
-                f"(the {2 * B} blades must fit around the rotor)",
-            )
-        for name in ("inertia_shaft", "inertia_blade_pair_1", "inertia_blade_pair_2"):
-            j = float(getattr(self, name))
-            if not (_finite(j) and j >= 0.0):
-                raise ParameterError(name, f"{j:g} kg*m^2", f"{name} >= 0 kg*m^2")
-            object.__setattr__(self, name, j)
-        object.__setattr__(self, "blades_per_pair", int(B))
-        object.__setattr__(self, "blade_thickness", t)
-        object.__setattr__(self, "inner_radius", ri)
-        object.__setattr__(self, "outer_radius", ro)
-        object.__setattr__(self, "axial_width", w)
+        fields = {name: getattr(self, name) for name in CHECKS}
+        code = violation(**fields)
+        if np.any(code):
+            k = int(np.flatnonzero(code)[0])
+            name = CHECKS[code.flat[k] - 1]
+            at = (k, code.shape)
+            raise _machine_error(name, {n: _value(v, at) for n, v in fields.items()})
+        B = np.asarray(B)
+        object.__setattr__(self, "blades_per_pair", int(B) if B.ndim == 0 else B)
+        for name in CHECKS[1:]:
+            object.__setattr__(self, name, _number(getattr(self, name)))
 
     @property
     def chambers(self) -> int:
@@ -163,6 +237,8 @@ class RotaryBlade:
 @dataclass(frozen=True)
 class IsothermalGas:
     """Loads of the isothermal (ideal Stirling) pressure model.
+
+    A thin holder validated by :func:`gas_violation`; the fields may be arrays.
 
     Attributes
     ----------
@@ -180,15 +256,84 @@ class IsothermalGas:
     cold_temperature: float
 
     def __post_init__(self):
-        p = float(self.charge_pressure)
-        if not (_finite(p) and p > 0.0):
-            raise ParameterError("charge_pressure", f"{p / 1e5:g} bar", "charge_pressure > 0 bar")
-        for name in ("hot_temperature", "cold_temperature"):
-            T = float(getattr(self, name))
-            if not (_finite(T) and T > 0.0):
-                raise ParameterError(name, f"{T:g} K", f"{name} > 0 K")
-            object.__setattr__(self, name, T)
-        object.__setattr__(self, "charge_pressure", p)
+        fields = {name: getattr(self, name) for name in GAS_CHECKS}
+        code = gas_violation(**fields)
+        if np.any(code):
+            k = int(np.flatnonzero(code)[0])
+            name = GAS_CHECKS[code.flat[k] - 1]
+            v = float(_value(fields[name], (k, code.shape)))
+            if name == "charge_pressure":
+                raise ParameterError(name, f"{v / 1e5:g} bar", "charge_pressure > 0 bar")
+            raise ParameterError(name, f"{v:g} K", f"{name} > 0 K")
+        for name in GAS_CHECKS:
+            object.__setattr__(self, name, _number(getattr(self, name)))
+
+
+def gas_violation(charge_pressure, hot_temperature, cold_temperature) -> np.ndarray:
+    """Which parameter of each isothermal-gas load is out of range (all must be finite, > 0).
+
+    Returns
+    -------
+    ndarray of int16
+        Broadcast shape: 0 where admissible, else ``i + 1`` for the first violated
+        parameter ``GAS_CHECKS[i]``.
+    """
+    with np.errstate(invalid="ignore"):
+        values = [np.asarray(x, dtype=float) for x in (charge_pressure, hot_temperature,
+                                                         cold_temperature)]  # fmt: skip
+        return _first_violation([~(np.isfinite(x) & (x > 0.0)) for x in values])
+
+
+def _machine_error(name, v) -> ParameterError:
+    """The :class:`ParameterError` of one design whose ``name`` :func:`violation` flags."""
+    B = int(v["blades_per_pair"]) if float(v["blades_per_pair"]).is_integer() else None
+    if name == "blades_per_pair":
+        return ParameterError(name, repr(v[name]), "an integer >= 1")
+    if name == "outer_radius":
+        return ParameterError(name, fmt_mm(v[name]), "outer_radius > 0 mm")
+    if name == "inner_radius":
+        return ParameterError(
+            name,
+            fmt_mm(v[name]),
+            f"0 mm <= inner_radius < outer_radius = {fmt_mm(v['outer_radius'])}",
+        )
+    if name == "axial_width":
+        return ParameterError(name, fmt_mm(v[name]), "axial_width > 0 mm")
+    if name == "blade_thickness":
+        return ParameterError(
+            name,
+            fmt_deg(v[name]),
+            f"0 deg <= blade_thickness < {fmt_deg(np.pi / B)} "
+            f"(the {2 * B} blades must fit around the rotor)",
+        )
+    return ParameterError(name, f"{float(v[name]):g} kg*m^2", f"{name} >= 0 kg*m^2")
+
+
+def blade_thickness_max(blades_per_pair, psi_lo, psi_hi):
+    """Thickest blade that fits a swing of ``psi``: ``min(psi_lo, 2 pi/B - psi_hi)`` [rad].
+
+    The chamber angles ``psi - t`` and ``2 pi/B - psi - t`` stay > 0 for
+    ``psi_lo <= psi <= psi_hi`` exactly when ``t`` is below this. All arguments
+    broadcast.
+    """
+    B = np.asarray(blades_per_pair, dtype=float)
+    return np.minimum(psi_lo, _TWO_PI / B - np.asarray(psi_hi, dtype=float))
+
+
+def swing_violation(blades_per_pair, blade_thickness, psi_lo, psi_hi) -> np.ndarray:
+    """Whether the blades collide in a swing of ``psi``, and which parameter to change.
+
+    Returns
+    -------
+    ndarray of int16
+        0 where ``t < blade_thickness_max``; else 1 (``SWING_CHECKS[0]``,
+        ``blade_thickness``) where thinner blades would fit, 2 (``blades_per_pair``)
+        where none would. All arguments broadcast.
+    """
+    t_max = blade_thickness_max(blades_per_pair, psi_lo, psi_hi)
+    with np.errstate(invalid="ignore"):
+        bad = ~(np.asarray(blade_thickness, dtype=float) < t_max)
+    return _first_violation([bad & (t_max > 0.0), bad])
 
 
 def check_swing(machine: RotaryBlade, psi_lo: float, psi_hi: float) -> None:
@@ -196,8 +341,8 @@ def check_swing(machine: RotaryBlade, psi_lo: float, psi_hi: float) -> None:
 
     The chamber angles ``psi - t`` and ``2 pi/B - psi - t`` must stay > 0 for
     ``psi_lo <= psi <= psi_hi``, i.e. ``t < t_max = min(psi_lo, 2 pi/B - psi_hi)``.
-    For the rhomboid drive (``psi_hi = pi - psi_lo``) and ``B = 2`` that is
-    ``t < psi_min``.
+    For a swing symmetric about pi/2 (``psi_hi = pi - psi_lo``) and ``B = 2`` that
+    is ``t < psi_lo``.
 
     Raises
     ------
@@ -206,11 +351,12 @@ def check_swing(machine: RotaryBlade, psi_lo: float, psi_hi: float) -> None:
         ``blades_per_pair`` with the largest ``B`` that fits.
     """
     B, t = machine.blades_per_pair, machine.blade_thickness
-    t_max = min(float(psi_lo), _TWO_PI / B - float(psi_hi))
-    if t < t_max:
+    code = int(swing_violation(B, t, psi_lo, psi_hi))
+    if code == 0:
         return
+    t_max = float(blade_thickness_max(B, psi_lo, psi_hi))
     swing = f"psi from {fmt_deg(psi_lo)} to {fmt_deg(psi_hi)}"
-    if t_max > 0.0:
+    if SWING_CHECKS[code - 1] == "blade_thickness":
         raise ParameterError(
             "blade_thickness",
             fmt_deg(t),
@@ -309,19 +455,58 @@ def volume_gradient(machine: RotaryBlade, ndim: int = 0) -> np.ndarray:
     return np.stack([g, -g]).reshape((2, -1) + (1,) * ndim)
 
 
+def class_volume_range(machine: RotaryBlade, psi_lo, psi_hi):
+    """Smallest and largest volume of the even and the odd chambers over a swing of ``psi``.
+
+    ``V = k gamma`` with the chamber angles ``psi - t`` (even, smallest at
+    ``psi_lo``) and ``2 pi/B - psi - t`` (odd, smallest at ``psi_hi``) [m^3]. The
+    machine's fields and the swing may be arrays (many designs), broadcast together.
+
+    Returns
+    -------
+    (v_min, v_max) : ndarray, shape (2, ...)
+        Even chambers first, then odd.
+    """
+    k, t = sector_constant(machine), machine.blade_thickness
+    odd = _TWO_PI / np.asarray(machine.blades_per_pair, dtype=float)
+    v_lo = np.stack(np.broadcast_arrays(k * (psi_lo - t), k * (-psi_lo + (odd - t))))
+    v_hi = np.stack(np.broadcast_arrays(k * (psi_hi - t), k * (-psi_hi + (odd - t))))
+    return np.minimum(v_lo, v_hi), np.maximum(v_lo, v_hi)
+
+
+def chamber_figures(machine: RotaryBlade, psi_lo, psi_hi) -> dict:
+    """Volume figures of the working chambers over a swing of ``psi``, over all chambers.
+
+    From :func:`class_volume_range`; arrays of designs broadcast.
+
+    Returns
+    -------
+    dict of ndarray
+        ``volume_max``, ``volume_min`` [m^3] (largest and smallest volume of any
+        chamber), ``swept_volume`` [m^3] (largest ``V_max - V_min`` of a chamber),
+        ``compression_ratio`` (smallest ``V_max / V_min`` of a chamber).
+    """
+    v_min, v_max = class_volume_range(machine, psi_lo, psi_hi)
+    return {
+        "volume_max": np.max(v_max, axis=0),
+        "volume_min": np.min(v_min, axis=0),
+        "swept_volume": np.max(v_max - v_min, axis=0),
+        "compression_ratio": np.min(v_max / v_min, axis=0),
+    }
+
+
 def volume_range(machine: RotaryBlade, psi_lo: float, psi_hi: float):
     """Smallest and largest volume of each chamber over a swing of ``psi`` [m^3].
 
-    Even chambers are smallest at ``psi_lo``, odd ones at ``psi_hi``.
+    Even chambers are smallest at ``psi_lo``, odd ones at ``psi_hi``
+    (:func:`class_volume_range`, repeated around the rotor).
 
     Returns
     -------
     (v_min, v_max) : ndarray, shape (2B,)
     """
-    k, s, c = sector_constant(machine), chamber_signs(machine), chamber_offsets(machine)
-    v_lo = k * (s * psi_lo + c)
-    v_hi = k * (s * psi_hi + c)
-    return np.minimum(v_lo, v_hi), np.maximum(v_lo, v_hi)
+    B = machine.blades_per_pair
+    return tuple(np.tile(v, B) for v in class_volume_range(machine, psi_lo, psi_hi))
 
 
 def displacement_per_rev(machine: RotaryBlade, psi_travel_per_rev) -> np.ndarray:
@@ -329,8 +514,8 @@ def displacement_per_rev(machine: RotaryBlade, psi_travel_per_rev) -> np.ndarray
 
     The volume every chamber takes in while it expands, summed over the chambers:
     ``sum_j integral max(dV_j, 0) = B k TV``, where ``TV`` is the total travel
-    ``integral |d psi|`` of ``psi`` per revolution. For a law monotone between
-    ``psi_min`` and ``psi_max`` with two cycles per revolution (the rhomboid drive),
+    ``integral |d psi|`` of ``psi`` per revolution. For a ``psi`` that swings
+    monotonically between ``psi_min`` and ``psi_max`` twice per revolution,
     ``TV = 4 (psi_max - psi_min)`` and this is ``2B x 2 x (V_max - V_min)``.
 
     Parameters
@@ -344,9 +529,9 @@ def displacement_per_rev(machine: RotaryBlade, psi_travel_per_rev) -> np.ndarray
 def chamber_strokes(machine: RotaryBlade, psi_stroke) -> np.ndarray:
     """Stroke of each chamber: +1 expanding, -1 compressed, 0 at rest; shape ``(2B, ...)``.
 
-    ``psi_stroke`` is +1 while ``psi`` rises (see
-    :func:`rotorkin.drives.rhomboid_cam.kinematics.stroke_direction`); even chambers expand
-    with ``psi``, odd ones against it.
+    ``psi_stroke`` is +1 while ``psi`` rises and -1 while it falls (the sign of
+    ``d psi / d theta``, from the drive); even chambers expand with ``psi``, odd ones
+    against it.
     """
     s = np.asarray(psi_stroke, dtype=float)
     return _expand(chamber_signs(machine), s.ndim) * s
@@ -410,16 +595,6 @@ def gas_member_torques(machine: RotaryBlade, pressure) -> np.ndarray:
     """
     pressure = np.asarray(pressure, dtype=float)
     return member_torques(pressure, volume_gradient(machine, pressure.ndim - 1))
-
-
-def linear_member_torques(blade_torque) -> np.ndarray:
-    """Member torques of the paper's linear model: ``(M_1, -M_1)`` [N m] (eq. 24).
-
-    ``blade_torque`` is ``M_1`` of eq. 29
-    (:func:`rotorkin.drives.rhomboid_cam.kinematics.blade_torque`), shape ``(...)``.
-    """
-    m = np.asarray(blade_torque, dtype=float)
-    return np.stack([m, -m])
 
 
 def isothermal_cycle_work(gas: IsothermalGas, charge, volume_at_turns) -> np.ndarray:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.drives.rhomboid_cam import cam as rhomboid
+from rotorkin.drives.rhomboid_cam.study import drive_params
 from rotorkin.render.cad import check_thickness, check_tolerance
 
 __all__ = ["cad_parts"]
@@ -16,15 +18,12 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     :class:`ParameterError` named by config key (``cam.roller_radius``,
     ``cam.thickness``, ``export.tolerance``, drive and machine keys).
     """
-    from rotorkin.drives.rhomboid_cam import cam as rhomboid
-    from rotorkin.drives.rhomboid_cam.study import drive_params
-
     params = drive_params(cfg)
     cam = cfg.get("cam") or {}
     r = float(cam.get("roller_radius", 0.01))
     law = (params.psi_min, params.a, params.b)
-    check = rhomboid.check_profile(params.link_length, *law, r)
-    q = rhomboid.actual_profile(np.linspace(0.0, np.pi, 4097), params.link_length, *law, r)
+    check = rhomboid.check_profile(params.link_length, *law, r, name="cam.roller_radius")
+    q = rhomboid.actual_profile(params.link_length, *law, r, np.linspace(0.0, np.pi, 4097))
     diameter = 2.0 * float(np.max(np.hypot(q[0], q[1])))
     thickness = check_thickness(cfg, diameter, "the cam's outer diameter")
     tol = check_tolerance(cfg, check.extra["pitch_radius_min"])

@@ -33,6 +33,7 @@ length are as in :mod:`rotorkin.drives.rhomboid_cam.kinematics`.
 from __future__ import annotations
 
 import numpy as np
+from scipy.optimize import minimize_scalar
 
 from rotorkin.cams import planar
 from rotorkin.cams.planar import Curve, Part, ProfileCheck
@@ -73,26 +74,26 @@ def roller_alphas(alpha):
     return alpha[None] + _HALF_PI * np.arange(4).reshape((4,) + (1,) * alpha.ndim)
 
 
-def pitch_curve(alpha, link_length, psi_min, a=(), b=()):
+def pitch_curve(link_length, psi_min, a, b, alpha):
     """Pitch curve point and derivatives ``(p, dp, d2p)``, each shape (2, ...) [m, m/rad^n].
 
     ``p = rho(alpha) (cos alpha, sin alpha)``, ``rho = 2l cos(psi/2)`` (eq. 3).
     """
-    return rc.profile_point(alpha, link_length, psi_min, a, b)
+    return rc.profile_point(link_length, psi_min, a, b, alpha)
 
 
-def pitch_radius_of_curvature(alpha, link_length, psi_min, a=(), b=()):
+def pitch_radius_of_curvature(link_length, psi_min, a, b, alpha):
     """Signed radius of curvature of the pitch curve [m]: positive convex, negative concave.
 
     ``1 / kappa`` with ``kappa`` of
     :func:`rotorkin.drives.rhomboid_cam.kinematics.profile_curvature`.
     """
-    k = rc.profile_curvature(alpha, link_length, psi_min, a, b)
+    k = rc.profile_curvature(link_length, psi_min, a, b, alpha)
     with np.errstate(divide="ignore"):
         return np.where(k == 0.0, np.inf, 1.0 / np.where(k == 0.0, 1.0, k))
 
 
-def actual_profile(alpha, link_length, psi_min, a=(), b=(), roller_radius=0.0):
+def actual_profile(link_length, psi_min, a, b, roller_radius, alpha):
     """Point of the actual (cut) cam profile touched by the roller centred at ``p(alpha)`` [m].
 
     ``q = p - r n`` with ``n`` the outward unit normal of the pitch curve
@@ -102,7 +103,7 @@ def actual_profile(alpha, link_length, psi_min, a=(), b=(), roller_radius=0.0):
     -------
     ndarray, shape (2, ...)
     """
-    p, dp, _ = pitch_curve(alpha, link_length, psi_min, a, b)
+    p, dp, _ = pitch_curve(link_length, psi_min, a, b, alpha)
     return planar.offset_curve(p, dp, -float(roller_radius))
 
 
@@ -130,14 +131,12 @@ def pressure_angles(link_length, psi_min, a, b, alpha):
     ndarray, shape (4, *alpha.shape)
         Signed, in ``(-pi/2, pi/2)``; positive while the roller moves outwards.
     """
-    r0, r1 = rc.profile_radius(roller_alphas(alpha), link_length, psi_min, a, b)[:2]
+    r0, r1 = rc.profile_radius(link_length, psi_min, a, b, roller_alphas(alpha))[:2]
     return np.arctan2(r1, r0)
 
 
 def _refine(fun, grid, i, h):
     """Minimise the scalar ``fun`` near ``grid[i]`` (bracket +-h); returns (x, f)."""
-    from scipy.optimize import minimize_scalar
-
     res = minimize_scalar(
         fun, bounds=(grid[i] - h, grid[i] + h), method="bounded", options={"xatol": 1e-12}
     )
@@ -191,7 +190,7 @@ def profile_check(link_length, psi_min, a, b, roller_radius) -> ProfileCheck:
     try:
         with np.errstate(all="ignore"):
             L, r = float(link_length), float(roller_radius)
-            rho = rc.profile_radius(np.pi * np.arange(_GRID) / _GRID, L, psi_min, a, b)[0]
+            rho = rc.profile_radius(L, psi_min, a, b, np.pi * np.arange(_GRID) / _GRID)[0]
             if not (L > 0.0 and r >= 0.0 and np.all(rho > 0.0)):  # not a cam (psi out of (0, pi))
                 return failed
             return _profile_check(L, float(psi_min), a, b, r)
@@ -207,9 +206,9 @@ def _clearance(L, law, r):
     the smallest distance of the actual profile from the centre [m] (2048 samples per
     half turn).
     """
-    q = actual_profile(np.pi * np.arange(_GRID) / _GRID, L, *law, r)
+    q = actual_profile(L, *law, r, np.pi * np.arange(_GRID) / _GRID)
     s = 2.0 * np.pi * np.arange(_CLEAR) / _CLEAR
-    p, dp, _ = pitch_curve(s, L, *law)
+    p, dp, _ = pitch_curve(L, *law, s)
     prof = planar.offset_curve(p, dp, -r)
     half = _CLEAR // 2  # roller centres over half a turn cover every position (symmetry)
     gap, _ = planar.facing_clearance(
@@ -227,7 +226,7 @@ def _profile_check(L, psi_min, a, b, r) -> ProfileCheck:
     g = h * np.arange(_GRID)
 
     def kappa(x):
-        return rc.profile_curvature(x, L, *law)
+        return rc.profile_curvature(L, *law, x)
 
     k = kappa(g)
     i = int(np.argmax(k))
@@ -244,7 +243,7 @@ def _profile_check(L, psi_min, a, b, r) -> ProfileCheck:
     im = int(np.argmax(np.abs(m)))
     x_mu, f_mu = _refine(lambda x: -np.abs(mu(x)), g, im, h)
 
-    rho = rc.profile_radius(g, L, *law)[0]
+    rho = rc.profile_radius(L, *law, g)[0]
     clearance, clearance_alpha, profile_min = _clearance(L, law, r)
     undercut = bool(r >= min_convex) or not np.isfinite(min_convex)
     return ProfileCheck(
@@ -351,7 +350,7 @@ _LIMIT_REASONS = {
 }
 
 
-def check_profile(link_length, psi_min, a, b, roller_radius, name="cam.roller_radius"):
+def check_profile(link_length, psi_min, a, b, roller_radius, name="roller_radius"):
     """Raise :class:`ParameterError` named ``name`` unless the roller fits the cam.
 
     Errors: ``r < 0``; a roller that fails any of: ``r <`` the smallest convex radius
@@ -421,17 +420,17 @@ def cam_part(params: rc.RhomboidCam, roller_radius, thickness, tolerance) -> Par
     r = float(roller_radius)
 
     def pitch(t):
-        return pitch_curve(t, L, *law)[0]
+        return pitch_curve(L, *law, t)[0]
 
     def profile(t):
-        return actual_profile(t, L, *law, r)
+        return actual_profile(L, *law, r, t)
 
     two_pi = 2.0 * np.pi
     t_prof = planar.resample_closed(profile, 0.0, two_pi, tolerance)
     t_pitch = planar.resample_closed(pitch, 0.0, two_pi, tolerance)
     outline = Curve("profile", "PROFILE", profile(t_prof).T.copy())
     curves = [outline, Curve("pitch", "PITCH", pitch(t_pitch).T.copy())]
-    v = rc.rhombus_vertices(0.0, L, *law)
+    v = rc.rhombus_vertices(L, *law, 0.0)
     if r > 0.0:
         curves += [
             planar.circle_curve(f"roller_{n}", "ROLLER", v[k], r, tolerance)

@@ -1,7 +1,8 @@
 """Figures of the rhomboid lever-cam converter (Zhuravlev et al. 2012: Fig. 1, eq. 13-34)
 and of the rotary-blade engine built on it (chambers, p-V diagram, torques, blade layout).
 
-matplotlib is imported lazily inside the functions (Agg backend).
+matplotlib is imported when a figure is drawn (:func:`rotorkin.render.figures.pyplot`);
+the backend is the caller's.
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.render.figures import pyplot, save, save_in
 
 __all__ = [
     "plot_all",
@@ -26,17 +28,7 @@ __all__ = [
     "fig_blade_layout",
 ]
 
-_DPI = 120
 _COLOURS = ("C0", "C1", "C2", "C3")
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def sample_law(psi_min):
@@ -65,18 +57,18 @@ def _tag(params) -> str:
 
 def fig_cam_profile(params, outdir: Path, alphas_deg=(0.0, 30.0, 60.0)) -> Path:
     """Cam pitch curve with rhombus, rollers and blade axes at a few shaft angles (cf. Fig. 1)."""
-    plt = _plt()
+    plt = pyplot()
     law = (params.link_length, params.psi_min, params.a, params.b)
     t = np.linspace(0.0, 2.0 * np.pi, 1441)
-    xy = rc.profile_point(t, *law)[0] * 1e3
+    xy = rc.profile_point(*law, t)[0] * 1e3
     rot = np.array([[0.0, 1.0], [-1.0, 0.0]]) @ xy  # eq. 19 form: turned by -90 deg
     fig, ax = plt.subplots(figsize=(11.5, 7.5))
     ax.plot(xy[0], xy[1], "k-", lw=2.0, label="pitch curve rho = 2l cos(psi/2) (eq. 3)")
     ax.plot(rot[0], rot[1], color="0.6", ls=":", lw=1.2,
             label="eq. 19 form 2l sin(psi/2): the same cam turned 90 deg")  # fmt: skip
     al = np.radians(np.asarray(alphas_deg, dtype=float))
-    v = rc.rhombus_vertices(al, *law) * 1e3  # (4, 2, n)
-    mid = rc.blade_arm_points(al, *law) * 1e3
+    v = rc.rhombus_vertices(*law, al) * 1e3  # (4, 2, n)
+    mid = rc.blade_arm_points(*law, al) * 1e3
     reach = 1.9 * 0.5 * params.link_length * 1e3
     for j, a_deg in enumerate(alphas_deg):
         c = _COLOURS[j % len(_COLOURS)]
@@ -101,16 +93,12 @@ def fig_cam_profile(params, outdir: Path, alphas_deg=(0.0, 30.0, 60.0)) -> Path:
     ax.set_title(f"Cam pitch curve and rhomboid (cf. Fig. 1)\n{_tag(params)}", fontsize=10)
     ax.grid(True, alpha=0.4)
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
-    fig.tight_layout()
-    path = Path(outdir) / "fig01_cam_profile.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save(fig, Path(outdir) / "fig01_cam_profile.png")
 
 
 def fig_psi_law(params, outdir: Path, points: int = 1441) -> Path:
     """``psi``, ``psi'``, ``psi''``: the config's law and a 1st+3rd-harmonic law (eq. 13-18)."""
-    plt = _plt()
+    plt = pyplot()
     al = np.linspace(0.0, np.pi, points)
     sa, sb = sample_law(params.psi_min)
     eq = "eq. 13" if (params.a or params.b) else "eq. 16"
@@ -121,7 +109,7 @@ def fig_psi_law(params, outdir: Path, points: int = 1441) -> Path:
     fig, axes = plt.subplots(3, 1, figsize=(8, 8.5), sharex=True)
     labels = ("psi [deg]", "dpsi/dalpha [-]", "d2psi/dalpha2 [1/rad]")
     for name, a, b, ls in laws:
-        p = rc.psi_law(al, params.psi_min, a, b)
+        p = rc.psi_law(params.psi_min, a, b, al)
         for ax, y, conv in zip(axes, p[:3], (np.degrees, None, None), strict=True):
             ax.plot(np.degrees(al), conv(y) if conv else y, ls, label=name)
     for ax, lab in zip(axes, labels, strict=True):
@@ -133,18 +121,14 @@ def fig_psi_law(params, outdir: Path, points: int = 1441) -> Path:
     axes[-1].set_xlabel("alpha [deg]")
     axes[-1].set_xticks(np.arange(0, 181, 30))
     fig.suptitle(f"Angle between the blade axes psi(alpha)\n{_tag(params)}", fontsize=10)
-    fig.tight_layout()
-    path = Path(outdir) / "fig02_psi_law.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save(fig, Path(outdir) / "fig02_psi_law.png")
 
 
 def fig_blade_motion(params, outdir: Path, points: int = 1441) -> Path:
     """Blade angles, speed coefficients ``1 +- psi'/2``, accelerations ``+-psi''/2`` (eq. 22)."""
-    plt = _plt()
+    plt = pyplot()
     al = np.linspace(0.0, np.pi, points)
-    q, d1, d2, _ = rc.blade_angles(al, params.psi_min, params.a, params.b)
+    q, d1, d2, _ = rc.blade_angles(params.psi_min, params.a, params.b, al)
     ad = np.degrees(al)
     fig, axes = plt.subplots(3, 1, figsize=(8, 8.5), sharex=True)
     axes[0].plot(ad, ad, color="0.6", lw=0.8, label="alpha (output shaft)")
@@ -160,26 +144,22 @@ def fig_blade_motion(params, outdir: Path, points: int = 1441) -> Path:
     axes[-1].set_xlabel("alpha [deg]")
     axes[-1].set_xticks(np.arange(0, 181, 30))
     fig.suptitle(f"Blade motion\n{_tag(params)}", fontsize=10)
-    fig.tight_layout()
-    path = Path(outdir) / "fig03_blade_motion.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save(fig, Path(outdir) / "fig03_blade_motion.png")
 
 
 def fig_work_loop(params, torque_high, torque_low, outdir: Path, points: int = 1441) -> Path:
     """Blade torque against ``psi`` (compression and expansion) and ``dA/dalpha`` (eq. 24-34)."""
-    plt = _plt()
+    plt = pyplot()
     law = (params.psi_min, params.a, params.b)
     al = np.linspace(0.0, np.pi, points)
-    psi, d1 = rc.psi_law(al, *law)[:2]
-    s = rc.stroke_direction(al, *law)
-    m = rc.blade_torque(psi, s, torque_high, torque_low, params.psi_min)
+    psi, d1 = rc.psi_law(*law, al)[:2]
+    s = rc.stroke_direction(*law, al)
+    m = rc.blade_torque(torque_high, torque_low, params.psi_min, psi, s)
     work = float(rc.indicator_work(*law, torque_high, torque_low))
     lo, _, hi, _ = rc.psi_extremes(*law)
     g = np.linspace(lo, hi, 201)
-    mp = rc.blade_torque(g, 1.0, torque_high, torque_low, params.psi_min)
-    mc = rc.blade_torque(g, -1.0, torque_high, torque_low, params.psi_min)
+    mp = rc.blade_torque(torque_high, torque_low, params.psi_min, g, 1.0)
+    mc = rc.blade_torque(torque_high, torque_low, params.psi_min, g, -1.0)
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5))
     closed = float(rc.indicator_work_closed_form(params.psi_min, torque_high, torque_low))
     label = f"area between the lines = Delta M Delta psi = {closed:.4g} J (eq. 31, 34)"
@@ -212,11 +192,7 @@ def fig_work_loop(params, torque_high, torque_low, outdir: Path, points: int = 1
     bx.grid(True, alpha=0.4)
     bx.legend(fontsize=8)
     fig.suptitle(f"{_tag(params)}; M1 = {torque_high:g} N m, M2 = {torque_low:g} N m", fontsize=10)
-    fig.tight_layout()
-    path = Path(outdir) / "fig04_work_loop.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save(fig, Path(outdir) / "fig04_work_loop.png")
 
 
 def plot_all(params, torque_high, torque_low, outdir: Path) -> list[Path]:
@@ -263,17 +239,9 @@ def _families(machine):
     )
 
 
-def _save(fig, plt, outdir, name, rect=(0.0, 0.0, 1.0, 1.0)) -> Path:
-    fig.tight_layout(rect=rect)
-    path = Path(outdir) / name
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
-
-
 def fig_chamber_volumes(machine, loads, state, summary, outdir: Path) -> Path:
     """Chamber volumes and ``dV/dalpha`` over one output-shaft revolution."""
-    plt = _plt()
+    plt = pyplot()
     al = np.linspace(0.0, 2.0 * np.pi, 1441)
     st = state(al)
     ad = np.degrees(al)
@@ -306,12 +274,12 @@ def fig_chamber_volumes(machine, loads, state, summary, outdir: Path) -> Path:
         a.grid(True, alpha=0.4)
     ax.legend(fontsize=8, loc="upper center", ncol=2)
     fig.suptitle(f"Rotary-blade engine: chambers\n{_machine_tag(machine, loads)}", fontsize=9)
-    return _save(fig, plt, outdir, "fig05_chamber_volumes.png")
+    return save(fig, Path(outdir) / "fig05_chamber_volumes.png")
 
 
 def fig_pv_diagram(machine, loads, state, summary, outdir: Path) -> Path:
     """p-V diagram of the chambers, isothermal model (the ideal Stirling loop)."""
-    plt = _plt()
+    plt = pyplot()
     al = np.linspace(0.0, np.pi, 4001)
     st = state(al)
     g = loads.gas
@@ -354,12 +322,12 @@ def fig_pv_diagram(machine, loads, state, summary, outdir: Path) -> Path:
         fontsize=9,
     )
     fig.suptitle(_machine_tag(machine, loads), fontsize=8)
-    return _save(fig, plt, outdir, "fig06_pv_diagram.png")
+    return save(fig, Path(outdir) / "fig06_pv_diagram.png")
 
 
 def fig_shaft_torque(machine, loads, curves, summary, outdir: Path) -> Path:
     """Output-shaft torque with and without inertia, ``J_eq`` and the energy swing."""
-    plt = _plt()
+    plt = pyplot()
     al = curves["alpha"]
     ad = np.degrees(al)
     gas, inert = curves["state"].torque, curves["inertia_torque"]
@@ -403,14 +371,14 @@ def fig_shaft_torque(machine, loads, curves, summary, outdir: Path) -> Path:
     for a in (ax, bx, cx):
         a.grid(True, alpha=0.4)
     fig.suptitle(f"Output-shaft torque and flywheel\n{_machine_tag(machine, loads)}", fontsize=9)
-    return _save(fig, plt, outdir, "fig07_shaft_torque.png")
+    return save(fig, Path(outdir) / "fig07_shaft_torque.png")
 
 
 def fig_blade_layout(params, machine, loads, state, outdir: Path,
                      alphas_deg=(0.0, 30.0, 60.0, 90.0)) -> Path:  # fmt: skip
     """Cross-sections of the working space at a few shaft angles: blades and chambers."""
-    plt = _plt()
-    from matplotlib.patches import Circle, Wedge
+    plt = pyplot()
+    Circle, Wedge = plt.Circle, plt.matplotlib.patches.Wedge
 
     al = np.radians(np.asarray(alphas_deg, dtype=float))
     st = state(al)
@@ -461,7 +429,8 @@ def fig_blade_layout(params, machine, loads, state, outdir: Path,
         f"{_machine_tag(machine, loads)}",
         fontsize=9,
     )
-    return _save(fig, plt, outdir, "fig08_blade_layout.png", rect=(0.0, 0.03, 1.0, 1.0))
+    fig.tight_layout(rect=(0.0, 0.03, 1.0, 1.0))
+    return save_in(fig, outdir, "fig08_blade_layout.png")
 
 
 def plot_machine(params, machine, loads, state, curves, summary, outdir: Path) -> list[Path]:

@@ -29,8 +29,10 @@ Conventions (the paper is silent or garbled):
 * Torques: ``M_1`` acts on blade pair 1 and ``M_2 = -M_1`` on pair 2 (eq. 24);
   positive work is done *by* the blades on the output shaft.
 
-All functions broadcast over the input angle; the harmonic coefficients
-``a = (a3, a5, ...)`` and ``b = (b3, b5, ...)`` are 1-d sequences [rad].
+All functions take the parameters first and the input angle last, and broadcast
+the angle against array parameters (``psi_min``, ``link_length``, torques, e.g.
+shape ``(n, 1)`` against angles ``(m,)``); the harmonic coefficients
+``a = (a3, a5, ...)`` and ``b = (b3, b5, ...)`` are 1-d sequences [rad], one law.
 """
 
 from __future__ import annotations
@@ -44,6 +46,7 @@ from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion, compose
 
 __all__ = [
+    "CHECKS",
     "MAX_HARMONICS",
     "RhomboidCam",
     "blade_angles",
@@ -53,25 +56,35 @@ __all__ = [
     "first_harmonic",
     "indicator_work",
     "indicator_work_closed_form",
+    "linear_member_torques",
     "mean_shaft_torque",
+    "law_peaks",
     "motion",
     "period",
+    "polar_curvature",
     "profile_curvature",
     "profile_point",
     "profile_radius",
     "profile_radius_eq19",
+    "profile_radius_range",
     "psi_extremes",
     "psi_is_monotone",
     "psi_law",
     "psi_stationary_points",
     "psi_total_variation",
+    "radius_from_psi",
     "rhombus_vertices",
     "shaft_torque",
     "stroke_direction",
+    "violation",
 ]
 
 #: Largest number of higher harmonics accepted in ``a`` and in ``b`` each.
 MAX_HARMONICS = 20
+#: Parameters of :class:`RhomboidCam` in the order :func:`violation` checks them.
+CHECKS = ("link_length", "psi_min")
+#: Stationary points of the first-harmonic law (eq. 16) in one period [rad].
+_FIRST_HARMONIC_STATIONARY = np.array([0.0, 0.5 * np.pi, np.pi])
 
 _HALF_PI = 0.5 * np.pi
 
@@ -111,7 +124,7 @@ def first_harmonic(psi_min, a=(), b=()):
     return a1, b1
 
 
-def psi_law(alpha, psi_min, a=(), b=()):
+def psi_law(psi_min, a, b, alpha):
     """Angle between the blade axes and its derivatives (eq. 13, 14, 15).
 
     ``psi = pi/2 + sum_{k odd} (a_k cos 2k alpha + b_k sin 2k alpha)`` with
@@ -151,12 +164,17 @@ def psi_law(alpha, psi_min, a=(), b=()):
 
 
 def _scale(psi_min, a, b, order):
-    """Upper bound of ``|d^n psi / d alpha^n|`` (sum of |coefficients| times (2k)^n)."""
+    """Upper bound of ``|d^n psi / d alpha^n|`` (sum of |coefficients| times (2k)^n).
+
+    Per design: the shape of ``psi_min`` (a float for a scalar).
+    """
     k, ak, bk = _higher(a, b)
     a1, b1 = first_harmonic(psi_min, a, b)
+    first = np.abs(np.asarray(a1, dtype=float)) + abs(b1)
+    higher = np.broadcast_to(np.abs(ak) + np.abs(bk), first.shape + ak.shape)
     w = np.concatenate(([2.0], 2.0 * k))
-    amp = np.concatenate(([np.max(np.abs(a1)) + abs(b1)], np.abs(ak) + np.abs(bk)))
-    return float(np.sum(w**order * amp))
+    out = np.sum(w**order * np.concatenate([first[..., None], higher], axis=-1), axis=-1)
+    return float(out) if out.ndim == 0 else out
 
 
 def period(params) -> float:
@@ -169,7 +187,7 @@ def period(params) -> float:
     return float(np.pi)
 
 
-def blade_angles(alpha, psi_min, a=(), b=()):
+def blade_angles(psi_min, a, b, alpha):
     """Angles of the two blade pairs and their derivatives (eq. 21, 22).
 
     ``phi_1 = alpha + psi/2``, ``phi_2 = alpha - psi/2`` (eq. 21 with zero
@@ -180,7 +198,7 @@ def blade_angles(alpha, psi_min, a=(), b=()):
     (phi, dphi, d2phi, d3phi) : tuple of ndarray, shape (2, ...)
         Pair 1 then pair 2 [rad, rad/rad^n].
     """
-    p = psi_law(alpha, psi_min, a, b)
+    p = psi_law(psi_min, a, b, alpha)
     alpha = np.asarray(alpha, dtype=float)
     base = (alpha + 0.0 * p[0], np.ones_like(p[0]), np.zeros_like(p[0]), np.zeros_like(p[0]))
     return tuple(np.stack([u + 0.5 * v, u - 0.5 * v]) for u, v in zip(base, p, strict=True))
@@ -192,12 +210,12 @@ def motion(params, theta) -> Motion:
     ``Motion.relative`` is ``phi_2 - phi_1 = -psi``.
     """
     theta = np.asarray(theta, dtype=float)
-    q, d1, d2, d3 = blade_angles(theta, params.psi_min, params.a, params.b)
+    q, d1, d2, d3 = blade_angles(params.psi_min, params.a, params.b, theta)
     return Motion(theta, q, d1, d2, d3, members=("blade pair 1", "blade pair 2"), unit="rad")
 
 
 # --- the cam and the rhombus --------------------------------------------------------------
-def profile_radius(alpha, link_length, psi_min, a=(), b=()):
+def profile_radius(link_length, psi_min, a, b, alpha):
     """Polar radius of the cam pitch curve and its derivatives (eq. 3).
 
     ``rho(alpha) = 2l cos(psi(alpha)/2)``: the distance of roller A from O when
@@ -217,26 +235,57 @@ def profile_radius(alpha, link_length, psi_min, a=(), b=()):
     (rho, drho, d2rho, d3rho) : tuple of ndarray
         [m, m/rad^n].
     """
+    return radius_from_psi(link_length, psi_law(psi_min, a, b, alpha))
+
+
+def radius_from_psi(link_length, psi):
+    """``rho = 2l cos(psi/2)`` (eq. 3) and its derivatives from those of ``psi`` (chain rule).
+
+    Parameters
+    ----------
+    link_length : array_like
+        Side ``2l`` of the rhombus [m].
+    psi : sequence of 4 array_like
+        ``psi, psi', psi'', psi'''`` [rad, rad/rad^n], broadcast with ``link_length``.
+
+    Returns
+    -------
+    (rho, drho, d2rho, d3rho) : tuple of ndarray
+        [m, m/rad^n].
+    """
     L = np.asarray(link_length, dtype=float)
-    p = psi_law(alpha, psi_min, a, b)
-    h = 0.5 * p[0]
+    h = 0.5 * np.asarray(psi[0])
     c, s = np.cos(h), np.sin(h)
-    return compose((L * c, -0.5 * L * s, -0.25 * L * c, 0.125 * L * s), p)
+    return compose((L * c, -0.5 * L * s, -0.25 * L * c, 0.125 * L * s), psi)
 
 
-def profile_radius_eq19(alpha, link_length, psi_min, a=(), b=()):
+def profile_radius_eq19(link_length, psi_min, a, b, alpha):
     """Pitch-curve radius in the form printed as eq. 19: ``2l sin(psi(alpha)/2)`` [m].
 
     This is ``OB`` of :func:`rhombus_vertices` as a function of the angle of
-    OA, and by eq. 10 it equals ``profile_radius(alpha + pi/2)``: the curve of
-    eq. 19 is the cam of eq. 3 turned by a quarter turn (clockwise; for the
+    OA, and by eq. 10 it equals ``rho(alpha + pi/2)`` of :func:`profile_radius`: the
+    curve of eq. 19 is the cam of eq. 3 turned by a quarter turn (clockwise; for the
     first-harmonic law, of period pi in alpha, either way). We use eq. 3.
     """
     L = np.asarray(link_length, dtype=float)
-    return L * np.sin(0.5 * psi_law(alpha, psi_min, a, b)[0])
+    return L * np.sin(0.5 * psi_law(psi_min, a, b, alpha)[0])
 
 
-def profile_point(alpha, link_length, psi_min, a=(), b=()):
+def profile_radius_range(link_length, psi_lo, psi_hi):
+    """Smallest and largest radius of the pitch curve, ``2l cos(psi/2)`` at the extremes of psi.
+
+    ``rho`` falls as ``psi`` rises (``0 < psi < pi``), so the smallest radius is at
+    ``psi_hi`` and the largest at ``psi_lo`` (eq. 3) [m]. All arguments broadcast.
+
+    Returns
+    -------
+    (rho_min, rho_max) : ndarray
+    """
+    L = np.asarray(link_length, dtype=float)
+    return L * np.cos(0.5 * np.asarray(psi_hi)), L * np.cos(0.5 * np.asarray(psi_lo))
+
+
+def profile_point(link_length, psi_min, a, b, alpha):
     """Cartesian point of the pitch curve and its first two derivatives.
 
     ``x = rho cos alpha``, ``y = rho sin alpha`` with ``rho`` of eq. 3.
@@ -247,7 +296,7 @@ def profile_point(alpha, link_length, psi_min, a=(), b=()):
         ``(x, y)`` [m] and derivatives with respect to ``alpha`` [m/rad^n].
     """
     alpha = np.asarray(alpha, dtype=float)
-    r0, r1, r2, _ = profile_radius(alpha, link_length, psi_min, a, b)
+    r0, r1, r2, _ = profile_radius(link_length, psi_min, a, b, alpha)
     c, s = np.cos(alpha), np.sin(alpha)
     p = np.stack([r0 * c, r0 * s])
     dp = np.stack([r1 * c - r0 * s, r1 * s + r0 * c])
@@ -255,7 +304,7 @@ def profile_point(alpha, link_length, psi_min, a=(), b=()):
     return p, dp, d2p
 
 
-def profile_curvature(alpha, link_length, psi_min, a=(), b=()):
+def profile_curvature(link_length, psi_min, a, b, alpha):
     """Signed curvature of the cam pitch curve [1/m] (not in the paper).
 
     ``kappa = (rho^2 + 2 rho'^2 - rho rho'') / (rho^2 + rho'^2)^(3/2)``:
@@ -263,15 +312,58 @@ def profile_curvature(alpha, link_length, psi_min, a=(), b=()):
     negative where concave; ``1/|kappa|`` is the radius of curvature, to be
     compared with the roller radius for undercut.
     """
-    r0, r1, r2, _ = profile_radius(alpha, link_length, psi_min, a, b)
-    return (r0**2 + 2.0 * r1**2 - r0 * r2) / (r0**2 + r1**2) ** 1.5
+    return polar_curvature(*profile_radius(link_length, psi_min, a, b, alpha)[:3])
+
+
+def polar_curvature(rho, drho, d2rho):
+    """Signed curvature of a polar curve ``rho(alpha)`` [1/m].
+
+    ``kappa = (rho^2 + 2 rho'^2 - rho rho'') / (rho^2 + rho'^2)^(3/2)``; positive
+    where the curve turns towards the origin (convex for a closed cam).
+    """
+    return (rho**2 + 2.0 * drho**2 - rho * d2rho) / (rho**2 + drho**2) ** 1.5
+
+
+def law_peaks(link_length, psi_min, a, b, alpha):
+    """Peaks of the blade-motion coefficients and of the pitch-curve curvature.
+
+    Over the last axis of the broadcast of ``alpha`` with the parameters, e.g.
+    ``alpha`` shape ``(m,)`` against ``link_length``, ``psi_min`` shape ``(n, 1)``
+    gives ``(n,)`` arrays. The blade pairs turn at ``phi_i' = 1 +- psi'/2`` (eq. 22);
+    their second and third derivatives are ``+-psi''/2`` and ``+-psi'''/2``.
+
+    Returns
+    -------
+    dict of ndarray
+        ``speed_coeff_max`` ``1 + max|psi'|/2``, ``speed_coeff_min`` ``1 - max|psi'|/2``,
+        ``accel_coeff_max`` ``max|psi''|/2`` [1/rad], ``jerk_coeff_max``
+        ``max|psi'''|/2`` [1/rad^2]; from :func:`profile_curvature`:
+        ``convex_radius_min`` ``1 / max kappa`` and ``concave_radius_min``
+        ``1 / max(-kappa)`` (inf where the curve is nowhere concave) [m], and
+        ``convex`` (bool: ``kappa >= 0`` everywhere).
+    """
+    _, d1, d2, d3 = psi_law(psi_min, a, b, alpha)
+    kappa = profile_curvature(link_length, psi_min, a, b, alpha)
+    d1 = np.max(np.abs(d1), axis=-1)
+    concave = -np.min(kappa, axis=-1)
+    with np.errstate(divide="ignore"):
+        concave_r = np.where(concave > 0.0, 1.0 / np.where(concave > 0.0, concave, 1.0), np.inf)
+    return {
+        "speed_coeff_max": 1.0 + 0.5 * d1,
+        "speed_coeff_min": 1.0 - 0.5 * d1,
+        "accel_coeff_max": 0.5 * np.max(np.abs(d2), axis=-1),
+        "jerk_coeff_max": 0.5 * np.max(np.abs(d3), axis=-1),
+        "convex_radius_min": 1.0 / np.max(kappa, axis=-1),
+        "concave_radius_min": concave_r,
+        "convex": concave <= 0.0,
+    }
 
 
 def _unit(angle):
     return np.stack([np.cos(angle), np.sin(angle)])
 
 
-def rhombus_vertices(alpha, link_length, psi_min, a=(), b=()):
+def rhombus_vertices(link_length, psi_min, a, b, alpha):
     """Roller centres A, B, C, D of the rhombus (eq. 3, 4).
 
     ``A = 2l cos(psi/2) e(alpha)``, ``B = 2l sin(psi/2) e(alpha + pi/2)``,
@@ -285,13 +377,13 @@ def rhombus_vertices(alpha, link_length, psi_min, a=(), b=()):
     """
     alpha = np.asarray(alpha, dtype=float)
     L = np.asarray(link_length, dtype=float)
-    psi = psi_law(alpha, psi_min, a, b)[0]
+    psi = psi_law(psi_min, a, b, alpha)[0]
     va = L * np.cos(0.5 * psi) * _unit(alpha)
     vb = L * np.sin(0.5 * psi) * _unit(alpha + _HALF_PI)
     return np.stack([va, vb, -va, -vb])
 
 
-def blade_arm_points(alpha, link_length, psi_min, a=(), b=()):
+def blade_arm_points(link_length, psi_min, a, b, alpha):
     """Midpoints of the sides AB, BC, CD, DA: where the blade arms hold the rhombus.
 
     They lie at distance ``l`` from O, at ``phi_1``, ``phi_2 + pi``,
@@ -302,7 +394,7 @@ def blade_arm_points(alpha, link_length, psi_min, a=(), b=()):
     ndarray, shape (4, 2, ...)
         [m].
     """
-    v = rhombus_vertices(alpha, link_length, psi_min, a, b)
+    v = rhombus_vertices(link_length, psi_min, a, b, alpha)
     return 0.5 * (v + np.roll(v, -1, axis=0))
 
 
@@ -331,13 +423,13 @@ def psi_stationary_points(psi_min, a=(), b=()):
     if tol == 0.0:
         return fixed
     g = _grid(a, b)
-    d1 = psi_law(g, psi_min, a, b)[1]
+    d1 = psi_law(psi_min, a, b, g)[1]
     sg = np.where(np.abs(d1) <= tol, 0.0, np.sign(d1))
     i = np.flatnonzero(sg[:-1] * sg[1:] < 0.0)
     lo, hi, flo = g[i], g[i + 1], sg[i]
     for _ in range(64):
         mid = 0.5 * (lo + hi)
-        same = np.sign(psi_law(mid, psi_min, a, b)[1]) == flo
+        same = np.sign(psi_law(psi_min, a, b, mid)[1]) == flo
         lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
     roots = np.concatenate([fixed, 0.5 * (lo + hi), g[sg == 0.0]])
     roots = np.sort(roots[(roots >= 0.0) & (roots <= np.pi)])
@@ -356,10 +448,18 @@ def psi_extremes(psi_min, a=(), b=()):
     -------
     (psi_lo, alpha_lo, psi_hi, alpha_hi) : float
         [rad]. For monotone laws ``psi_lo = psi_min`` at pi/2 and
-        ``psi_hi = pi - psi_min`` at 0.
+        ``psi_hi = pi - psi_min`` at 0. For the first-harmonic law (``a``, ``b``
+        empty) ``psi_min`` may be an array: ``psi_lo``, ``psi_hi`` have its shape.
     """
+    if not _higher(a, b)[0].size:
+        pm = np.asarray(psi_min, dtype=float)
+        z = psi_law(pm[..., None], (), (), _FIRST_HARMONIC_STATIONARY[:2])[0]
+        lo, hi = z[..., 1], z[..., 0]
+        if pm.ndim == 0:
+            lo, hi = float(lo), float(hi)
+        return lo, _HALF_PI, hi, 0.0
     x = np.concatenate([psi_stationary_points(psi_min, a, b), _grid(a, b)])
-    psi = psi_law(x, float(psi_min), a, b)[0]
+    psi = psi_law(float(psi_min), a, b, x)[0]
     i, j = int(np.argmin(psi)), int(np.argmax(psi))
     return float(psi[i]), float(x[i]), float(psi[j]), float(x[j])
 
@@ -368,10 +468,16 @@ def psi_total_variation(psi_min, a=(), b=()):
     """Total travel ``integral_0^pi |psi'| d alpha`` of the chamber angle [rad].
 
     Sum of ``|Delta psi|`` between consecutive stationary points; equals
-    ``2 (pi - 2 psi_min)`` for a law monotone between its extremes.
+    ``2 (pi - 2 psi_min)`` for a law monotone between its extremes. For the
+    first-harmonic law ``psi_min`` may be an array (the result has its shape).
     """
+    if not _higher(a, b)[0].size:
+        pm = np.asarray(psi_min, dtype=float)
+        z = psi_law(pm[..., None], (), (), _FIRST_HARMONIC_STATIONARY)[0]
+        travel = np.abs(z[..., 1] - z[..., 0]) + np.abs(z[..., 2] - z[..., 1])
+        return float(travel) if pm.ndim == 0 else travel
     z = psi_stationary_points(psi_min, a, b)
-    return float(np.sum(np.abs(np.diff(psi_law(z, float(psi_min), a, b)[0]))))
+    return float(np.sum(np.abs(np.diff(psi_law(float(psi_min), a, b, z)[0]))))
 
 
 def psi_is_monotone(psi_min, a=(), b=(), rtol=1e-9):
@@ -379,9 +485,11 @@ def psi_is_monotone(psi_min, a=(), b=(), rtol=1e-9):
 
     True when the total travel over a period is ``2 (psi(0) - psi(pi/2))``.
     Only then does the paper's eq. 34 (work independent of the profile) hold.
+    For the first-harmonic law ``psi_min`` may be an array (a bool array).
     """
-    swing = np.pi - 2.0 * float(psi_min)
-    return bool(psi_total_variation(psi_min, a, b) <= 2.0 * swing * (1.0 + rtol) + 1e-15)
+    swing = np.pi - 2.0 * np.asarray(psi_min, dtype=float)
+    out = psi_total_variation(psi_min, a, b) <= 2.0 * swing * (1.0 + rtol) + 1e-15
+    return bool(out) if np.ndim(out) == 0 else out
 
 
 def check_law(psi_min, a=(), b=()):
@@ -403,7 +511,7 @@ def check_law(psi_min, a=(), b=()):
 
 
 # --- torques and work ---------------------------------------------------------------------
-def stroke_direction(alpha, psi_min, a=(), b=()):
+def stroke_direction(psi_min, a, b, alpha):
     """+1 in expansion (``psi`` rising), -1 in compression (falling).
 
     The sign of ``psi'``; where ``psi'`` vanishes, the stroke that begins
@@ -412,15 +520,15 @@ def stroke_direction(alpha, psi_min, a=(), b=()):
     (``1e-3 / (2 k_max)`` rad); 0 for the constant law.
     """
     alpha = np.asarray(alpha, dtype=float)
-    d1, d2 = psi_law(alpha, psi_min, a, b)[1:3]
+    d1, d2 = psi_law(psi_min, a, b, alpha)[1:3]
     k = _higher(a, b)[0]
-    later = psi_law(alpha + 1e-3 / (2.0 * (k[-1] if k.size else 1.0)), psi_min, a, b)[1]
+    later = psi_law(psi_min, a, b, alpha + 1e-3 / (2.0 * (k[-1] if k.size else 1.0)))[1]
     out = np.sign(later)
     out = np.where(np.abs(d2) > 1e-10 * _scale(psi_min, a, b, 2), np.sign(d2), out)
     return np.where(np.abs(d1) > 1e-10 * _scale(psi_min, a, b, 1), np.sign(d1), out)
 
 
-def blade_torque(psi, stroke, torque_high, torque_low, psi_min):
+def blade_torque(torque_high, torque_low, psi_min, psi, stroke):
     """Torque on blade pair 1, linear in ``psi`` (eq. 29, as read from the OCR).
 
     ``M_p = a - b (psi - pi/2)/(pi/2 - psi_min)`` in expansion (``stroke = +1``),
@@ -453,15 +561,31 @@ def blade_torque(psi, stroke, torque_high, torque_low, psi_min):
     return np.asarray(stroke) * 0.5 * (m1 - m2) - 0.5 * (m1 + m2) * x
 
 
-def shaft_torque(alpha, psi_min, a, b, torque_high, torque_low):
+def linear_member_torques(blade_torque):
+    """Torques on blade pairs 1 and 2 of the linear model, ``(M_1, -M_1)`` [N m] (eq. 24).
+
+    Parameters
+    ----------
+    blade_torque : array_like
+        ``M_1`` of eq. 29 (:func:`blade_torque`) [N m], any shape.
+
+    Returns
+    -------
+    ndarray, shape (2, ...)
+    """
+    m = np.asarray(blade_torque, dtype=float)
+    return np.stack([m, -m])
+
+
+def shaft_torque(psi_min, a, b, torque_high, torque_low, alpha):
     """Torque the blades drive the output shaft with, ``dA/d alpha`` [N m] (eq. 23, 24).
 
     By virtual work ``M_1 phi_1' + M_2 phi_2' = M_1 psi'`` with ``M_2 = -M_1``;
     quasi-static, frictionless, rigid links.
     """
-    psi, d1 = psi_law(alpha, psi_min, a, b)[:2]
-    s = stroke_direction(alpha, psi_min, a, b)
-    return blade_torque(psi, s, torque_high, torque_low, psi_min) * d1
+    psi, d1 = psi_law(psi_min, a, b, alpha)[:2]
+    s = stroke_direction(psi_min, a, b, alpha)
+    return blade_torque(torque_high, torque_low, psi_min, psi, s) * d1
 
 
 def indicator_work(psi_min, a, b, torque_high, torque_low, nodes=None):
@@ -478,8 +602,10 @@ def indicator_work(psi_min, a, b, torque_high, torque_low, nodes=None):
 
     Parameters
     ----------
-    psi_min : float
-        Scalar [rad].
+    psi_min : array_like
+        [rad]; scalar when ``a`` or ``b`` hold harmonics (their stationary points
+        depend on the law), any shape for the first-harmonic law (stationary at
+        0, pi/2, pi), broadcast with the torques.
     a, b : sequence of float
         [rad].
     torque_high, torque_low : array_like
@@ -490,20 +616,27 @@ def indicator_work(psi_min, a, b, torque_high, torque_low, nodes=None):
     Returns
     -------
     ndarray
-        [J], shape of the broadcast torques.
+        [J], shape of the broadcast of ``psi_min`` and the torques.
     """
-    z = psi_stationary_points(psi_min, a, b)
+    k = _higher(a, b)[0].size
+    if k:
+        psi_min = np.asarray(float(psi_min))
+        z = psi_stationary_points(psi_min, a, b)
+    else:
+        psi_min = np.asarray(psi_min, dtype=float)
+        z = _FIRST_HARMONIC_STATIONARY
     lo, hi = z[:-1], z[1:]
-    n = nodes or 64 + 16 * max(len(np.atleast_1d(a)), len(np.atleast_1d(b)))
+    n = nodes or 64 + 16 * k
     x, w = np.polynomial.legendre.leggauss(n)
     half = 0.5 * (hi - lo)[:, None]
     al = 0.5 * (hi + lo)[:, None] + half * x
-    psi, d1 = psi_law(al, float(psi_min), a, b)[:2]
-    ends = psi_law(z, float(psi_min), a, b)[0]
-    s = np.sign(np.diff(ends))[:, None]
+    pm = psi_min[..., None, None]
+    psi, d1 = psi_law(pm, a, b, al)[:2]
+    ends = psi_law(psi_min[..., None], a, b, z)[0]
+    s = np.sign(np.diff(ends, axis=-1))[..., None]
     m1 = np.asarray(torque_high, dtype=float)[..., None, None]
     m2 = np.asarray(torque_low, dtype=float)[..., None, None]
-    M = blade_torque(psi, s, m1, m2, psi_min)
+    M = blade_torque(m1, m2, pm, psi, s)
     return np.sum(M * d1 * w * half, axis=(-2, -1))
 
 
@@ -523,6 +656,37 @@ def mean_shaft_torque(psi_min, a, b, torque_high, torque_low):
 
 
 # --- parameters ---------------------------------------------------------------------------
+def violation(link_length, psi_min):
+    """Which parameter of each design is out of its admissible range.
+
+    ``link_length`` (``2l``) [m] must be finite and > 0, ``psi_min`` [rad] in
+    ``(0, pi/2)`` (``pi/2`` is the constant law). The harmonics ``a``, ``b`` are
+    checked per law by :func:`check_law`.
+
+    Returns
+    -------
+    ndarray of int16
+        Broadcast shape of the inputs: 0 where admissible, else ``i + 1`` for the
+        first violated parameter ``CHECKS[i]``.
+    """
+    with np.errstate(invalid="ignore"):
+        L = np.asarray(link_length, dtype=float)
+        p = np.asarray(psi_min, dtype=float)
+        bad = np.broadcast_arrays(
+            ~(np.isfinite(L) & (L > 0.0)), ~(np.isfinite(p) & (p > 0.0) & (p < _HALF_PI))
+        )
+    out = np.zeros(bad[0].shape, dtype=np.int16)
+    for i, b in enumerate(bad):
+        out[(out == 0) & b] = i + 1
+    return out
+
+
+def _number(x):
+    """A parameter as float (scalar) or float array (many designs)."""
+    a = np.asarray(x, dtype=float)
+    return float(a) if a.ndim == 0 else a
+
+
 def _coeff_tuple(name, values):
     try:
         arr = np.asarray(values, dtype=float)
@@ -545,6 +709,10 @@ def _coeff_tuple(name, values):
 class RhomboidCam:
     """Parameters of the rhomboid lever-cam converter.
 
+    A thin holder of the parameters, validated by :func:`violation` and
+    :func:`check_law`; ``link_length`` and ``psi_min`` may be arrays (many
+    first-harmonic laws, broadcast together) when ``a`` and ``b`` are empty.
+
     Attributes
     ----------
     link_length : float
@@ -564,20 +732,28 @@ class RhomboidCam:
     b: tuple = ()
 
     def __post_init__(self):
-        L = float(self.link_length)
-        if not (np.isfinite(L) and L > 0.0):
-            raise ParameterError("link_length", fmt_mm(L), "link_length > 0 mm")
-        p = float(self.psi_min)
-        if not (np.isfinite(p) and 0.0 < p < _HALF_PI):
+        code = violation(self.link_length, self.psi_min)
+        if np.any(code):
+            k = int(np.flatnonzero(code)[0])
+            name = CHECKS[code.flat[k] - 1]
+            value = np.broadcast_to(np.asarray(getattr(self, name)), code.shape).flat[k]
+            if name == "link_length":
+                raise ParameterError(name, fmt_mm(value), "link_length > 0 mm")
             raise ParameterError(
-                "psi_min",
-                fmt_deg(p),
+                name,
+                fmt_deg(value),
                 "0 deg < psi_min < 90 deg (psi_min = 90 deg is the constant law: no motion)",
             )
+        L, p = _number(self.link_length), _number(self.psi_min)
         a = _coeff_tuple("a", self.a)
         b = _coeff_tuple("b", self.b)
         object.__setattr__(self, "link_length", L)
         object.__setattr__(self, "psi_min", p)
         object.__setattr__(self, "a", a)
         object.__setattr__(self, "b", b)
-        check_law(p, a, b)
+        if a or b:
+            if np.ndim(p) != 0:
+                raise ParameterError(
+                    "psi_min", f"{np.size(p)} values", "a single value when a, b hold harmonics"
+                )
+            check_law(p, a, b)

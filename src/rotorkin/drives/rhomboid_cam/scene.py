@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam.study import drive_params
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.render.scenes import (
     COLOR_1,
@@ -52,8 +53,6 @@ _GROW, _SHRINK, _RHOMBUS = "#fdae6b", "#9ecae1", "#6a3d9a"
 
 
 def _models(cfg):
-    from rotorkin.drives.rhomboid_cam.study import drive_params
-
     m = cfg["machine"]
     params = drive_params(cfg)
     keys = ("blade_thickness", "inner_radius", "outer_radius", "axial_width", "blades_per_pair")
@@ -72,7 +71,7 @@ def track_walls(params, roller, alpha):
     The walls are the pitch curve offset by the roller radius along its unit
     normal ``(y', -x')/|p'|`` (outwards for the counter-clockwise curve).
     """
-    p, dp, _ = rc.profile_point(alpha, params.link_length, *_law(params))
+    p, dp, _ = rc.profile_point(params.link_length, *_law(params), alpha)
     n = np.stack([dp[1], -dp[0]]) / np.hypot(dp[0], dp[1])
     return p * 1e3, (p - roller * n) * 1e3, (p + roller * n) * 1e3
 
@@ -111,12 +110,12 @@ def scene(result, cfg, frames: int = 120):
             line={"color": GREY, "width": 1.5, "dash": "dash"},
         )
     )
-    v = rc.rhombus_vertices(alpha, params.link_length, *law) * 1e3  # (4, 2, F): A, B, C, D
+    v = rc.rhombus_vertices(params.link_length, *law, alpha) * 1e3  # (4, 2, F): A, B, C, D
     arm = np.stack([v[2], v[0]], axis=-1)  # C -> A, through O
     b.animated_trace(
         trace("line", "output-shaft arm (diagonal CA)", "#303030", 7), x=arm[0], y=arm[1]
     )
-    mids = rc.blade_arm_points(alpha, params.link_length, *law) * 1e3  # AB, BC, CD, DA
+    mids = rc.blade_arm_points(params.link_length, *law, alpha) * 1e3  # AB, BC, CD, DA
     for name, (i, j), color in (
         ("blade arm, pair 1 (midpoints of AB, CD)", (0, 2), COLOR_1),
         ("blade arm, pair 2 (midpoints of DA, BC)", (3, 1), COLOR_2),
@@ -165,7 +164,7 @@ def scene(result, cfg, frames: int = 120):
             hoverinfo="skip",
         )
     )
-    q, dq = rc.blade_angles(alpha, *law)[:2]  # (2, F)
+    q, dq = rc.blade_angles(*law, alpha)[:2]  # (2, F)
     step = 2.0 * np.pi / bp * np.arange(bp)[None, :]
     # chamber 2m: pair 2 -> pair 1 (blade m); chamber 2m+1: pair 1 (m) -> pair 2 (m + 1)
     a0 = np.stack([q[1][:, None] + step, q[0][:, None] + step], 2).reshape(nf, 2 * bp)

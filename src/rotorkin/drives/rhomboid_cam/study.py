@@ -28,7 +28,11 @@ import numpy as np
 from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import torque as at
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import RunSection
+from rotorkin.drives.rhomboid_cam import figures as figures_rhomboid_cam
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam import summary as rs
+from rotorkin.drives.rhomboid_cam.schema import RhomboidLoads, RotaryBladeMachine
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain
@@ -70,46 +74,19 @@ def _deg(x) -> float:
     return float(np.degrees(x))
 
 
+def _plain(value):
+    """A summary value as a plain Python bool, int or float (for ``summary.json``)."""
+    value = np.asarray(value).item()
+    return value if isinstance(value, bool | int) else float(value)
+
+
 def _summary(params, m1, m2) -> dict:
     law = (params.psi_min, params.a, params.b)
     L = params.link_length
-    a1, b1 = rc.first_harmonic(*law)
-    lo, alo, hi, ahi = rc.psi_extremes(*law)
     fine = np.linspace(0.0, rc.period(params), _PEAK_SAMPLES)
-    _, d1, d2, d3 = rc.psi_law(fine, *law)
-    kappa = rc.profile_curvature(fine, L, *law)
-    convex, concave = float(np.max(kappa)), float(-np.min(kappa))
-    work = float(rc.indicator_work(*law, m1, m2))
-    return {
-        "psi_min_deg": _deg(params.psi_min),
-        "psi_max_deg": _deg(np.pi - params.psi_min),
-        "psi_lowest_deg": _deg(lo),
-        "psi_highest_deg": _deg(hi),
-        "psi_lowest_at_alpha_deg": _deg(alo),
-        "psi_highest_at_alpha_deg": _deg(ahi),
-        "psi_monotone": rc.psi_is_monotone(*law),
-        "psi_travel_per_period_deg": _deg(rc.psi_total_variation(*law)),
-        "a1_rad": float(a1),
-        "b1_rad": float(b1) + 0.0,  # no negative zero
-        "highest_harmonic": 2 * max(len(params.a), len(params.b)) + 1,
-        "link_length_mm": L * 1e3,
-        "profile_radius_min_mm": float(L * np.cos(0.5 * hi)) * 1e3,
-        "profile_radius_max_mm": float(L * np.cos(0.5 * lo)) * 1e3,
-        "profile_convex_radius_min_mm": 1e3 / convex,
-        "profile_concave_radius_min_mm": 1e3 / concave if concave > 0.0 else float("inf"),
-        "profile_convex": bool(concave <= 0.0),
-        "indicator_work_J": work,
-        "indicator_work_closed_form_J": float(
-            rc.indicator_work_closed_form(params.psi_min, m1, m2)
-        ),
-        "mean_shaft_torque_Nm": work / np.pi,
-        "blade_speed_coeff_max": float(1.0 + 0.5 * np.max(np.abs(d1))),
-        "blade_speed_coeff_min": float(1.0 - 0.5 * np.max(np.abs(d1))),
-        "blade_accel_coeff_max": float(0.5 * np.max(np.abs(d2))),
-        "blade_jerk_coeff_max": float(0.5 * np.max(np.abs(d3))),
-        "torque_high_Nm": float(m1),
-        "torque_low_Nm": float(m2),
-    }
+    s = rs.law_summary(L, *law, m1, m2)
+    s.update(rs.peak_summary(rc.law_peaks(L, *law, fine)))
+    return {k: _plain(s[k]) for k in rs.LAW_KEYS}
 
 
 _DOCS = {
@@ -142,30 +119,24 @@ def _columns(params, m1, m2, points) -> dict:
     law = (params.psi_min, params.a, params.b)
     L = params.link_length
     alpha = angle_grid(rc.period(params), points)
-    psi, d1, d2, d3 = rc.psi_law(alpha, *law)
-    phi, p1, p2, p3 = rc.blade_angles(alpha, *law)
-    rho, drho = rc.profile_radius(alpha, L, *law)[:2]
-    xy = rc.profile_point(alpha, L, *law)[0]
-    stroke = rc.stroke_direction(alpha, *law)
-    torque = rc.blade_torque(psi, stroke, m1, m2, params.psi_min)
-    cols = {
-        "alpha_deg": np.degrees(alpha),
-        "psi_deg": np.degrees(psi),
-        "dpsi": d1,
-        "d2psi_per_rad": d2,
-        "d3psi_per_rad2": d3,
-    }
-    for k in (0, 1):
-        cols[f"phi{k + 1}_deg"] = np.degrees(phi[k])
+    psi, d1 = rc.psi_law(*law, alpha)[:2]
+    _, p1, p2, p3 = rc.blade_angles(*law, alpha)
+    drho = rc.profile_radius(L, *law, alpha)[1]
+    xy = rc.profile_point(L, *law, alpha)[0]
+    stroke = rc.stroke_direction(*law, alpha)
+    torque = rc.blade_torque(m1, m2, params.psi_min, psi, stroke)
+    law_cols = rs.law_curves(L, *law, alpha)
+    cols = {"alpha_deg": np.degrees(alpha)}
+    cols.update({k: law_cols[k] for k in rs.CURVE_KEYS[:6]})
     for name, arr in (("speed_coeff", p1), ("accel_per_rad", p2), ("jerk_per_rad2", p3)):
         for k in (0, 1):
             cols[f"phi{k + 1}_{name}"] = arr[k]
-    cols["rho_mm"] = rho * 1e3
+    cols["rho_mm"] = law_cols["rho_mm"]
     cols["drho_mm_per_rad"] = drho * 1e3
     cols["x_mm"] = xy[0] * 1e3
     cols["y_mm"] = xy[1] * 1e3
-    cols["rho_b_mm"] = L * np.sin(0.5 * psi) * 1e3
-    cols["curvature_per_m"] = rc.profile_curvature(alpha, L, *law)
+    cols["rho_b_mm"] = rc.profile_radius_eq19(L, *law, alpha) * 1e3
+    cols["curvature_per_m"] = law_cols["curvature_per_m"]
     cols["stroke"] = stroke
     cols["blade_torque_Nm"] = torque
     cols["dA_dalpha_J_per_rad"] = torque * d1
@@ -215,14 +186,14 @@ def machine_state(params, machine, loads: Loads, alpha, stroke=None) -> State:
     law = (params.psi_min, params.a, params.b)
     alpha = np.asarray(alpha, dtype=float)
     mo = rc.motion(params, alpha)
-    stroke = rc.stroke_direction(alpha, *law) if stroke is None else np.asarray(stroke)
+    stroke = rc.stroke_direction(*law, alpha) if stroke is None else np.asarray(stroke)
     volume = rb.chamber_volumes(machine, mo.q)
     dvolume = rb.chamber_volume_derivative(machine, mo.dq)
     pressure = None
     if loads.model == "linear":
-        psi = rc.psi_law(alpha, *law)[0]
-        m1 = rc.blade_torque(psi, stroke, loads.torque_high, loads.torque_low, params.psi_min)
-        members = rb.linear_member_torques(m1)
+        psi = rc.psi_law(*law, alpha)[0]
+        m1 = rc.blade_torque(loads.torque_high, loads.torque_low, params.psi_min, psi, stroke)
+        members = rc.linear_member_torques(m1)
     else:
         strokes = rb.chamber_strokes(machine, stroke)
         pressure = rb.isothermal_pressure(loads.gas, loads.charge, volume, strokes)
@@ -244,8 +215,14 @@ def indicated_work_per_period(params, machine, loads: Loads, nodes: int = 64) ->
     x, w = np.polynomial.legendre.leggauss(int(nodes))
     half = 0.5 * (z[1:] - z[:-1])[:, None]
     al = 0.5 * (z[1:] + z[:-1])[:, None] + half * x
-    s = np.sign(np.diff(rc.psi_law(z, *law)[0]))[:, None] * np.ones_like(al)
+    s = np.sign(np.diff(rc.psi_law(*law, z)[0]))[:, None] * np.ones_like(al)
     return float(np.sum(machine_state(params, machine, loads, al, s).torque * w * half))
+
+
+def _inertia_torque(machine, mo, omega):
+    """Torque the shaft spends on the inertia of shaft and blade pairs [N m]."""
+    J = machine.member_inertias
+    return at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, omega[0], omega[1])
 
 
 def _cm3(v) -> float:
@@ -280,14 +257,14 @@ def _machine_setup(cfg, params):
 def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tuple[dict, dict]:
     """Engine summary on a fine grid over one period, and the curves the figures draw."""
     law = (params.psi_min, params.a, params.b)
-    lo, hi, v_min, v_max = extremes
+    lo, hi, _, _ = extremes
     period = rc.period(params)
     alpha = np.linspace(0.0, period, _PEAK_SAMPLES)
     st = machine_state(params, machine, loads, alpha)
     mo = st.motion
     _, _, td_summary, omega = time_domain(mo, speed, _SLUGS, period)
     J = machine.member_inertias
-    t_inertia = at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, omega[0], omega[1])
+    t_inertia = _inertia_torque(machine, mo, omega)
     w_mean = float(np.mean(omega[0][:-1]))
     steady = st.torque - at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, w_mean, 0.0)
     j_eq = at.equivalent_inertia(machine.inertia_shaft, J, mo.dq)
@@ -298,20 +275,10 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tu
     revs = 2.0 * np.pi / period  # periods per output-shaft revolution
     work_rev = revs * work_period
     with_inertia = st.torque - t_inertia
+    geometry = rs.engine_geometry_summary(machine, lo, hi, revs * rc.psi_total_variation(*law))
     s = {
         "pressure_model": loads.model,
-        "blades_per_pair": machine.blades_per_pair,
-        "chambers": machine.chambers,
-        "blade_thickness_deg": _deg(machine.blade_thickness),
-        "blade_thickness_max_deg": _deg(min(lo, 2.0 * np.pi / machine.blades_per_pair - hi)),
-        "sector_volume_cm3_per_rad": _cm3(rb.sector_constant(machine)),
-        "chamber_volume_max_cm3": _cm3(np.max(v_max)),
-        "chamber_volume_min_cm3": _cm3(np.min(v_min)),
-        "chamber_swept_volume_cm3": _cm3(np.max(v_max - v_min)),
-        "compression_ratio_geometric": float(np.min(v_max / v_min)),
-        "displacement_cm3_per_rev": _cm3(
-            rb.displacement_per_rev(machine, revs * rc.psi_total_variation(*law))
-        ),
+        **{k: _plain(v) for k, v in geometry.items()},
         "indicated_work_J": work_rev,
         "indicated_work_per_period_J": work_period,
         "indicated_power_kW": work_period / float(np.trapezoid(1.0 / omega[0], alpha)) * 1e-3,
@@ -338,7 +305,7 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tu
     }
     if loads.model == "isothermal":
         z = rc.psi_stationary_points(*law)
-        v_turns = rb.chamber_volumes(machine, rc.blade_angles(z, *law)[0])
+        v_turns = rb.chamber_volumes(machine, rc.blade_angles(*law, z)[0])
         closed = rb.isothermal_cycle_work(loads.gas, loads.charge, v_turns)
         s["isothermal_work_closed_form_per_rev_J"] = float(revs * np.sum(closed))
         s["gas_charge_J_per_K"] = float(np.sum(loads.charge))
@@ -363,7 +330,7 @@ def _machine_columns(params, machine, loads, points, speed):
     mo = st.motion
     cols, docs, _, omega = time_domain(mo, speed, _SLUGS, period)
     J = machine.member_inertias
-    t_inertia = at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, omega[0], omega[1])
+    t_inertia = _inertia_torque(machine, mo, omega)
     out, out_docs = {}, {}
     for j in range(machine.chambers):
         kind = "psi - t" if j % 2 == 0 else "2 pi/B - psi - t"
@@ -408,9 +375,6 @@ def _machine_columns(params, machine, loads, points, speed):
 
 def _defaults(cfg: dict) -> dict:
     """``cfg`` with the machine, loads and run keys it lacks filled from the config schema."""
-    from rotorkin.core.schema import RunSection
-    from rotorkin.drives.rhomboid_cam.schema import RhomboidLoads, RotaryBladeMachine
-
     out = dict(cfg)
     for name, model in (("machine", RotaryBladeMachine), ("loads", RhomboidLoads),
                         ("run", RunSection)):  # fmt: skip
@@ -471,8 +435,6 @@ def evaluate(cfg: dict) -> StudyResult:
         return machine_state(params, machine, loads, alpha)
 
     def plot(outdir: Path) -> list[Path]:
-        from rotorkin.drives.rhomboid_cam import figures as figures_rhomboid_cam
-
         figs = figures_rhomboid_cam.plot_all(params, m1, m2, Path(outdir))
         return figs + figures_rhomboid_cam.plot_machine(
             params, machine, loads, state, curves, summary, Path(outdir)
@@ -486,4 +448,5 @@ def evaluate(cfg: dict) -> StudyResult:
         column_docs=docs,
         headline=HEADLINE,
         write_figures=plot,
+        motion=rc.motion(params, angle_grid(rc.period(params), cfg["run"]["points"])),
     )

@@ -47,10 +47,20 @@ is then checked on a 10x finer grid by the drive's own functions.
 from __future__ import annotations
 
 import numpy as np
+from scipy.optimize import NonlinearConstraint, differential_evolution, minimize
 
 from rotorkin.core.angles import fmt_deg
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import validate_model
+from rotorkin.drives.rhomboid_cam import cam, figures_synthesis, study
 from rotorkin.drives.rhomboid_cam import kinematics as rc
+from rotorkin.drives.rhomboid_cam.schema import RhomboidConfig
+from rotorkin.synthesis import (
+    DWELL_TOLERANCE,
+    SynthesisResult,
+    dwell_fraction,
+    synthesized_raw_config,
+)
 
 __all__ = [
     "OBJECTIVES",
@@ -122,12 +132,8 @@ class Law:
 
 
 def _curvature(L, psi, d1, d2):
-    """Signed curvature of the pitch curve ``rho = L cos(psi/2)`` [1/m] (as the drive's)."""
-    c, s = np.cos(0.5 * psi), np.sin(0.5 * psi)
-    r0 = L * c
-    r1 = -0.5 * L * s * d1
-    r2 = -0.25 * L * c * d1**2 - 0.5 * L * s * d2
-    return (r0**2 + 2.0 * r1**2 - r0 * r2) / (r0**2 + r1**2) ** 1.5
+    """Signed curvature of the pitch curve ``rho = L cos(psi/2)`` [1/m], the drive's formula."""
+    return rc.polar_curvature(*rc.radius_from_psi(L, (psi, d1, d2, 0.0))[:3])
 
 
 def _pressure_batch(law: Law, L: float, x):
@@ -140,8 +146,8 @@ def _pressure_batch(law: Law, L: float, x):
     over the grid (batched over laws; the final check uses the cams module itself).
     """
     x = np.atleast_2d(x)
-    t = np.abs(np.tan(0.5 * law.psi(x)) * law.psi(x, 1)) * 0.5
-    return np.arctan(np.max(t, axis=-1))
+    rho, drho = rc.radius_from_psi(L, (law.psi(x), law.psi(x, 1), 0.0, 0.0))[:2]
+    return np.arctan(np.max(np.abs(drho) / rho, axis=-1))
 
 
 def objective_values(law: Law, objective: str, x, L: float = 1.0):
@@ -150,8 +156,6 @@ def objective_values(law: Law, objective: str, x, L: float = 1.0):
     ``min_accel``: ``max |psi''|/2``; ``dwell_min``/``dwell_max``: minus the dwell
     fraction; ``min_pressure_angle``: the peak pressure angle [rad].
     """
-    from rotorkin.synthesis import DWELL_TOLERANCE, dwell_fraction
-
     if objective == "min_accel":
         return 0.5 * np.max(np.abs(law.psi(x, 2)), axis=-1)
     if objective in ("dwell_min", "dwell_max"):
@@ -160,7 +164,7 @@ def objective_values(law: Law, objective: str, x, L: float = 1.0):
         return -dwell_fraction(law.psi(x), extreme, tol)
     if objective == "min_pressure_angle":
         return _pressure_batch(law, L, x)
-    raise ParameterError("--objective", repr(objective), "one of " + ", ".join(OBJECTIVES))
+    raise ParameterError("objective", repr(objective), "one of " + ", ".join(OBJECTIVES))
 
 
 def constraint_values(law: Law, x, L, roller_radius, pa_limit, quarter):
@@ -216,8 +220,6 @@ def optimize_law(
         The optimum and ``{"objective": value, "baseline": value, "pa_limit": rad,
         "constraints": (3,) margins, "evaluations": int}``.
     """
-    from scipy.optimize import NonlinearConstraint, differential_evolution, minimize
-
     L, r = float(link_length), float(roller_radius)
     n = int(harmonics)
     alpha = np.arange(_GRID) * np.pi / _GRID
@@ -343,19 +345,17 @@ def law_report(link_length, psi_min, a, b, roller_radius) -> dict:
         ``min_convex_radius``, ``min_concave_radius``, ``min_clearance`` [m],
         ``undercut``, ``monotone`` (bool), ``psi_lowest``, ``psi_highest`` [rad].
     """
-    from rotorkin.drives.rhomboid_cam import cam as cam
-    from rotorkin.synthesis import DWELL_TOLERANCE, dwell_fraction
-
     alpha = np.arange(_FINE) * np.pi / _FINE
-    psi, d1, d2, d3 = rc.psi_law(alpha, psi_min, a, b)
+    psi = rc.psi_law(psi_min, a, b, alpha)[0]
+    peaks = rc.law_peaks(link_length, psi_min, a, b, alpha)
     tol = DWELL_TOLERANCE * (np.pi - 2.0 * psi_min)
     chk = cam.profile_check(link_length, psi_min, a, b, roller_radius)
     lo, _, hi, _ = rc.psi_extremes(psi_min, a, b)
     return {
-        "accel_peak": float(0.5 * np.max(np.abs(d2))),
-        "jerk_peak": float(0.5 * np.max(np.abs(d3))),
-        "speed_coeff_min": float(1.0 - 0.5 * np.max(np.abs(d1))),
-        "speed_coeff_max": float(1.0 + 0.5 * np.max(np.abs(d1))),
+        "accel_peak": float(peaks["accel_coeff_max"]),
+        "jerk_peak": float(peaks["jerk_coeff_max"]),
+        "speed_coeff_min": float(peaks["speed_coeff_min"]),
+        "speed_coeff_max": float(peaks["speed_coeff_max"]),
         "dwell_min": float(dwell_fraction(psi, psi_min, tol)),
         "dwell_max": float(dwell_fraction(psi, np.pi - psi_min, tol)),
         "pressure_angle_peak": float(chk.max_pressure_angle),
@@ -394,24 +394,22 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     See :func:`rotorkin.synthesis.synthesize`; ``options`` may hold
     ``max_pressure_angle`` [rad].
     """
-    from rotorkin.drives import evaluate
-    from rotorkin.io.config import validate_config
-    from rotorkin.synthesis import SynthesisResult, synthesized_raw_config
-
     if target is not None:
         raise ParameterError(
-            "--target",
+            "target",
             repr(target),
             f"no target for {objective}: the rhomboid cam's objectives are optimised "
             "(min_accel, dwell_min, dwell_max, min_pressure_angle)",
         )
     n = 2 if harmonics is None else int(harmonics)
     if n > rc.MAX_HARMONICS:
-        raise ParameterError("--harmonics", str(n), f"1 <= harmonics <= {rc.MAX_HARMONICS}")
+        raise ParameterError("harmonics", str(n), f"1 <= harmonics <= {rc.MAX_HARMONICS}")
     d = cfg["drive"]
     L, pmin, r = float(d["link_length"]), float(d["psi_min"]), float(cfg["cam"]["roller_radius"])
-    base_cfg = validate_config(synthesized_raw_config(raw, {"drive": {"a": [], "b": []}}))
-    res0 = evaluate(base_cfg)  # validates the design with the paper's law
+    base_cfg = validate_model(
+        RhomboidConfig, synthesized_raw_config(raw, {"drive": {"a": [], "b": []}})
+    )
+    res0 = study.evaluate(base_cfg)  # validates the design with the paper's law
     rep0 = law_report(L, pmin, (), (), r)
     if rep0["undercut"]:
         raise ParameterError(
@@ -423,7 +421,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     limit = (options or {}).get("max_pressure_angle")
     if limit is not None and not limit > rep0["pressure_angle_peak"] - np.radians(1.0):
         raise ParameterError(
-            "--max-pressure-angle",
+            "max_pressure_angle",
             fmt_deg(limit),
             f"> {fmt_deg(rep0['pressure_angle_peak'] - np.radians(1.0))} (the first-harmonic law "
             f"reaches {fmt_deg(rep0['pressure_angle_peak'])}; a bound far below it leaves no "
@@ -432,7 +430,9 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     x, info = optimize_law(L, pmin, r, objective, n, pa_limit=limit)
     a, b = tuple(x[:n].tolist()), tuple(x[n:].tolist())
     updates = {"drive": {"a": list(a), "b": list(b)}}
-    res1 = evaluate(validate_config(synthesized_raw_config(raw, updates, objective)))
+    res1 = study.evaluate(
+        validate_model(RhomboidConfig, synthesized_raw_config(raw, updates, objective))
+    )
     rep1 = law_report(L, pmin, a, b, r)
     key, sign, label = _MEASURE[objective]
     better = sign * rep1[key] < sign * rep0[key]
@@ -494,8 +494,6 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
         notes.append("no admissible law better than the first-harmonic law was found")
 
     def plot(outdir):
-        from rotorkin.drives.rhomboid_cam import figures_synthesis
-
         return figures_synthesis.plot_rhomboid(
             outdir, L, pmin, a, b, r, objective, info["pa_limit"]
         )
@@ -503,10 +501,10 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     alpha = np.linspace(0.0, np.pi, 721)
     table = {"alpha_deg": np.degrees(alpha)}
     for tag, (aa, bb) in (("baseline", ((), ())), ("synthesized", (a, b))):
-        psi, d1, d2, _ = rc.psi_law(alpha, pmin, aa, bb)
+        psi, d1, d2, _ = rc.psi_law(pmin, aa, bb, alpha)
         table[f"psi_{tag}_deg"] = np.degrees(psi)
         table[f"blade_accel_{tag}_per_rad"] = 0.5 * d2
-        table[f"rho_{tag}_mm"] = rc.profile_radius(alpha, L, pmin, aa, bb)[0] * 1e3
+        table[f"rho_{tag}_mm"] = rc.profile_radius(L, pmin, aa, bb, alpha)[0] * 1e3
     return SynthesisResult(
         drive_type="rhomboid_cam",
         objective=objective,
