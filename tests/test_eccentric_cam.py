@@ -450,7 +450,7 @@ def test_default_comparison_reports_a_mismatch():
     @dataclasses.dataclass(frozen=True)
     class Wrong:
         bore: float = 0.04  # schema: 50 mm
-        fluid: str = "liquid"
+        fluid: str = "gas"
         unknown: float = 1.0  # no schema key
 
     got = _default_mismatches((Wrong,), _schema_defaults())

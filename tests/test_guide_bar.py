@@ -432,7 +432,7 @@ def test_parameter_errors(kwargs, name, text):
 
 def test_defaults():
     p = gb.GuideBar(0.5, 2.0)
-    assert p.input_gear_ratio == 1.0 and p.phase == pytest.approx(np.pi) and p.driver == "crank"
+    assert p.input_gear_ratio == 2.0 and p.phase == pytest.approx(np.pi) and p.driver == "crank"
 
 
 # --------------------------------------------------------------------------------------------
@@ -598,7 +598,7 @@ def test_the_defaults_check_fails_on_a_mismatch():
     class Shifted:
         lam: float
         gear_ratio: float
-        input_gear_ratio: float = 1.0
+        input_gear_ratio: float = 2.0
         phase: float = np.pi / 2.0
         driver: str = "crank"
 

@@ -114,13 +114,20 @@ def _read_manifest(path: Path) -> list[str]:
 
 
 def _jsonable(summary: dict) -> dict:
-    out = {}
+    """JSON values; a value that is not finite is left out and named under ``undefined``.
+
+    (Why it has no value is one of the run's warnings.)
+    """
+    out, undefined = {}, []
     for key, value in summary.items():
         if isinstance(value, np.generic):
             value = value.item()
         if isinstance(value, float) and not math.isfinite(value):
-            value = None
+            undefined.append(key)
+            continue
         out[key] = value
+    if undefined:
+        out["undefined"] = undefined
     return out
 
 

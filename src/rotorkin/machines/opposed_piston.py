@@ -167,7 +167,7 @@ class OpposedPiston:
 
     device_length: float = 1.0
     bore: float = 0.05
-    fluid: str = "liquid"
+    fluid: str = "gas"
     initial_pressure: float = 1.0e5
     polytropic_exponent: float = 1.0
     bulk_modulus: float = 1.5e9

@@ -203,9 +203,9 @@ class RotaryBlade:
     outer_radius: float
     axial_width: float
     blades_per_pair: int = 2
-    inertia_shaft: float = 0.0
-    inertia_blade_pair_1: float = 0.01
-    inertia_blade_pair_2: float = 0.01
+    inertia_shaft: float = 0.01
+    inertia_blade_pair_1: float = 0.005
+    inertia_blade_pair_2: float = 0.005
 
     def __post_init__(self):
         B = self.blades_per_pair

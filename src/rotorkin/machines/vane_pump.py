@@ -354,7 +354,7 @@ class PortPressures:
     """
 
     suction_pressure: float = 1.0e5
-    discharge_pressure: float = 1.0e5
+    discharge_pressure: float = 6.0e5
 
     def __post_init__(self):
         reason = ports_inadmissible(self.suction_pressure, self.discharge_pressure)

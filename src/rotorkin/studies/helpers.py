@@ -7,7 +7,7 @@ import numpy as np
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.errors import ParameterError
 
-__all__ = ["build_params", "angle_grid"]
+__all__ = ["build_params", "angle_grid", "time_domain", "undefined_warnings"]
 
 
 def build_params(cls, section: str, values: dict, aliases: dict | None = None):
@@ -81,3 +81,31 @@ def time_domain(motion, speed, slugs, period):
             summary[f"{slug}_{label}_peak_{suffix}"] = float(np.max(np.abs(values)))
     summary["shaft_speed_mean_rpm"] = float(np.mean(omega[0][:-1]) * 30.0 / np.pi)
     return columns, docs, summary, omega
+
+
+#: Why a summary key shared by several drives can have no value.
+UNDEFINED_BECAUSE = {
+    "torque_ripple": "the mean shaft torque is 0, so (max - min) / mean has no value",
+    "torque_ripple_with_inertia": "the mean shaft torque is 0, so (max - min) / mean has no value",
+    "speed_fluctuation_without_flywheel": "every inertia of [machine] is 0 (inertia_shaft and "
+    "the members'), so nothing bounds the speed",
+}
+
+
+def undefined_warnings(summary: dict, because: dict | None = None) -> tuple[str, ...]:
+    """One warning line per summary value that is not finite, saying why.
+
+    Parameters
+    ----------
+    summary : dict
+        A study's summary.
+    because : dict, optional
+        Summary key -> the model input that leaves it without a value (naming the
+        config key to set); :data:`UNDEFINED_BECAUSE` covers the shared keys.
+    """
+    reasons = {**UNDEFINED_BECAUSE, **(because or {})}
+    out = []
+    for key, value in summary.items():
+        if isinstance(value, (float, np.floating)) and not np.isfinite(value):
+            out.append(f"{key} is not defined: {reasons.get(key, 'a model input makes it so')}")
+    return tuple(out)

@@ -9,6 +9,7 @@ from pydantic import Field
 from rotorkin.core.schema import (
     EmptySection,
     ExportSection,
+    Inertia,
     InertialSection,
     Length,
     Mass,
@@ -16,6 +17,7 @@ from rotorkin.core.schema import (
     Pressure,
     RunSection,
     Section,
+    Speed,
 )
 
 
@@ -35,15 +37,23 @@ class EccentricDrive(Section):
 
 
 class EccentricMachine(InertialSection):
+    inertia_shaft: Inertia = Field("0.032 kg*m^2", description="inertia of the input shaft")
     device_length: Length = Field(
         "1000 mm", description="length L of the reactor between the pistons"
     )
     bore: Length = Field("50 mm", description="piston and tube bore diameter")
-    fluid: Literal["gas", "liquid"] = Field("liquid", description="working fluid: gas or liquid")
+    fluid: Literal["gas", "liquid"] = Field("gas", description="working fluid: gas or liquid")
     initial_pressure: Pressure = Field("1 bar", description="pressure at the starting gap")
     polytropic_exponent: float = Field(1.0, description="exponent n of the gas, p V^n = const")
     bulk_modulus: Modulus = Field("1.5 GPa", description="bulk modulus K of the liquid")
     piston_mass: Mass = Field("0.5 kg", description="mass of each piston with its rod")
+
+
+class Run(RunSection):
+    speed: Speed = Field(
+        "600 rpm",
+        description="input shaft speed: one value, or a list sampled evenly over one period",
+    )
 
 
 class EccentricConfig(Section):
@@ -53,4 +63,4 @@ class EccentricConfig(Section):
     loads: EmptySection = Field(default_factory=EmptySection)
     cam: DiscCamSection = Field(default_factory=DiscCamSection)
     export: ExportSection = Field(default_factory=ExportSection)
-    run: RunSection = Field(default_factory=RunSection)
+    run: Run = Field(default_factory=Run)

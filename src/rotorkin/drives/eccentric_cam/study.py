@@ -31,7 +31,7 @@ from rotorkin.drives.eccentric_cam.reactor import closed_forms, opposed_piston, 
 from rotorkin.drives.eccentric_cam.schema import EccentricMachine
 from rotorkin.machines import opposed_piston as op
 from rotorkin.studies import StudyResult
-from rotorkin.studies.helpers import angle_grid, build_params, time_domain
+from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 
 __all__ = ["evaluate", "drive_params", "machine_params", "sections", "reactor_state", "HEADLINE"]
 
@@ -260,4 +260,5 @@ def evaluate(cfg: dict) -> StudyResult:
         headline=HEADLINE,
         write_figures=plot,
         motion=ec.motion(params, beta),
+        warnings=undefined_warnings(summary),
     )

@@ -197,7 +197,7 @@ class GuideBar:
 
     lam: float
     gear_ratio: float
-    input_gear_ratio: float = 1.0
+    input_gear_ratio: float = 2.0
     phase: float = np.pi
     driver: str = "crank"
 

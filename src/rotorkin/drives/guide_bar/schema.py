@@ -15,6 +15,7 @@ from rotorkin.core.schema import (
     Pressure,
     RunSection,
     Section,
+    Speed,
     Torque,
 )
 
@@ -26,7 +27,7 @@ class GuideBarDrive(Section):
         alias="lambda", description="mechanism coefficient lambda = d/a (frame over crank length)"
     )
     gear_ratio: float = Field(description="ratio u from the guide-bar gear to the impeller gear")
-    input_gear_ratio: float = Field(1.0, description="ratio i12 = z2/z1 from input gear 1")
+    input_gear_ratio: float = Field(2.0, description="ratio i12 = z2/z1 from input gear 1")
     phase: Angle = Field("180 deg", description="installation phase Sigma = sigma_2 - sigma_1")
     driver: Literal["crank", "guide"] = Field(
         "crank", description="driving member: crank (paper Fig. 2) or guide (Fig. 4)"
@@ -34,13 +35,14 @@ class GuideBarDrive(Section):
 
 
 class GuideBarLoads(Section):
-    impeller_torque_1: Torque = Field("0 N*m", description="resisting torque M7 on impeller 1")
-    impeller_torque_2: Torque = Field("0 N*m", description="resisting torque M8 on impeller 2")
+    impeller_torque_1: Torque = Field("10 N*m", description="resisting torque M7 on impeller 1")
+    impeller_torque_2: Torque = Field("10 N*m", description="resisting torque M8 on impeller 2")
     suction_pressure: Pressure = Field("1 bar", description="pressure at the inlet port")
-    discharge_pressure: Pressure = Field("1 bar", description="pressure at the outlet port")
+    discharge_pressure: Pressure = Field("6 bar", description="pressure at the outlet port")
 
 
 class VanePumpMachine(InertialSection):
+    inertia_shaft: Inertia = Field("0.001 kg*m^2", description="inertia of the input shaft")
     vanes_per_impeller: int = Field(2, description="vanes on each impeller")
     vane_angle: Angle | None = Field(
         None, description="angular width of a vane; default: the drive's gamma_0"
@@ -52,10 +54,17 @@ class VanePumpMachine(InertialSection):
     inertia_impeller_2: Inertia = Field("0.005 kg*m^2", description="inertia of impeller 2")
 
 
+class Run(RunSection):
+    speed: Speed = Field(
+        "1500 rpm",
+        description="input shaft speed: one value, or a list sampled evenly over one period",
+    )
+
+
 class GuideBarConfig(Section):
     title: str = ""
     drive: GuideBarDrive
     machine: VanePumpMachine = Field(default_factory=VanePumpMachine)
     loads: GuideBarLoads = Field(default_factory=GuideBarLoads)
     export: ExportSection = Field(default_factory=ExportSection)
-    run: RunSection = Field(default_factory=RunSection)
+    run: Run = Field(default_factory=Run)

@@ -37,7 +37,7 @@ from rotorkin.drives.guide_bar import summary as closed_forms
 from rotorkin.drives.guide_bar.schema import GuideBarLoads, VanePumpMachine
 from rotorkin.machines import vane_pump as vp
 from rotorkin.studies import StudyResult
-from rotorkin.studies.helpers import angle_grid, build_params, time_domain
+from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 
 __all__ = ["evaluate", "drive_params", "pump_params", "pump_state", "HEADLINE"]
 
@@ -367,4 +367,21 @@ def evaluate(cfg: dict) -> StudyResult:
         headline=HEADLINE,
         write_figures=plot,
         motion=gb.motion(params, theta),
+        warnings=_warnings(cfg, summary),
     )
+
+
+def _warnings(cfg: dict, summary: dict) -> tuple[str, ...]:
+    """Inputs that leave summary numbers without meaning, one line each."""
+    loads = cfg.get("loads", {})
+    out = []
+    if loads.get("discharge_pressure") == loads.get("suction_pressure"):
+        out.append(
+            "loads.discharge_pressure = loads.suction_pressure: the pump lifts nothing, so its "
+            "mean torque, work and hydraulic power are 0"
+        )
+    because = {
+        "input_torque_fluctuation_ratio": "the input torque of eq. 7 is 0 everywhere "
+        "(loads.impeller_torque_1 = loads.impeller_torque_2 = 0)",
+    }
+    return (*out, *undefined_warnings(summary, because))

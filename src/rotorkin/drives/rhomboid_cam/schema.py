@@ -15,6 +15,7 @@ from rotorkin.core.schema import (
     Pressure,
     RunSection,
     Section,
+    Speed,
     Temperature,
     Torque,
 )
@@ -39,26 +40,34 @@ class RhomboidDrive(Section):
 
 
 class RhomboidLoads(Section):
-    torque_high: Torque = Field("0 N*m", description="torque level M1 of the linear blade model")
-    torque_low: Torque = Field("0 N*m", description="torque level M2 of the linear blade model")
+    torque_high: Torque = Field("100 N*m", description="torque level M1 of the linear blade model")
+    torque_low: Torque = Field("40 N*m", description="torque level M2 of the linear blade model")
     pressure_model: Literal["linear", "isothermal"] = Field(
         "linear", description="blade loads: the paper's linear torque model or isothermal gas"
     )
     charge_pressure: Pressure = Field(
-        "10 bar", description="isothermal model: pressure at the largest volume, cold"
+        "2 bar", description="isothermal model: pressure at the largest volume, cold"
     )
     hot_temperature: Temperature = Field("900 K", description="isothermal model: expansion")
     cold_temperature: Temperature = Field("330 K", description="isothermal model: compression")
 
 
 class RotaryBladeMachine(InertialSection):
+    inertia_shaft: Inertia = Field("0.01 kg*m^2", description="inertia of the input shaft")
     blades_per_pair: int = Field(2, description="blades on each of the two blade pairs")
     blade_thickness: Angle = Field("10 deg", description="angular thickness of one blade")
     inner_radius: Length = Field("30 mm", description="hub radius of the working space")
     outer_radius: Length = Field("90 mm", description="casing radius of the working space")
     axial_width: Length = Field("50 mm", description="axial width of the working space")
-    inertia_blade_pair_1: Inertia = Field("0.01 kg*m^2", description="inertia of blade pair 1")
-    inertia_blade_pair_2: Inertia = Field("0.01 kg*m^2", description="inertia of blade pair 2")
+    inertia_blade_pair_1: Inertia = Field("0.005 kg*m^2", description="inertia of blade pair 1")
+    inertia_blade_pair_2: Inertia = Field("0.005 kg*m^2", description="inertia of blade pair 2")
+
+
+class Run(RunSection):
+    speed: Speed = Field(
+        "1500 rpm",
+        description="input shaft speed: one value, or a list sampled evenly over one period",
+    )
 
 
 class RhomboidConfig(Section):
@@ -68,4 +77,4 @@ class RhomboidConfig(Section):
     loads: RhomboidLoads = Field(default_factory=RhomboidLoads)
     cam: PlanarCamSection = Field(default_factory=PlanarCamSection)
     export: ExportSection = Field(default_factory=ExportSection)
-    run: RunSection = Field(default_factory=RunSection)
+    run: Run = Field(default_factory=Run)

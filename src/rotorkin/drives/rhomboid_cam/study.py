@@ -35,7 +35,7 @@ from rotorkin.drives.rhomboid_cam import summary as rs
 from rotorkin.drives.rhomboid_cam.schema import RhomboidLoads, RotaryBladeMachine
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.studies import StudyResult
-from rotorkin.studies.helpers import angle_grid, build_params, time_domain
+from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 
 __all__ = [
     "evaluate",
@@ -449,4 +449,16 @@ def evaluate(cfg: dict) -> StudyResult:
         headline=HEADLINE,
         write_figures=plot,
         motion=rc.motion(params, angle_grid(rc.period(params), cfg["run"]["points"])),
+        warnings=_warnings(loads, summary),
     )
+
+
+def _warnings(loads, summary: dict) -> tuple[str, ...]:
+    """Inputs that leave summary numbers without meaning, one line each."""
+    out = []
+    if loads.model == "linear" and loads.torque_high == loads.torque_low:
+        out.append(
+            "loads.torque_high = loads.torque_low: the linear blade model does no work, so the "
+            "indicated work and mean torque are 0"
+        )
+    return (*out, *undefined_warnings(summary))
