@@ -7,11 +7,22 @@ its own.
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["DPI", "BASELINE", "SYNTHESIZED", "pyplot", "save", "save_in", "degree_axis", "Recipe"]
+__all__ = [
+    "recording",
+    "DPI",
+    "BASELINE",
+    "SYNTHESIZED",
+    "pyplot",
+    "save",
+    "save_in",
+    "degree_axis",
+    "Recipe",
+]
 
 #: Resolution of the PNG figures [dots per inch].
 DPI = 120
@@ -24,11 +35,44 @@ def pyplot():
     return plt
 
 
-def save(fig, path: Path, dpi: int = DPI) -> Path:
-    """Lay out, write and close ``fig``; return ``path``."""
-    fig.tight_layout()
+#: Figures kept open by :func:`recording` (None: figures are closed once written).
+_RECORDED: list | None = None
+
+
+@contextlib.contextmanager
+def recording():
+    """Collect every figure written inside the block as ``(path, Figure)``, still open.
+
+    For tests and notebooks that look at what a figure plots (its lines' data)
+    rather than at the PNG; the figures are closed when the block ends.
+    """
+    global _RECORDED
+    previous, _RECORDED = _RECORDED, []
+    record = _RECORDED
+    try:
+        yield record
+    finally:
+        _RECORDED = previous
+        for _, fig in record:
+            pyplot().close(fig)
+
+
+def _done(fig, path: Path) -> None:
+    """Close a written figure, or keep it for :func:`recording`."""
+    if _RECORDED is None:
+        pyplot().close(fig)
+    else:
+        _RECORDED.append((Path(path), fig))
+
+
+def save(fig, path: Path, dpi: int = DPI, rect=None) -> Path:
+    """Lay out (within ``rect`` of the figure, when given), write and close ``fig``."""
+    if rect is None:
+        fig.tight_layout()
+    else:
+        fig.tight_layout(rect=rect)
     fig.savefig(path, dpi=dpi)
-    pyplot().close(fig)
+    _done(fig, path)
     return Path(path)
 
 
@@ -62,7 +106,7 @@ def save_in(fig, outdir, name: str, dpi: int = DPI) -> Path:
     """Write and close ``fig`` as ``outdir/name`` (its layout as it is); return the path."""
     path = Path(outdir) / name
     fig.savefig(path, dpi=dpi)
-    pyplot().close(fig)
+    _done(fig, path)
     return path
 
 
