@@ -14,8 +14,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rotorkin.analysis.engine_cycle import POWER
+from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam import study as study
+from rotorkin.machines import twin_rotor as tr
 
 D = np.pi / 180.0
 HALF_LAST_DIGIT_DEG = 0.005
@@ -316,12 +319,9 @@ def test_sixteen_power_strokes_and_two_chambers_firing_through_the_machine():
     """Section 1.2: "each output-shaft turn ... 16 power strokes"; "at every instant 2 working
     chambers are in the power stroke". Counted on the machine's four-stroke assignment over one
     turn (exact integers), sampled inside every stroke interval (0.1 deg steps)."""
-    from rotorkin.analysis.engine_cycle import POWER
-    from rotorkin.machines import twin_rotor as tr
-
     p, m = table1(), tr.TwinRotor()
     theta = np.arange(0.05, 360.0, 0.1) * D
-    s = tr.strokes(p, m, theta)
+    s = eng.strokes(p, m, theta)
     assert s.shape == (8, theta.size)
     assert np.all(np.sum(s == POWER, axis=0) == 2)
     starts = np.sum((s == POWER) & (np.roll(s, 1, axis=1) != POWER))

@@ -40,9 +40,11 @@ print ``cos phi cos phi`` for ``cos(phi) cos(varphi)``; eq. 18's text says
 paper's symbols phi and varphi are swapped against ours in eq. 2-3 and 14-15
 (the OCR's); here ``phi`` is always the plate tilt and ``varphi`` the spin.
 
-The pistons and chambers (eq. 17-23, :mod:`rotorkin.drives.wobble_cam.chambers`) and
-the fused fast path of the kinematics (:mod:`rotorkin.drives.wobble_cam.fast`)
-live in their own modules; every public name is importable from here.
+The slider-angle limits and chamber angles (eq. 17-20,
+:mod:`rotorkin.drives.wobble_cam.chambers`) and the fused fast path of the
+kinematics (:mod:`rotorkin.drives.wobble_cam.fast`) live in their own modules;
+every public name is importable from here. The piston offset gamma and the
+chamber count are the machine's (:mod:`rotorkin.machines.twin_rotor`).
 """
 
 from __future__ import annotations
@@ -57,20 +59,15 @@ from rotorkin.core.motion import Motion
 from rotorkin.drives.wobble_cam.chambers import (
     CHAMBERS,
     PISTON_OFFSET,
-    PistonLayout,
-    _check_pistons,
     chamber_angles,
     chamber_count,
     max_plate_tilt,
-    min_compression_ratio,
-    piston_layout,
     piston_offset,
-    power_strokes_per_rev,
     slider_angle_extremes,
     slider_angle_limits,
-    volume_cycles_per_rev,
 )
 from rotorkin.drives.wobble_cam.fast import rotor_kinematics
+from rotorkin.machines.twin_rotor import check_pistons as _check_pistons
 
 __all__ = [
     "PISTON_OFFSET",
@@ -514,3 +511,133 @@ def groove_points(params: WobbleCam, theta):
     theta, v, c = _per_roller(params, theta)
     p = groove_point(theta, cam_angle(theta), v, c, params.plate_tilt, params.sphere_radius)
     return np.moveaxis(p, 0, 1)
+
+
+# --------------------------------------------------------------------------------------------
+# pistons for a design compression ratio (eq. 21-22), cycle counts
+# --------------------------------------------------------------------------------------------
+def _gaps(params: WobbleCam):
+    """Smallest and largest centre-line gap of chamber kinds A and B [rad]."""
+    amax, amin = slider_angle_extremes(params.plate_tilt, params.roller_axis_angle)
+    amax, amin = float(amax), float(amin)
+    lo, hi = slider_angle_limits(params.pistons_per_rotor)
+    return (amin - lo, amax - lo), (hi - amax, hi - amin)
+
+
+def min_compression_ratio(params: WobbleCam) -> float:
+    """Compression ratio reached with zero-width pistons; any design ratio must exceed it.
+
+    The piston width beta of :func:`piston_layout` is positive iff
+    ``eps > g_max / g_min``, the ratio of the largest to the smallest
+    centre-line gap of the tighter chamber kind.
+    """
+    ga, gb = _gaps(params)
+    lo, hi = min((ga, gb), key=lambda g: g[0])
+    return hi / lo
+
+
+@dataclass(frozen=True)
+class PistonLayout:
+    """Piston width and chamber extremes for a design compression ratio.
+
+    Attributes
+    ----------
+    compression_ratio : float
+        Design ratio eps, reached by the tighter chamber kind.
+    piston_width : float
+        beta [rad].
+    chamber_a_min, chamber_a_max, chamber_b_min, chamber_b_max : float
+        Extremes of delta_A and delta_B [rad].
+    compression_ratio_a, compression_ratio_b : float
+        ``delta_max / delta_min`` of each kind.
+    design_kind : str
+        ``"A"`` or ``"B"``: the kind with the smaller minimum (ratio = eps).
+    """
+
+    compression_ratio: float
+    piston_width: float
+    chamber_a_min: float
+    chamber_a_max: float
+    chamber_b_min: float
+    chamber_b_max: float
+    compression_ratio_a: float
+    compression_ratio_b: float
+    design_kind: str
+
+    @property
+    def swing(self) -> float:
+        """``delta_max - delta_min = alpha'_max - alpha'_min`` (eq. 23) [rad]."""
+        return self.chamber_a_max - self.chamber_a_min
+
+
+def piston_layout(params: WobbleCam, compression_ratio: float) -> PistonLayout:
+    """Piston width beta giving the design compression ratio (eq. 21-22, generalised).
+
+    The chamber kind with the smaller minimum angle gets exactly
+    ``eps = delta_max/delta_min`` (volume proportional to angle, no clearance
+    volume): with its centre-line gaps ``g_min, g_max``,
+    ``beta = (eps g_min - g_max) / (eps - 1)``. At ``alpha = 90 deg`` both kinds
+    coincide (``alpha'_max + alpha'_min = pi``) and this is eq. 21 (N = 4),
+    ``beta = (eps+1)/(eps-1) alpha'_min - pi (eps+3) / (4 (eps-1))``; for N pistons
+    ``beta = (eps+1)/(eps-1) alpha'_min - (pi + (eps-1)(pi/2 - pi/N)) / (eps-1)``. For other
+    alpha the paper's eq. 21 does not hold (it assumes
+    ``alpha'_max + alpha'_min = pi``); the other kind then has a lower ratio
+    (Fig. 11).
+
+    Parameters
+    ----------
+    params : WobbleCam
+    compression_ratio : float
+        eps, ``min_compression_ratio(params) < eps < inf``.
+
+    Raises
+    ------
+    ParameterError
+        named ``"compression_ratio"`` when eps is not admissible.
+    """
+    eps = float(compression_ratio)
+    lo_ratio = min_compression_ratio(params)
+    if not (np.isfinite(eps) and eps > max(lo_ratio, 1.0)):
+        raise ParameterError(
+            "compression_ratio",
+            f"{eps:g}",
+            f"compression_ratio > {lo_ratio:.4g} (the ratio of zero-width pistons at this "
+            "plate tilt and roller axis angle; a smaller one needs a negative piston width, "
+            "eq. 21)",
+        )
+    ga, gb = _gaps(params)
+    kind, (gmin, gmax) = min((("A", ga), ("B", gb)), key=lambda k: k[1][0])
+    beta = (eps * gmin - gmax) / (eps - 1.0)
+    a = (ga[0] - beta, ga[1] - beta)
+    b = (gb[0] - beta, gb[1] - beta)
+    return PistonLayout(
+        compression_ratio=eps,
+        piston_width=beta,
+        chamber_a_min=a[0],
+        chamber_a_max=a[1],
+        chamber_b_min=b[0],
+        chamber_b_max=b[1],
+        compression_ratio_a=a[1] / a[0],
+        compression_ratio_b=b[1] / b[0],
+        design_kind=kind,
+    )
+
+
+# --------------------------------------------------------------------------------------------
+# counts
+# --------------------------------------------------------------------------------------------
+def volume_cycles_per_rev(params: WobbleCam) -> int:
+    """Volume cycles of each chamber per shaft turn: ``2 |n|`` (alpha' has period pi in varphi).
+
+    Paper section 1.2 and 4.2.3: 4 at n = -2.
+    """
+    return int(round(2.0 * abs(params.spin_ratio)))
+
+
+def power_strokes_per_rev(params: WobbleCam, strokes_per_cycle: int = 4) -> int:
+    """Power strokes per shaft turn: ``2N chambers x 2 |n| / (strokes_per_cycle / 2)``.
+
+    A four-stroke cycle takes two volume cycles: 16 at N = 4, n = -2 (paper section 1.2).
+    """
+    chambers = chamber_count(params.pistons_per_rotor)
+    return int(round(chambers * volume_cycles_per_rev(params) * 2 / strokes_per_cycle))

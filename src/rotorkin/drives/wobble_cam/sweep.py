@@ -35,8 +35,10 @@ import threading
 
 import numpy as np
 
-from rotorkin.core.batch import flag, full, run_blocks, sample_grid
+from rotorkin.analysis.timing import shaft_speed
+from rotorkin.core.batch import Designs, flag, full, run_blocks, sample_grid
 from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.drives.wobble_cam.fast import rotor_kinematics
 
 __all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "SAMPLED_METRICS", "OPTIONAL_METRICS",
            "unsupported", "metric_names", "reasons", "metrics", "curves", "period"]  # fmt: skip
@@ -388,8 +390,6 @@ def _cycle_work(q, k, eps):
 
 def _omega_mean(p) -> float:
     """Time-averaged shaft speed over a turn, as the study computes it [rad/s]."""
-    from rotorkin.analysis.timing import shaft_speed
-
     fine = np.linspace(0.0, 2.0 * np.pi, 20_001)
     speed = p.cfg.get("run", {}).get("speed", 3000.0 * np.pi / 30.0)
     omega = shaft_speed(fine, speed, 2.0 * np.pi)
@@ -660,7 +660,6 @@ def _full_linear_block(C, S, ring, n_spin, tilt, alpha, lo_a, hi_b, kvol, vc):
 
 def _full_general_block(theta, tables, tilt, alpha, lo_a, hi_b, kvol, vc):
     """Block evaluator of every curve for a corrected spin law (the library's fused path)."""
-    from rotorkin.drives.wobble_cam.fast import rotor_kinematics
 
     def fn(lo, hi):
         rot, _ = rotor_kinematics(theta, tables, tilt[lo:hi, None], alpha[lo:hi, None],
@@ -729,7 +728,5 @@ def tolerance_hold(cfg: dict) -> tuple[dict, dict]:
     compression ratio; a deviation of the plate tilt then changes the compression
     ratio instead of the piston width.
     """
-    from rotorkin.core.batch import Designs
-
     beta = metrics(Designs(cfg, {}, 1), ["piston_width_deg"], 3)["piston_width_deg"][0]
     return cfg, {"piston_width": float(np.radians(beta))}

@@ -53,9 +53,20 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
+from scipy.optimize import brentq
 
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import validate_model
+from rotorkin.drives.wobble_cam import cam as cs
+from rotorkin.drives.wobble_cam import figures_synthesis, schema, study
 from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.synthesis import (
+    DWELL_TOLERANCE,
+    SynthesisResult,
+    dwell_fraction,
+    parse_fraction,
+    synthesized_raw_config,
+)
 
 __all__ = [
     "TARGETS",
@@ -246,7 +257,6 @@ def dwell_fractions(slider, params: wc.WobbleCam, tolerance=None):
         Fractions in [0, 1]; near the minimum of ``alpha'`` is the minimum volume
         of chamber kind A, near the maximum that of kind B.
     """
-    from rotorkin.synthesis import DWELL_TOLERANCE, dwell_fraction
 
     tol = DWELL_TOLERANCE if tolerance is None else float(tolerance)
     amax, amin = (
@@ -290,7 +300,6 @@ def slow_for_dwell(params: wc.WobbleCam, fraction: float, admissible=None) -> fl
     ParameterError
         Named ``--target`` with the admissible range (and why it ends there).
     """
-    from scipy.optimize import brentq
 
     if admissible is None:
         s_lo, s_hi, why = SLOW_MIN, 1.0, ""
@@ -358,7 +367,6 @@ def groove_limits(params: wc.WobbleCam, cam) -> tuple[float, float]:
     (limit, pressure_angle) : tuple of float
         [m], [rad].
     """
-    from rotorkin.drives.wobble_cam import cam as cs
 
     kmax = cs.sharpest_bend(params)[0]
     limit = cam.inner_radius / np.sqrt(1.0 + (params.sphere_radius * kmax) ** 2)
@@ -531,7 +539,6 @@ def _groove_checks(cfg, params) -> dict:
 
     Keys of :data:`_GROOVE_ROWS`; one the cams module does not report is ``"n/a"``.
     """
-    from rotorkin.drives.wobble_cam import cam as cs
 
     cam = cs.from_config(cfg)[1]
     summary = cs.summary(params, cam)
@@ -571,7 +578,6 @@ def _check_final(synth, cam, pa_limit, harmonics):
     Uses :func:`rotorkin.drives.wobble_cam.cam.check_roller_radius` itself (``rotorkin export``'s
     check) besides :func:`groove_limits`.
     """
-    from rotorkin.drives.wobble_cam import cam as cs
 
     limits = groove_limits(synth, cam)
     roller_ok, pa_ok = _meets(limits, cam.roller_radius, pa_limit)
@@ -609,17 +615,8 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     and its chamber angle compared with the target at every sample; the drive's own
     functions are compared on 20001 angles.
     """
-    from rotorkin.drives import evaluate
-    from rotorkin.drives.wobble_cam import cam as cs
-    from rotorkin.io.config import validate_config
-    from rotorkin.synthesis import (
-        DWELL_TOLERANCE,
-        SynthesisResult,
-        parse_fraction,
-        synthesized_raw_config,
-    )
 
-    res0 = evaluate(cfg)  # validates the baseline, with config key names in its errors
+    res0 = study.evaluate(cfg)  # validates the baseline, with config key names in its errors
     base = _drive(cfg)
     cam = cs.from_config(cfg)[1]
     limits0 = groove_limits(base, cam)
@@ -661,7 +658,9 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     synth = spin_law_for_target(base, slow, harmonics)
     limits1 = _check_final(synth, cam, pa_limit, harmonics)
     updates = {"drive": {"spin_a": list(synth.spin_a), "spin_b": list(synth.spin_b)}}
-    res1 = evaluate(validate_config(synthesized_raw_config(raw, updates, objective)))
+    res1 = study.evaluate(
+        validate_model(schema.WobbleConfig, synthesized_raw_config(raw, updates, objective))
+    )
     fine = np.linspace(0.0, 2.0 * np.pi, 20_001)
     err_drive = forward_error(synth, slow, fine)
     err_run = _run_error(res1, synth, slow)
@@ -851,10 +850,15 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
         laws[f"spin_{tag}_deg"] = np.degrees(sp[0])
         laws[f"spin_rate_{tag}"] = sp[1]
 
-    def plot(outdir):
-        from rotorkin.drives.wobble_cam import figures_synthesis
+    target_fig = target_slider_angle(
+        figures_synthesis.LAW_THETA, base.spin_ratio, base.plate_tilt, base.roller_axis_angle, slow
+    )[0]
+    closing = groove_closing_angle(base)
 
-        return figures_synthesis.plot_wobble(outdir, base, synth, slow, offset, objective)
+    def plot(outdir):
+        return figures_synthesis.plot_wobble(
+            outdir, base, synth, target_fig, closing, offset, objective
+        )
 
     title = {
         "sine_chamber": "every chamber angle a pure sine of the shaft angle",
