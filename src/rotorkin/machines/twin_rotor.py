@@ -58,7 +58,12 @@ __all__ = [
     "TwinRotor",
     "Chambers",
     "EngineState",
+    "CHECKED",
+    "SECTIONS",
     "check_pistons",
+    "first_violation",
+    "violation",
+    "section_volume_per_radian",
     "piston_offset",
     "chamber_count",
     "volume_per_radian",
@@ -109,10 +114,140 @@ def chamber_count(pistons=4) -> int:
     return 2 * int(pistons)
 
 
-def _positive(name, value, admissible, fmt=fmt_mm):
-    v = float(value)
-    if not (np.isfinite(v) and v > 0.0):
-        raise ParameterError(name, fmt(v), admissible)
+#: Fields of :class:`TwinRotor` that :func:`violation` checks, in the order it checks them.
+CHECKED = (
+    "compression_ratio",
+    "pistons_per_rotor",
+    "section",
+    "outer_radius",
+    "inner_radius",
+    "axial_width",
+    "mean_radius",
+    "section_diameter",
+    "clearance_volume",
+    "inertia_shaft",
+    "inertia_rotor_1",
+    "inertia_rotor_2",
+    "speed_fluctuation",
+)
+SECTIONS = ("rectangular", "circular")
+
+
+def first_violation(checks, shape=()) -> np.ndarray:
+    """Code per element: 0 where no check fails, else 1 + the index of the first failing one.
+
+    Parameters
+    ----------
+    checks : sequence of array_like of bool
+        ``True`` where the check fails; broadcast together (and with ``shape``).
+    """
+    checks = [np.asarray(c, dtype=bool) for c in checks]
+    shape = np.broadcast_shapes(shape, *(c.shape for c in checks))
+    code = np.zeros(shape, dtype=np.int16)
+    for i, bad in enumerate(checks):
+        code[(code == 0) & bad] = i + 1
+    return code
+
+
+def violation(
+    compression_ratio,
+    pistons_per_rotor,
+    section,
+    inner_radius,
+    outer_radius,
+    axial_width,
+    mean_radius,
+    section_diameter,
+    clearance_volume,
+    inertia_shaft=0.0,
+    inertia_rotor_1=0.0,
+    inertia_rotor_2=0.0,
+    speed_fluctuation=0.02,
+) -> np.ndarray:
+    """Which field of the twin-rotor machine is not admissible, per design.
+
+    Every argument is a float (``section`` a string) or an array; they broadcast
+    together. Lengths [m], volume [m^3], inertias [kg m^2].
+
+    Returns
+    -------
+    ndarray of int16
+        0 where admissible, else ``1 + CHECKED.index(field)`` of the first field
+        (in the order of :data:`CHECKED`) that is out of range: compression_ratio > 1;
+        pistons_per_rotor even and >= 2; section rectangular or circular;
+        rectangular: outer_radius > 0, 0 < inner_radius < outer_radius,
+        axial_width > 0; circular: mean_radius > 0,
+        0 < section_diameter < 2 mean_radius; clearance_volume >= 0; inertias >= 0;
+        0 < speed_fluctuation < 1.
+    """
+    with np.errstate(invalid="ignore"):
+        eps = np.asarray(compression_ratio, dtype=float)
+        n = np.asarray(pistons_per_rotor, dtype=float)
+        sec = np.asarray(section)
+        rect = sec == "rectangular"
+        known = rect | (sec == "circular")
+        ri, ro = np.asarray(inner_radius, dtype=float), np.asarray(outer_radius, dtype=float)
+        w = np.asarray(axial_width, dtype=float)
+        rm, d = np.asarray(mean_radius, dtype=float), np.asarray(section_diameter, dtype=float)
+        vc = np.asarray(clearance_volume, dtype=float)
+        cs = np.asarray(speed_fluctuation, dtype=float)
+        inertias = [np.asarray(j, dtype=float) for j in (inertia_shaft, inertia_rotor_1,
+                                                         inertia_rotor_2)]  # fmt: skip
+        return first_violation(
+            [
+                ~(np.isfinite(eps) & (eps > 1.0)),
+                ~((n >= 2) & (n % 2 == 0)),
+                ~known,
+                rect & ~(np.isfinite(ro) & (ro > 0.0)),
+                rect & ~(np.isfinite(ri) & (ri > 0.0) & (ri < ro)),
+                rect & ~(np.isfinite(w) & (w > 0.0)),
+                ~rect & ~(np.isfinite(rm) & (rm > 0.0)),
+                ~rect & ~(np.isfinite(d) & (d > 0.0) & (d < 2.0 * rm)),
+                ~(np.isfinite(vc) & (vc >= 0.0)),
+                *(~(np.isfinite(j) & (j >= 0.0)) for j in inertias),
+                ~(np.isfinite(cs) & (cs > 0.0) & (cs < 1.0)),
+            ]
+        )
+
+
+def _shown(name, value) -> str:
+    """A field's value as the error message shows it."""
+    if name in ("outer_radius", "inner_radius", "axial_width", "mean_radius", "section_diameter"):
+        return fmt_mm(float(value))
+    if name == "clearance_volume":
+        return f"{float(value) * 1e6:.4g} cm^3"
+    if name.startswith("inertia"):
+        return f"{float(value):g} kg*m^2"
+    if name == "section":
+        return repr(value)
+    return f"{float(value):g}"
+
+
+def _admissible(machine, name) -> str:
+    """The admissible range of a field of ``machine``, as the error message states it."""
+    fixed = {
+        "compression_ratio": "compression_ratio > 1 (and above the ratio of zero-width "
+        "pistons, eq. 21)",
+        "section": '"rectangular" or "circular"',
+        "outer_radius": "outer_radius > 0 mm",
+        "axial_width": "axial_width > 0 mm",
+        "mean_radius": "mean_radius > 0 mm",
+        "clearance_volume": "clearance >= 0",
+        "speed_fluctuation": "0 < speed_fluctuation < 1",
+    }
+    if name in fixed:
+        return fixed[name]
+    if name == "inner_radius":
+        return (
+            f"0 mm < inner_radius < outer_radius = {fmt_mm(float(machine.outer_radius))} "
+            "(rectangular annulus)"
+        )
+    if name == "section_diameter":
+        return (
+            f"0 mm < section_diameter < 2 mean_radius = {fmt_mm(2.0 * float(machine.mean_radius))}"
+            " (the torus section must not reach the axis)"
+        )
+    return f"{name} >= 0"
 
 
 @dataclass(frozen=True)
@@ -159,46 +294,13 @@ class TwinRotor:
     speed_fluctuation: float = 0.02
 
     def __post_init__(self):
-        eps = float(self.compression_ratio)
-        if not (np.isfinite(eps) and eps > 1.0):
-            raise ParameterError(
-                "compression_ratio",
-                f"{eps:g}",
-                "compression_ratio > 1 (and above the ratio of zero-width pistons, eq. 21)",
-            )
         check_pistons(self.pistons_per_rotor)
-        if self.section not in ("rectangular", "circular"):
-            raise ParameterError("section", repr(self.section), '"rectangular" or "circular"')
-        if self.section == "rectangular":
-            ri, ro = float(self.inner_radius), float(self.outer_radius)
-            _positive("outer_radius", ro, "outer_radius > 0 mm")
-            if not (np.isfinite(ri) and 0.0 < ri < ro):
-                raise ParameterError(
-                    "inner_radius",
-                    fmt_mm(ri),
-                    f"0 mm < inner_radius < outer_radius = {fmt_mm(ro)} (rectangular annulus)",
-                )
-            _positive("axial_width", self.axial_width, "axial_width > 0 mm")
-        else:
-            _positive("mean_radius", self.mean_radius, "mean_radius > 0 mm")
-            d, rm = float(self.section_diameter), float(self.mean_radius)
-            if not (np.isfinite(d) and 0.0 < d < 2.0 * rm):
-                raise ParameterError(
-                    "section_diameter",
-                    fmt_mm(d),
-                    f"0 mm < section_diameter < 2 mean_radius = {fmt_mm(2.0 * rm)} "
-                    "(the torus section must not reach the axis)",
-                )
-        vc = float(self.clearance_volume)
-        if not (np.isfinite(vc) and vc >= 0.0):
-            raise ParameterError("clearance_volume", f"{vc * 1e6:.4g} cm^3", "clearance >= 0")
-        for name in ("inertia_shaft", "inertia_rotor_1", "inertia_rotor_2"):
-            j = float(getattr(self, name))
-            if not (np.isfinite(j) and j >= 0.0):
-                raise ParameterError(name, f"{j:g} kg*m^2", f"{name} >= 0")
-        cs = float(self.speed_fluctuation)
-        if not (np.isfinite(cs) and 0.0 < cs < 1.0):
-            raise ParameterError("speed_fluctuation", f"{cs:g}", "0 < speed_fluctuation < 1")
+        names = [f for f in CHECKED if f != "section"]
+        code = int(violation(**{f: getattr(self, f) for f in names}, section=self.section))
+        if code:
+            name = CHECKED[code - 1]
+            value = getattr(self, name)
+            raise ParameterError(name, _shown(name, value), _admissible(self, name))
 
     @property
     def chambers(self) -> int:
@@ -268,16 +370,45 @@ class EngineState:
 # --------------------------------------------------------------------------------------------
 # geometry
 # --------------------------------------------------------------------------------------------
-def volume_per_radian(machine: TwinRotor) -> float:
+def section_volume_per_radian(
+    section, inner_radius, outer_radius, axial_width, mean_radius, section_diameter
+):
     """Volume of the cylinder per radian of chamber angle, K [m^3/rad].
 
     Rectangular annulus: ``(R_o^2 - R_i^2) w / 2``; circular torus (Pappus):
-    ``R_m pi d^2 / 4``.
+    ``R_m pi d^2 / 4``. Every argument may be an array (they broadcast).
+
+    Parameters
+    ----------
+    section : str or array_like of str
+        ``"rectangular"`` or ``"circular"``.
+    inner_radius, outer_radius, axial_width : float or array_like
+        ``R_i``, ``R_o``, ``w`` of the rectangular annulus [m].
+    mean_radius, section_diameter : float or array_like
+        ``R_m``, ``d`` of the circular torus [m].
     """
-    if machine.section == "rectangular":
-        ro, ri = machine.outer_radius, machine.inner_radius
-        return 0.5 * (ro * ro - ri * ri) * machine.axial_width
-    return machine.mean_radius * np.pi * machine.section_diameter**2 / 4.0
+    ro, ri = np.asarray(outer_radius, dtype=float), np.asarray(inner_radius, dtype=float)
+    rect = 0.5 * (ro * ro - ri * ri) * axial_width
+    circ = mean_radius * np.pi * np.asarray(section_diameter, dtype=float) ** 2 / 4.0
+    out = np.where(np.asarray(section) == "rectangular", rect, circ)
+    return out[()] if out.ndim == 0 else out
+
+
+def volume_per_radian(machine: TwinRotor) -> float:
+    """Volume of the cylinder per radian of chamber angle, K [m^3/rad].
+
+    :func:`section_volume_per_radian` of the machine's fields.
+    """
+    return float(
+        section_volume_per_radian(
+            machine.section,
+            machine.inner_radius,
+            machine.outer_radius,
+            machine.axial_width,
+            machine.mean_radius,
+            machine.section_diameter,
+        )
+    )
 
 
 def annulus_volume(machine: TwinRotor) -> float:

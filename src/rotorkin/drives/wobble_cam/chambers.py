@@ -28,6 +28,11 @@ __all__ = [
     "max_plate_tilt",
     "slider_angle_extremes",
     "chamber_angles",
+    "chamber_gaps",
+    "design_kind_a",
+    "zero_width_ratio",
+    "piston_width",
+    "compression_ratio_violation",
 ]
 
 #: Angle gamma between a piston's centre line and the nearest rail [rad] (eq. 18-19, N = 4).
@@ -45,10 +50,11 @@ def slider_angle_limits(pistons=4):
 
     Returns
     -------
-    (lower, upper) : tuple of float
+    (lower, upper) : tuple of ndarray
+        Of ``pistons``' shape (it may be an array).
     """
-    g2 = 2.0 * float(piston_offset(pistons))
-    return g2, 2.0 * np.pi / float(pistons) + g2
+    g2 = 2.0 * piston_offset(pistons)
+    return g2, 2.0 * np.pi / np.asarray(pistons, dtype=float) + g2
 
 
 def max_plate_tilt(roller_axis_angle, pistons=4):
@@ -68,8 +74,8 @@ def max_plate_tilt(roller_axis_angle, pistons=4):
         Angle alpha between the roller groups [rad],
         ``pi/2 - pi/N < alpha < pi/2 + pi/N`` (outside, no tilt is admissible and
         NaN is returned).
-    pistons : int, optional
-        Pistons per rotor N (even, default 4).
+    pistons : int or array_like, optional
+        Pistons per rotor N (even, default 4); broadcasts with ``roller_axis_angle``.
 
     Returns
     -------
@@ -77,7 +83,7 @@ def max_plate_tilt(roller_axis_angle, pistons=4):
         Limit plate tilt [rad].
     """
     t = np.tan(np.asarray(roller_axis_angle, dtype=float) / 2.0)
-    tn = np.tan(np.pi / 4.0 - np.pi / (2.0 * float(pistons)))
+    tn = np.tan(np.pi / 4.0 - np.pi / (2.0 * np.asarray(pistons, dtype=float)))
     cos_lim = np.maximum(t * tn, tn / t)
     with np.errstate(invalid="ignore"):
         return np.where(cos_lim < 1.0, np.arccos(np.minimum(cos_lim, 1.0)), np.nan)
@@ -117,17 +123,88 @@ def chamber_angles(slider, piston_width, pistons=4):
     ----------
     slider : array_like
         alpha' [rad].
-    piston_width : float
+    piston_width : float or array_like
         beta [rad].
-    pistons : int, optional
+    pistons : int or array_like, optional
         N, pistons per rotor (default 4, the paper's).
+
+    All three broadcast together.
 
     Returns
     -------
     (delta_A, delta_B) : tuple of ndarray
     """
     slider = np.asarray(slider, dtype=float)
-    g2 = 2.0 * float(piston_offset(pistons))
-    a = slider - g2 - piston_width
-    b = 2.0 * np.pi / float(pistons) + g2 - slider - piston_width
+    lo, hi = slider_angle_limits(pistons)
+    a = slider - lo - piston_width
+    b = hi - slider - piston_width
     return a, b
+
+
+# --------------------------------------------------------------------------------------------
+# piston width for a design compression ratio (eq. 21-22)
+# --------------------------------------------------------------------------------------------
+def chamber_gaps(plate_tilt, roller_axis_angle, pistons=4):
+    """Smallest and largest centre-line gap of chamber kinds A and B [rad].
+
+    The chamber angle of zero-width pistons: kind A ``alpha' - 2 gamma``,
+    kind B ``2 pi/N + 2 gamma - alpha'`` at the slider-angle extremes (eq. 17-19).
+    All arguments broadcast together.
+
+    Returns
+    -------
+    ((a_min, a_max), (b_min, b_max)) : tuple of tuples of ndarray
+    """
+    amax, amin = slider_angle_extremes(plate_tilt, roller_axis_angle)
+    lo, hi = slider_angle_limits(pistons)
+    return (amin - lo, amax - lo), (hi - amax, hi - amin)
+
+
+def design_kind_a(gaps):
+    """Whether kind A is the tighter chamber kind (smaller minimum gap; A on a tie)."""
+    (a0, _), (b0, _) = gaps
+    return a0 <= b0
+
+
+def zero_width_ratio(gaps):
+    """Compression ratio of zero-width pistons, ``g_max / g_min`` of the tighter kind [-].
+
+    Any design compression ratio must exceed it (the piston width of
+    :func:`piston_width` is positive iff ``eps > g_max / g_min``).
+    """
+    (a0, a1), (b0, b1) = gaps
+    return np.where(design_kind_a(gaps), a1 / a0, b1 / b0)
+
+
+def piston_width(gaps, compression_ratio):
+    """Piston width beta giving the design compression ratio eps (eq. 21-22, generalised) [rad].
+
+    The tighter chamber kind, with centre-line gaps ``g_min, g_max``
+    (:func:`chamber_gaps`), gets exactly ``eps = delta_max/delta_min``:
+    ``beta = (eps g_min - g_max) / (eps - 1)``. Broadcasts over designs.
+    """
+    (a0, a1), (b0, b1) = gaps
+    kind_a = design_kind_a(gaps)
+    gmin, gmax = np.where(kind_a, a0, b0), np.where(kind_a, a1, b1)
+    eps = np.asarray(compression_ratio, dtype=float)
+    return (eps * gmin - gmax) / (eps - 1.0)
+
+
+def compression_ratio_violation(gaps, compression_ratio, piston_width=None):
+    """Where a design compression ratio (or a given piston width) is not admissible.
+
+    ``eps`` must be finite and above ``max(1, zero_width_ratio(gaps))``; a given
+    piston width (pistons as manufactured) must be below the smallest gap.
+
+    Returns
+    -------
+    ndarray of bool
+        True where inadmissible.
+    """
+    eps = np.asarray(compression_ratio, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        bad = ~(np.isfinite(eps) & (eps > np.maximum(zero_width_ratio(gaps), 1.0)))
+        if piston_width is not None:
+            (a0, _), (b0, _) = gaps
+            bad = bad | ~(np.minimum(a0, b0) > piston_width)
+    return bad

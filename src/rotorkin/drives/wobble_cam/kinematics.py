@@ -61,15 +61,29 @@ from rotorkin.drives.wobble_cam.chambers import (
     PISTON_OFFSET,
     chamber_angles,
     chamber_count,
+    chamber_gaps,
+    compression_ratio_violation,
+    design_kind_a,
     max_plate_tilt,
     piston_offset,
+    piston_width,
     slider_angle_extremes,
     slider_angle_limits,
+    zero_width_ratio,
 )
 from rotorkin.drives.wobble_cam.fast import rotor_kinematics
 from rotorkin.machines.twin_rotor import check_pistons as _check_pistons
+from rotorkin.machines.twin_rotor import first_violation
 
 __all__ = [
+    "CHECKED",
+    "violation",
+    "roller_axis_angle_limits",
+    "chamber_gaps",
+    "zero_width_ratio",
+    "compression_ratio_violation",
+    "design_kind_a",
+    "piston_width",
     "PISTON_OFFSET",
     "CHAMBERS",
     "piston_offset",
@@ -105,8 +119,87 @@ __all__ = [
 # --------------------------------------------------------------------------------------------
 # parameters
 # --------------------------------------------------------------------------------------------
-def _is_half_integer(x) -> bool:
-    return bool(np.isfinite(x) and x != 0 and abs(2.0 * x - np.round(2.0 * x)) < 1e-9)
+#: Fields of :class:`WobbleCam` that :func:`violation` checks, in the order it checks them.
+CHECKED = ("pistons_per_rotor", "roller_axis_angle", "plate_tilt", "spin_ratio", "sphere_radius")
+
+
+def roller_axis_angle_limits(pistons=4):
+    """Open range of the roller axis angle alpha admitting some plate tilt (eq. 20) [rad].
+
+    ``pi/2 - pi/N < alpha < pi/2 + pi/N`` (45..135 deg at N = 4); broadcasts.
+    """
+    n = np.asarray(pistons, dtype=float)
+    return np.pi / 2.0 - np.pi / n, np.pi / 2.0 + np.pi / n
+
+
+def violation(plate_tilt, roller_axis_angle, spin_ratio, sphere_radius, pistons_per_rotor=4):
+    """Which parameter of the drive is not admissible, per design.
+
+    Parameters broadcast together (floats or arrays): plate tilt phi [rad],
+    roller axis angle alpha [rad], spin ratio n [-], sphere radius r [m],
+    pistons per rotor N [-].
+
+    Returns
+    -------
+    ndarray of int16
+        0 where admissible, else ``1 + CHECKED.index(name)`` of the first
+        parameter (in the order of :data:`CHECKED`) out of range: N even and >= 2;
+        alpha in :func:`roller_axis_angle_limits`; ``0 < phi <
+        max_plate_tilt(alpha, N)`` (eq. 20); n a finite nonzero multiple of 0.5
+        (the motion repeats every shaft turn); r > 0.
+    """
+    with np.errstate(invalid="ignore", divide="ignore"):
+        n_p = np.asarray(pistons_per_rotor, dtype=float)
+        ok_n = (n_p >= 2) & (n_p % 2 == 0)
+        n_f = np.where(ok_n, n_p, 4.0)
+        a = np.asarray(roller_axis_angle, dtype=float)
+        lo, hi = roller_axis_angle_limits(n_f)
+        p = np.asarray(plate_tilt, dtype=float)
+        lim = max_plate_tilt(a, n_f)
+        n = np.asarray(spin_ratio, dtype=float)
+        half_int = np.isfinite(n) & (n != 0) & (np.abs(2.0 * n - np.round(2.0 * n)) < 1e-9)
+        r = np.asarray(sphere_radius, dtype=float)
+        return first_violation(
+            [
+                ~ok_n,
+                ~(np.isfinite(a) & (lo < a) & (a < hi)),
+                ~(np.isfinite(p) & (p > 0.0) & (p < lim)),
+                ~half_int,
+                ~(np.isfinite(r) & (r > 0.0)),
+            ]
+        )
+
+
+def _raise_violation(params, name):
+    """ParameterError naming the field ``name`` of ``params``, its value and its range."""
+    n_p = params.pistons_per_rotor
+    a = float(params.roller_axis_angle)
+    if name == "roller_axis_angle":
+        lo, hi = (float(x) for x in roller_axis_angle_limits(n_p))
+        raise ParameterError(
+            name,
+            fmt_deg(a),
+            f"{fmt_deg(lo)} < roller_axis_angle < {fmt_deg(hi)} (eq. 20: beyond, no plate "
+            f"tilt is admissible for {n_p}-piston rotors)",
+        )
+    if name == "plate_tilt":
+        lim = float(max_plate_tilt(a, n_p))
+        raise ParameterError(
+            name,
+            fmt_deg(float(params.plate_tilt)),
+            f"0 deg < plate_tilt < {np.degrees(lim):.2f} deg (eq. 20 limit at "
+            f"roller_axis_angle = {fmt_deg(a)}, {n_p} pistons per rotor)",
+        )
+    if name == "spin_ratio":
+        raise ParameterError(
+            name,
+            f"{float(params.spin_ratio):g}",
+            "a finite nonzero multiple of 0.5 (e.g. -2, the paper's law), so that "
+            "the motion repeats every shaft turn",
+        )
+    if name == "sphere_radius":
+        raise ParameterError(name, fmt_mm(float(params.sphere_radius)), "sphere_radius > 0 mm")
+    _check_pistons(n_p)  # pistons_per_rotor: raises
 
 
 @dataclass(frozen=True)
@@ -146,36 +239,18 @@ class WobbleCam:
     spin_b: tuple = ()
 
     def __post_init__(self):
-        n_p = self.pistons_per_rotor
-        _check_pistons(n_p)
-        a = float(self.roller_axis_angle)
-        lo, hi = np.pi / 2.0 - np.pi / n_p, np.pi / 2.0 + np.pi / n_p
-        if not (np.isfinite(a) and lo < a < hi):
-            raise ParameterError(
-                "roller_axis_angle",
-                fmt_deg(a),
-                f"{fmt_deg(lo)} < roller_axis_angle < {fmt_deg(hi)} (eq. 20: beyond, no plate "
-                f"tilt is admissible for {n_p}-piston rotors)",
+        _check_pistons(self.pistons_per_rotor)
+        code = int(
+            violation(
+                self.plate_tilt,
+                self.roller_axis_angle,
+                self.spin_ratio,
+                self.sphere_radius,
+                self.pistons_per_rotor,
             )
-        lim = float(max_plate_tilt(a, n_p))
-        p = float(self.plate_tilt)
-        if not (np.isfinite(p) and 0.0 < p < lim):
-            raise ParameterError(
-                "plate_tilt",
-                fmt_deg(p),
-                f"0 deg < plate_tilt < {np.degrees(lim):.2f} deg (eq. 20 limit at "
-                f"roller_axis_angle = {fmt_deg(a)}, {n_p} pistons per rotor)",
-            )
-        if not _is_half_integer(float(self.spin_ratio)):
-            raise ParameterError(
-                "spin_ratio",
-                f"{float(self.spin_ratio):g}",
-                "a finite nonzero multiple of 0.5 (e.g. -2, the paper's law), so that "
-                "the motion repeats every shaft turn",
-            )
-        r = float(self.sphere_radius)
-        if not (np.isfinite(r) and r > 0.0):
-            raise ParameterError("sphere_radius", fmt_mm(r), "sphere_radius > 0 mm")
+        )
+        if code:
+            _raise_violation(self, CHECKED[code - 1])
         for name in ("spin_a", "spin_b"):
             coeffs = np.asarray(getattr(self, name), dtype=float).ravel()
             if not np.all(np.isfinite(coeffs)):
@@ -517,11 +592,9 @@ def groove_points(params: WobbleCam, theta):
 # pistons for a design compression ratio (eq. 21-22), cycle counts
 # --------------------------------------------------------------------------------------------
 def _gaps(params: WobbleCam):
-    """Smallest and largest centre-line gap of chamber kinds A and B [rad]."""
-    amax, amin = slider_angle_extremes(params.plate_tilt, params.roller_axis_angle)
-    amax, amin = float(amax), float(amin)
-    lo, hi = slider_angle_limits(params.pistons_per_rotor)
-    return (amin - lo, amax - lo), (hi - amax, hi - amin)
+    """Smallest and largest centre-line gap of chamber kinds A and B [rad] (floats)."""
+    g = chamber_gaps(params.plate_tilt, params.roller_axis_angle, params.pistons_per_rotor)
+    return tuple((float(lo), float(hi)) for lo, hi in g)
 
 
 def min_compression_ratio(params: WobbleCam) -> float:
@@ -529,11 +602,10 @@ def min_compression_ratio(params: WobbleCam) -> float:
 
     The piston width beta of :func:`piston_layout` is positive iff
     ``eps > g_max / g_min``, the ratio of the largest to the smallest
-    centre-line gap of the tighter chamber kind.
+    centre-line gap of the tighter chamber kind
+    (:func:`rotorkin.drives.wobble_cam.chambers.zero_width_ratio`).
     """
-    ga, gb = _gaps(params)
-    lo, hi = min((ga, gb), key=lambda g: g[0])
-    return hi / lo
+    return float(zero_width_ratio(_gaps(params)))
 
 
 @dataclass(frozen=True)
@@ -596,8 +668,9 @@ def piston_layout(params: WobbleCam, compression_ratio: float) -> PistonLayout:
         named ``"compression_ratio"`` when eps is not admissible.
     """
     eps = float(compression_ratio)
-    lo_ratio = min_compression_ratio(params)
-    if not (np.isfinite(eps) and eps > max(lo_ratio, 1.0)):
+    ga, gb = _gaps(params)
+    if compression_ratio_violation((ga, gb), eps):
+        lo_ratio = min_compression_ratio(params)
         raise ParameterError(
             "compression_ratio",
             f"{eps:g}",
@@ -605,9 +678,8 @@ def piston_layout(params: WobbleCam, compression_ratio: float) -> PistonLayout:
             "plate tilt and roller axis angle; a smaller one needs a negative piston width, "
             "eq. 21)",
         )
-    ga, gb = _gaps(params)
-    kind, (gmin, gmax) = min((("A", ga), ("B", gb)), key=lambda k: k[1][0])
-    beta = (eps * gmin - gmax) / (eps - 1.0)
+    kind = "A" if design_kind_a((ga, gb)) else "B"
+    beta = float(piston_width((ga, gb), eps))
     a = (ga[0] - beta, ga[1] - beta)
     b = (gb[0] - beta, gb[1] - beta)
     return PistonLayout(

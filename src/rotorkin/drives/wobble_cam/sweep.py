@@ -37,8 +37,10 @@ import numpy as np
 
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.batch import Designs, flag, full, run_blocks, sample_grid
+from rotorkin.drives.wobble_cam import chambers as wch
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam.fast import rotor_kinematics
+from rotorkin.machines import twin_rotor as tr
 
 __all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "SAMPLED_METRICS", "OPTIONAL_METRICS",
            "unsupported", "metric_names", "reasons", "metrics", "curves", "period"]  # fmt: skip
@@ -180,47 +182,45 @@ def period(p) -> float:
 # --------------------------------------------------------------------------------------------
 # admissibility: the checks of TwinRotor, WobbleCam, piston_layout and IdealCycle, in order
 # --------------------------------------------------------------------------------------------
+def _machine_args(p) -> dict:
+    """The machine fields of the designs (arrays or base scalars), SI."""
+    args = {
+        f: p.float(f"machine.{f}") for f in tr.CHECKED if f not in ("section", "pistons_per_rotor")
+    }
+    args["pistons_per_rotor"] = np.asarray(p["machine.pistons_per_rotor"])
+    args["section"] = np.asarray(p["machine.section"])
+    return args
+
+
 def reasons(p, code: dict) -> np.ndarray:
-    """Reason code per design: 0 if admissible, else the code of the key the study would name."""
+    """Reason code per design: 0 if admissible, else the code of the key the study would name.
+
+    The machine's and the drive's own vectorised checks
+    (:func:`rotorkin.machines.twin_rotor.violation`,
+    :func:`rotorkin.drives.wobble_cam.kinematics.violation`,
+    :func:`rotorkin.drives.wobble_cam.chambers.compression_ratio_violation`), then the
+    ideal cycle's, in the order the study meets them.
+    """
     r = np.zeros(p.n, dtype=np.int16)
     with np.errstate(all="ignore"):
-        eps = p.float("machine.compression_ratio")
-        flag(r, ~(np.isfinite(eps) & (eps > 1.0)), code["machine.compression_ratio"])
-        npist = np.asarray(p["machine.pistons_per_rotor"])
-        flag(r, ~((npist >= 2) & (npist % 2 == 0)), code["machine.pistons_per_rotor"])
+        m = _machine_args(p)
+        first = tr.violation(**m)
+        for i, name in enumerate(tr.CHECKED, start=1):
+            if f"machine.{name}" in code:
+                flag(r, first == i, code[f"machine.{name}"])
+        tilt, alpha = p.float("drive.plate_tilt"), p.float("drive.roller_axis_angle")
+        first = wc.violation(tilt, alpha, p.float("drive.spin_ratio"),
+                             p.float("drive.sphere_radius"), m["pistons_per_rotor"])  # fmt: skip
+        for i, name in enumerate(wc.CHECKED, start=1):
+            key = "machine.pistons_per_rotor" if name == "pistons_per_rotor" else f"drive.{name}"
+            flag(r, first == i, code[key])
+        npist = m["pistons_per_rotor"]
         n_f = np.where((npist >= 2) & (npist % 2 == 0), npist, 4).astype(float)
-        rect = np.asarray(p["machine.section"]) == "rectangular"
-        ri, ro = p.float("machine.inner_radius"), p.float("machine.outer_radius")
-        w = p.float("machine.axial_width")
-        flag(r, rect & ~(np.isfinite(ro) & (ro > 0.0)), code["machine.outer_radius"])
-        flag(r, rect & ~(np.isfinite(ri) & (ri > 0.0) & (ri < ro)), code["machine.inner_radius"])
-        flag(r, rect & ~(np.isfinite(w) & (w > 0.0)), code["machine.axial_width"])
-        rm, d = p.float("machine.mean_radius"), p.float("machine.section_diameter")
-        flag(r, ~rect & ~(np.isfinite(rm) & (rm > 0.0)), code["machine.mean_radius"])
-        bad_d = ~(np.isfinite(d) & (d > 0.0) & (d < 2.0 * rm))
-        flag(r, ~rect & bad_d, code["machine.section_diameter"])
-        vc = p.float("machine.clearance_volume")
-        flag(r, ~(np.isfinite(vc) & (vc >= 0.0)), code["machine.clearance_volume"])
-        # WobbleCam
-        a = p.float("drive.roller_axis_angle")
-        lo, hi = np.pi / 2.0 - np.pi / n_f, np.pi / 2.0 + np.pi / n_f
-        flag(r, ~(np.isfinite(a) & (lo < a) & (a < hi)), code["drive.roller_axis_angle"])
-        lim = _max_tilt(a, n_f)
-        tilt = p.float("drive.plate_tilt")
-        flag(r, ~(np.isfinite(tilt) & (tilt > 0.0) & (tilt < lim)), code["drive.plate_tilt"])
-        n = p.float("drive.spin_ratio")
-        half_int = np.isfinite(n) & (n != 0) & (np.abs(2.0 * n - np.round(2.0 * n)) < 1e-9)
-        flag(r, ~half_int, code["drive.spin_ratio"])
-        rs = p.float("drive.sphere_radius")
-        flag(r, ~(np.isfinite(rs) & (rs > 0.0)), code["drive.sphere_radius"])
-        # piston_layout: eps above the zero-width-piston ratio
-        g = _gaps(tilt, a, n_f)
-        lo_ratio = _min_ratio(g)
-        flag(r, ~(np.isfinite(eps) & (eps > np.maximum(lo_ratio, 1.0))),
-             code["machine.compression_ratio"])  # fmt: skip
-        if "piston_width" in p.extra:  # tolerance analysis: the pistons as manufactured
-            beta = p.extra["piston_width"]
-            flag(r, ~(np.minimum(g[0][0], g[1][0]) > beta), code["machine.compression_ratio"])
+        gaps = wc.chamber_gaps(tilt, alpha, n_f)
+        bad = wc.compression_ratio_violation(
+            gaps, m["compression_ratio"], p.extra.get("piston_width")
+        )
+        flag(r, bad, code["machine.compression_ratio"])
         # IdealCycle
         pa = p.float("loads.ambient_pressure")
         flag(r, ~(np.isfinite(pa) & (pa > 0.0)), code["loads.ambient_pressure"])
@@ -229,30 +229,6 @@ def reasons(p, code: dict) -> np.ndarray:
         q = p.float("loads.heat_per_cycle")
         flag(r, ~(np.isfinite(q) & (q >= 0.0)), code["loads.heat_per_cycle"])
     return r
-
-
-def _max_tilt(alpha, n_f):
-    """:func:`~.kinematics.max_plate_tilt` for arrays of piston counts [rad]."""
-    t = np.tan(np.asarray(alpha, dtype=float) / 2.0)
-    tn = np.tan(np.pi / 4.0 - np.pi / (2.0 * np.asarray(n_f, dtype=float)))
-    cos_lim = np.maximum(t * tn, tn / t)
-    with np.errstate(invalid="ignore"):
-        return np.where(cos_lim < 1.0, np.arccos(np.minimum(cos_lim, 1.0)), np.nan)
-
-
-def _gaps(tilt, alpha, n_f):
-    """Centre-line gaps ``((A_min, A_max), (B_min, B_max))`` of the two chamber kinds [rad]."""
-    amax, amin = wc.slider_angle_extremes(tilt, alpha)
-    g2 = 2.0 * wc.piston_offset(n_f)
-    lo, hi = g2, 2.0 * np.pi / n_f + g2
-    return (amin - lo, amax - lo), (hi - amax, hi - amin)
-
-
-def _min_ratio(g):
-    """``g_max / g_min`` of the tighter kind (A on a tie, as ``min`` picks the first)."""
-    (a0, a1), (b0, b1) = g
-    first = a0 <= b0
-    return np.where(first, a1 / a0, b1 / b0)
 
 
 # --------------------------------------------------------------------------------------------
@@ -270,11 +246,10 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
     spin = p.float("drive.spin_ratio")
     eps = p.float("machine.compression_ratio")
     amax, amin = wc.slider_angle_extremes(tilt, alpha)
-    ga, gb = _gaps(tilt, alpha, n_f)
-    kind_a = ga[0] <= gb[0]
-    gmin, gmax = np.where(kind_a, ga[0], gb[0]), np.where(kind_a, ga[1], gb[1])
+    ga, gb = wc.chamber_gaps(tilt, alpha, n_f)
+    kind_a = wc.design_kind_a((ga, gb))
     fixed = "piston_width" in p.extra  # tolerance analysis: pistons as manufactured
-    beta = p.extra["piston_width"] if fixed else (eps * gmin - gmax) / (eps - 1.0)
+    beta = p.extra["piston_width"] if fixed else wch.piston_width((ga, gb), eps)
     a_lo, a_hi, b_lo, b_hi = ga[0] - beta, ga[1] - beta, gb[0] - beta, gb[1] - beta
     d_lo, d_hi = np.where(kind_a, a_lo, b_lo), np.where(kind_a, a_hi, b_hi)
     cycles = np.round(2.0 * np.abs(spin))  # volume cycles per rev, an integer
@@ -289,11 +264,11 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
         "piston_width_deg": deg(beta),
         "volume_cycles_per_rev": cycles,
         "power_strokes_per_rev": np.round(chambers * cycles * 2 / 4),
-        "max_plate_tilt_deg": deg(_max_tilt(alpha, n_f)),
+        "max_plate_tilt_deg": deg(wc.max_plate_tilt(alpha, n_f)),
         "piston_offset_gamma_deg": deg(wc.piston_offset(n_f)),
         "chambers": chambers,
         "compression_ratio": d_hi / d_lo if fixed else eps,
-        "min_compression_ratio": _min_ratio((ga, gb)),
+        "min_compression_ratio": wc.zero_width_ratio((ga, gb)),
         "chamber_a_angle_min_deg": deg(a_lo),
         "chamber_a_angle_max_deg": deg(a_hi),
         "chamber_b_angle_min_deg": deg(b_lo),
@@ -377,10 +352,10 @@ def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> di
 
 def _section(p):
     """Chamber volume per radian of chamber angle, ``V = K delta + V_c`` [m^3/rad]."""
-    rect = np.asarray(p["machine.section"]) == "rectangular"
-    ro, ri, w = (p.float(f"machine.{k}") for k in ("outer_radius", "inner_radius", "axial_width"))
-    rm, dd = p.float("machine.mean_radius"), p.float("machine.section_diameter")
-    return np.where(rect, 0.5 * (ro * ro - ri * ri) * w, rm * np.pi * dd**2 / 4.0)
+    keys = ("inner_radius", "outer_radius", "axial_width", "mean_radius", "section_diameter")
+    return tr.section_volume_per_radian(
+        p["machine.section"], *(p.float(f"machine.{k}") for k in keys)
+    )
 
 
 def _cycle_work(q, k, eps):
@@ -531,8 +506,8 @@ def _sampled_full(p, tilt, alpha, spin, n_f, beta, samples: int, threads) -> dic
     tilt, alpha, spin, n_f, beta = (full(v, n) for v in (tilt, alpha, spin, n_f, beta))
     kvol = full(_section(p), n)
     vc = full(p.float("machine.clearance_volume"), n)
-    g2 = 2.0 * wc.piston_offset(n_f)
-    lo_a, hi_b = g2 + beta, 2.0 * np.pi / n_f + g2 - beta  # delta_A = s - lo_a, delta_B = hi_b - s
+    lo, hi = wc.slider_angle_limits(n_f)
+    lo_a, hi_b = lo + beta, hi - beta  # delta_A = s - lo_a, delta_B = hi_b - s (eq. 18-19)
     theta = sample_grid(2.0 * np.pi, samples)
     linear = not (p.cfg["drive"].get("spin_a") or p.cfg["drive"].get("spin_b"))
     out = {k: np.empty(n) for k in _FULL_KEYS}
@@ -698,18 +673,15 @@ def curves(p, points: int):
         spin = _spin_tables(p, float(ns), theta)
         t_, a_, nf = tilt[rows, None], alpha[rows, None], npist[rows, None]
         q, d1, d2, d3 = wc.rotor_angles_from_spin(theta, spin, t_, a_)
-        ga, gb = _gaps(t_, a_, nf)
-        kind_a = ga[0] <= gb[0]
-        gmin, gmax = np.where(kind_a, ga[0], gb[0]), np.where(kind_a, ga[1], gb[1])
         beta = p.extra.get("piston_width")
         if beta is None:
-            beta = (eps[rows, None] * gmin - gmax) / (eps[rows, None] - 1.0)
+            beta = wch.piston_width(wc.chamber_gaps(t_, a_, nf), eps[rows, None])
         slider = q[1] - q[0]
-        g2 = 2.0 * wc.piston_offset(nf)
+        delta_a, delta_b = wc.chamber_angles(slider, beta, nf)
         values = {
             "slider_angle_deg": np.degrees(slider),
-            "chamber_a_angle_deg": np.degrees(slider - g2 - beta),
-            "chamber_b_angle_deg": np.degrees(2.0 * np.pi / nf + g2 - slider - beta),
+            "chamber_a_angle_deg": np.degrees(delta_a),
+            "chamber_b_angle_deg": np.degrees(delta_b),
         }
         for k in (0, 1):
             values[f"rotor{k + 1}_angle_deg"] = np.degrees(q[k])
