@@ -755,3 +755,56 @@ def test_spin_correction_derivatives_match_finite_differences():
 def test_spin_correction_that_reverses_the_spin_is_refused():
     with pytest.raises(ParameterError, match="spin_a"):
         wc.WobbleCam(np.radians(45.0), spin_a=(0.0, 0.0, 0.0, 1.0))  # 4 * 1.0 > |n| = 2
+
+
+# --------------------------------------------------------------------------------------------
+# one source of defaults: the schema
+# --------------------------------------------------------------------------------------------
+def _schema_defaults() -> dict:
+    """Every section of a minimal wobble_cam config, parsed through the schema (SI)."""
+    from rotorkin.core.schema import validate_model
+    from rotorkin.drives.wobble_cam.schema import WobbleConfig
+
+    return validate_model(WobbleConfig, {"drive": {"type": "wobble_cam", "plate_tilt": "45 deg"}})
+
+
+def _dataclass_defaults(cls) -> dict:
+    from dataclasses import MISSING, fields
+
+    out = {}
+    for f in fields(cls):
+        if f.default is not MISSING:
+            out[f.name] = f.default
+        elif f.default_factory is not MISSING:
+            out[f.name] = f.default_factory()
+    return out
+
+
+def test_every_dataclass_default_is_the_schema_default():
+    """WobbleCam, TwinRotor, SphericalCam and IdealCycle defaults equal the config's (SI)."""
+    from rotorkin.analysis.engine_cycle import IdealCycle
+    from rotorkin.drives.wobble_cam.cam import SphericalCam
+    from rotorkin.machines.twin_rotor import TwinRotor
+
+    cfg = _schema_defaults()
+    # the study builds WobbleCam.pistons_per_rotor from machine.pistons_per_rotor
+    sections = {
+        wc.WobbleCam: {**cfg["drive"], "pistons_per_rotor": cfg["machine"]["pistons_per_rotor"]},
+        TwinRotor: cfg["machine"],
+        SphericalCam: cfg["cam"],
+        IdealCycle: cfg["loads"],
+    }
+    mismatched = []
+    for cls, section in sections.items():
+        for name, ours in _dataclass_defaults(cls).items():
+            assert name in section, f"{cls.__name__}.{name} has no config key"
+            theirs = section[name]
+            if isinstance(ours, (tuple, list)):
+                same = tuple(ours) == tuple(theirs)
+            elif isinstance(ours, str):
+                same = ours == theirs
+            else:
+                same = float(ours) == pytest.approx(float(theirs), rel=1e-15, abs=0.0)
+            if not same:
+                mismatched.append(f"{cls.__name__}.{name} = {ours!r}, schema {theirs!r}")
+    assert not mismatched, "; ".join(mismatched)

@@ -92,7 +92,7 @@ class SphericalCam:
     """
 
     sphere_radius: float
-    roller_radius: float = 0.006
+    roller_radius: float = 0.004
     shell_thickness: float = 0.012
     groove_depth: float = 0.008
 

@@ -220,7 +220,7 @@ class WobbleCam:
         repeats every shaft turn. Paper: -2 (default).
     sphere_radius : float, optional
         Radius r of the inner roller centres, i.e. of the groove centre-line
-        sphere [m] (default 0.05; the paper gives no value).
+        sphere [m] (default 0.06, the config default; the paper gives no value).
     pistons_per_rotor : int, optional
         Pistons N on each rotor, even, >= 2 (paper: 4, default). It only sets the
         interference limits of eq. 20 (and the chamber bookkeeping).
@@ -233,7 +233,7 @@ class WobbleCam:
     plate_tilt: float
     roller_axis_angle: float = np.pi / 2.0
     spin_ratio: float = -2.0
-    sphere_radius: float = 0.05
+    sphere_radius: float = 0.06
     pistons_per_rotor: int = 4
     spin_a: tuple = ()
     spin_b: tuple = ()
