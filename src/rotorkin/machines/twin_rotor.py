@@ -294,13 +294,17 @@ class TwinRotor:
     speed_fluctuation: float = 0.02
 
     def __post_init__(self):
-        check_pistons(self.pistons_per_rotor)
-        names = [f for f in CHECKED if f != "section"]
-        code = int(violation(**{f: getattr(self, f) for f in names}, section=self.section))
+        try:
+            code = int(violation(**{f: getattr(self, f) for f in CHECKED}))
+        except (TypeError, ValueError):  # a value that is no number at all
+            check_pistons(self.pistons_per_rotor)
+            raise
         if code:
             name = CHECKED[code - 1]
-            value = getattr(self, name)
-            raise ParameterError(name, _shown(name, value), _admissible(self, name))
+            if name == "pistons_per_rotor":
+                check_pistons(self.pistons_per_rotor)  # raises, with the reason
+            raise ParameterError(name, _shown(name, getattr(self, name)), _admissible(self, name))
+        check_pistons(self.pistons_per_rotor)  # an int, not only an integral value
 
     @property
     def chambers(self) -> int:
