@@ -84,9 +84,9 @@ def test_parameter_arrays_broadcast_against_angle_arrays(designs, theta, n):
     ps = [_drive(t, a, n) for t, a in designs]
     tilt = np.array([p.plate_tilt for p in ps])[:, None]
     alpha = np.array([p.roller_axis_angle for p in ps])[:, None]
-    q, d1, d2, d3 = wc.rotor_angles_from_spin(theta, n, tilt, alpha)
+    q, d1, d2, d3 = wc.rotor_angles_from_spin(tilt, alpha, n, theta)
     assert q.shape == (2, len(ps), theta.size)
-    slider = wc.slider_angle(n * theta, tilt, alpha)
+    slider = wc.slider_angle(tilt, alpha, n * theta)
     assert slider.shape == (len(ps), theta.size)
     for i, p in enumerate(ps):
         ref = wc.rotor_angles(p, theta)
@@ -126,7 +126,7 @@ def test_closed_forms_broadcast_over_designs(designs):
         assert ratio[i] == pytest.approx(wc.min_compression_ratio(p), rel=1e-13)
     # the chamber angles of arrays: extremes of kind A at the slider extremes
     amax, amin = wc.slider_angle_extremes(tilt, alpha)
-    da, db = wc.chamber_angles(np.stack([amin, amax]), beta, n_p)
+    da, db = wc.chamber_angles(beta, np.stack([amin, amax]), pistons=n_p)
     for i, (p, e) in enumerate(rows):
         layout = wc.piston_layout(p, e)
         _close(da[:, i], [layout.chamber_a_min, layout.chamber_a_max])
@@ -246,11 +246,11 @@ def test_roller_axis_angles_60_and_120_deg_exchange_the_rotors(tilt, n, theta):
 @given(st.floats(1.0 * D, 44.0 * D), hnp.arrays(float, st.integers(1, 6), elements=angles))
 def test_slider_angle_mirrors_and_chamber_kinds_swap(tilt, varphi):
     """alpha'(120 deg; varphi) = pi - alpha'(60 deg; varphi + pi/2); delta_A and delta_B swap."""
-    s120 = wc.slider_angle(varphi, tilt, 120.0 * D)
-    s60 = wc.slider_angle(varphi + 0.5 * np.pi, tilt, 60.0 * D)
+    s120 = wc.slider_angle(tilt, 120.0 * D, varphi)
+    s60 = wc.slider_angle(tilt, 60.0 * D, varphi + 0.5 * np.pi)
     _close(s120, np.pi - s60, 1e-10)
     beta = 0.1
-    a120, b120 = wc.chamber_angles(s120, beta)
-    a60, b60 = wc.chamber_angles(s60, beta)
+    a120, b120 = wc.chamber_angles(beta, s120)
+    a60, b60 = wc.chamber_angles(beta, s60)
     _close(a120, b60, 1e-10)
     _close(b120, a60, 1e-10)

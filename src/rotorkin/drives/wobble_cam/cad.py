@@ -90,7 +90,10 @@ def setup(cfg: dict):
             "makes STL files beyond 50 MB; coarser than a tenth of the roller radius loses the "
             "groove's shape)",
         )
-    sph.check_roller_radius(drive, cam)
+    try:
+        sph.check_roller_radius(drive, cam)
+    except ParameterError as exc:
+        raise ParameterError(sph.config_key(exc.name), exc.value, exc.admissible) from None
     return drive, cam, tol
 
 
@@ -458,7 +461,7 @@ def export_wobble(cfg: dict, fmt: str, stage_dir, name: str) -> list[Path]:
         STEP without build123d.
     """
     if fmt not in FORMATS:
-        raise ParameterError("--format", repr(fmt), " | ".join(FORMATS))
+        raise ParameterError("fmt", repr(fmt), " | ".join(FORMATS))
     stage = Path(stage_dir)
     if fmt == "step":
         _bd()

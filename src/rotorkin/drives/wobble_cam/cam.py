@@ -99,11 +99,11 @@ class SphericalCam:
     def __post_init__(self):
         r = float(self.sphere_radius)
         if not (np.isfinite(r) and r > 0.0):
-            raise ParameterError("drive.sphere_radius", fmt_mm(r), "sphere_radius > 0 mm")
+            raise ParameterError("sphere_radius", fmt_mm(r), "sphere_radius > 0 mm")
         t = float(self.shell_thickness)
         if not (np.isfinite(t) and 0.0 < t < 2.0 * r):
             raise ParameterError(
-                "cam.shell_thickness",
+                "shell_thickness",
                 fmt_mm(t),
                 f"0 mm < shell_thickness < {fmt_mm(2.0 * r)} (twice the sphere radius: the "
                 "shell spans sphere_radius -+ shell_thickness/2)",
@@ -111,7 +111,7 @@ class SphericalCam:
         d = float(self.groove_depth)
         if not (np.isfinite(d) and 0.5 * t < d < t):
             raise ParameterError(
-                "cam.groove_depth",
+                "groove_depth",
                 fmt_mm(d),
                 f"{fmt_mm(0.5 * t)} < groove_depth < {fmt_mm(t)} (the groove, cut from the "
                 "shell's inner surface, must reach the roller centres at sphere_radius and "
@@ -121,7 +121,7 @@ class SphericalCam:
         ri = r - 0.5 * t
         if not (np.isfinite(rho) and 0.0 < rho < ri):
             raise ParameterError(
-                "cam.roller_radius",
+                "roller_radius",
                 fmt_mm(rho),
                 f"0 mm < roller_radius < {fmt_mm(ri)} (the shell's inner radius)",
             )
@@ -173,8 +173,16 @@ def from_config(cfg: dict):
         raise ParameterError(key, exc.value, exc.admissible) from None
     c = cfg.get("cam") or {}
     keys = ("roller_radius", "shell_thickness", "groove_depth")
-    cam = SphericalCam(drive.sphere_radius, **{k: c[k] for k in keys if k in c})
+    try:
+        cam = SphericalCam(drive.sphere_radius, **{k: c[k] for k in keys if k in c})
+    except ParameterError as exc:
+        raise ParameterError(config_key(exc.name), exc.value, exc.admissible) from None
     return drive, cam
+
+
+def config_key(name: str) -> str:
+    """Config key of a :class:`SphericalCam` field (``sphere_radius`` is the drive's)."""
+    return "drive.sphere_radius" if name == "sphere_radius" else f"cam.{name}"
 
 
 # --------------------------------------------------------------------------------------------
@@ -196,7 +204,7 @@ def groove_frame(drive: wc.WobbleCam, theta):
 def _check_pair(drive: wc.WobbleCam, cam: SphericalCam) -> None:
     if abs(cam.sphere_radius - drive.sphere_radius) > 1e-12 * drive.sphere_radius:
         raise ParameterError(
-            "drive.sphere_radius",
+            "sphere_radius",
             f"{fmt_mm(drive.sphere_radius)} (cam: {fmt_mm(cam.sphere_radius)})",
             "the same sphere radius for the drive and its cam",
         )
@@ -341,7 +349,7 @@ def sharpest_bend(drive: wc.WobbleCam, roller: int | None = None):
 
 
 def check_roller_radius(drive: wc.WobbleCam, cam: SphericalCam) -> float:
-    """Raise ``ParameterError("cam.roller_radius")`` where the roller undercuts a wall.
+    """Raise ``ParameterError("roller_radius")`` where the roller undercuts a wall.
 
     The check is ``rho < R_i / sqrt(1 + (r kappa_g)^2)`` (:func:`roller_radius_limit` at
     the inner shell radius, the strictest radius where the wall exists) everywhere on
@@ -357,7 +365,7 @@ def check_roller_radius(drive: wc.WobbleCam, cam: SphericalCam) -> float:
     limit = cam.inner_radius / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
     if cam.roller_radius >= limit:
         raise ParameterError(
-            "cam.roller_radius",
+            "roller_radius",
             fmt_mm(cam.roller_radius),
             f"roller_radius < {fmt_mm(limit)}: at shaft angle theta = {fmt_deg(theta)} "
             f"(roller {ROLLER_NAMES[roller]}) the groove centre-line bends with radius "

@@ -109,7 +109,7 @@ def slider_angle_extremes(plate_tilt, roller_axis_angle):
     return 2.0 * np.arctan(t / c), 2.0 * np.arctan(c * t)
 
 
-def chamber_angles(slider, piston_width, pistons=4):
+def chamber_angles(piston_width, slider, *, pistons=4):
     """Angles of the two chamber kinds from the slider angle (eq. 18-19) [rad].
 
     ``delta_A = alpha' - 2 gamma - beta`` (rotor-1 piston to the rotor-2 piston
@@ -121,10 +121,10 @@ def chamber_angles(slider, piston_width, pistons=4):
 
     Parameters
     ----------
-    slider : array_like
-        alpha' [rad].
     piston_width : float or array_like
         beta [rad].
+    slider : array_like
+        alpha' [rad].
     pistons : int or array_like, optional
         N, pistons per rotor (default 4, the paper's).
 

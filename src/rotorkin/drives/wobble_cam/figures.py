@@ -160,7 +160,7 @@ def fig_chamber_angle(params, layout, outdir: Path, points: int = 1441) -> Path:
     plt = pyplot()
     theta = np.linspace(0.0, 2.0 * np.pi, points)
     q = wc.rotor_angles(params, theta)[0]
-    da, db = wc.chamber_angles(q[1] - q[0], layout.piston_width, params.pistons_per_rotor)
+    da, db = wc.chamber_angles(layout.piston_width, q[1] - q[0], pistons=params.pistons_per_rotor)
     fig, ax = plt.subplots(figsize=(9, 5))
     t = np.degrees(theta)
     ax.plot(t, np.degrees(da), color="C0", lw=1.8, label="chamber kind A, delta_A (eq. 19)")

@@ -53,14 +53,14 @@ def plot_wobble(outdir, base, synth, target, groove_closing, offset, objective):
         )
     for p, st in ((base, _BASE), (synth, _SYN)):
         sp = wc.spin_law(p, theta)
-        delta = wc.slider_angle(sp[0], p.plate_tilt, p.roller_axis_angle) - offset
+        delta = wc.slider_angle(p.plate_tilt, p.roller_axis_angle, sp[0]) - offset
         axes[0].plot(x, np.degrees(delta), **st)
         axes[1].plot(x, sp[1], **st)
     axes[0].plot(x, np.degrees(target - offset), color="k", ls=(0, (4, 3)), lw=1.0, label="target")
     axes[0].plot([], [], color="C2", alpha=0.3, lw=6, label="dwell bands")
     for p, st in ((base, _BASE), (synth, _SYN)):
         sp = wc.spin_law(p, theta)[0]
-        err = np.degrees(wc.slider_angle(sp, p.plate_tilt, p.roller_axis_angle) - target)
+        err = np.degrees(wc.slider_angle(p.plate_tilt, p.roller_axis_angle, sp) - target)
         axes[2].semilogy(
             x,
             np.maximum(np.abs(err), 1e-17),

@@ -44,8 +44,8 @@ def _partials(drive: wc.WobbleCam, theta):
     spin = wc.spin_law(drive, theta)
     cam = wc.cam_angle(theta)
     phi, r = drive.plate_tilt, drive.sphere_radius
-    p = wc.groove_point(theta, cam, spin[0], c, phi, r)
-    pu = wc.groove_point(theta, cam, spin[0], c + 0.5 * np.pi, phi, r)
+    p = wc.groove_point(phi, r, theta, cam, spin[0], c)
+    pu = wc.groove_point(phi, r, theta, cam, spin[0], c + 0.5 * np.pi)
     return p, -_cross_x(p), pu, spin
 
 
@@ -90,7 +90,7 @@ def groove_period(drive: wc.WobbleCam) -> float:
         if np.max(np.abs(g1 - g0)) < 1e-9 * drive.sphere_radius:
             return period
     raise ParameterError(  # pragma: no cover - WobbleCam admits only closing laws
-        "drive.spin_ratio", f"{drive.spin_ratio:g}", "a law whose grooves close"
+        "spin_ratio", f"{drive.spin_ratio:g}", "a law whose grooves close"
     )
 
 

@@ -312,7 +312,7 @@ def cam_angle(theta):
     return -np.asarray(theta, dtype=float)
 
 
-def projected_angle(u, plate_tilt):
+def projected_angle(plate_tilt, u):
     """Angle of a plate radius projected on the shaft frame's y1z1 plane, and derivatives.
 
     A plate radius at angle ``u`` in the plate plane (from z2 towards y2) seen
@@ -328,10 +328,10 @@ def projected_angle(u, plate_tilt):
 
     Parameters
     ----------
-    u : array_like
-        Angle in the plate plane [rad].
     plate_tilt : array_like
         phi [rad], ``0 <= phi < pi/2``.
+    u : array_like
+        Angle in the plate plane [rad] (broadcast with ``plate_tilt``).
 
     Returns
     -------
@@ -354,7 +354,7 @@ def projected_angle(u, plate_tilt):
     return e0, e1, e2, e3
 
 
-def rotor_angles_from_spin(theta, spin, plate_tilt, roller_axis_angle, *, threads=None):
+def rotor_angles_from_spin(plate_tilt, roller_axis_angle, spin, theta, *, threads=None):
     """Angles of both rotors and their derivatives, for any spin law (eq. 13-14).
 
     ``Phi_k = theta + E(u_k)``, ``u_k = varphi(theta) + s_k alpha/2``,
@@ -367,13 +367,13 @@ def rotor_angles_from_spin(theta, spin, plate_tilt, roller_axis_angle, *, thread
 
     Parameters
     ----------
-    theta : array_like, shape (...)
-        Shaft angle [rad].
+    plate_tilt, roller_axis_angle : float or array_like
+        phi and alpha [rad] (broadcast with ``theta``).
     spin : sequence of 4 array_like, or float
         ``varphi, varphi', varphi'', varphi'''`` at ``theta`` [rad, -, 1/rad, 1/rad^2];
         a number n stands for the linear law ``varphi = n theta``.
-    plate_tilt, roller_axis_angle : float or array_like
-        phi and alpha [rad] (broadcast with ``theta``).
+    theta : array_like, shape (...)
+        Shaft angle [rad].
     threads : int, optional
         Threads for large arrays (default ``$ROTORKIN_THREADS`` or 1); the
         values do not depend on it.
@@ -386,7 +386,7 @@ def rotor_angles_from_spin(theta, spin, plate_tilt, roller_axis_angle, *, thread
         Angles are measured in the yz plane from +z towards +y; at theta = 0
         and varphi = 0 rotor 1 is at ``-alpha'_max/2``, rotor 2 at ``+alpha'_max/2``.
     """
-    rotor, _ = rotor_kinematics(theta, spin, plate_tilt, roller_axis_angle, threads=threads)
+    rotor, _ = rotor_kinematics(plate_tilt, roller_axis_angle, spin, theta, threads=threads)
     return tuple(rotor)
 
 
@@ -404,7 +404,7 @@ def rotor_angles(params: WobbleCam, theta, *, threads=None):
     """
     theta = np.asarray(theta, dtype=float)
     return rotor_angles_from_spin(
-        theta, _spin(params, theta), params.plate_tilt, params.roller_axis_angle, threads=threads
+        params.plate_tilt, params.roller_axis_angle, _spin(params, theta), theta, threads=threads
     )
 
 
@@ -438,7 +438,7 @@ def kinematics(params: WobbleCam, theta, piston_width, *, threads=None) -> Kinem
     """Rotor angles, derivatives and chamber angles of both kinds, in one fused pass.
 
     The same values as :func:`rotor_angles` followed by
-    ``chamber_angles(q[1] - q[0], piston_width, pistons_per_rotor)``, computed
+    ``chamber_angles(piston_width, q[1] - q[0], pistons=pistons_per_rotor)``, computed
     block by block (:func:`rotorkin.drives.wobble_cam.fast.rotor_kinematics`).
 
     Parameters
@@ -453,11 +453,11 @@ def kinematics(params: WobbleCam, theta, piston_width, *, threads=None) -> Kinem
     """
     theta = np.asarray(theta, dtype=float)
     rotor, cham = rotor_kinematics(
-        theta,
-        _spin(params, theta),
         params.plate_tilt,
         params.roller_axis_angle,
-        (piston_width, params.pistons_per_rotor),
+        _spin(params, theta),
+        theta,
+        chamber=(piston_width, params.pistons_per_rotor),
         threads=threads,
     )
     return Kinematics(*rotor, *cham)
@@ -483,7 +483,7 @@ def period(params: WobbleCam) -> float:
 # --------------------------------------------------------------------------------------------
 # slider angle
 # --------------------------------------------------------------------------------------------
-def slider_angle(spin_angle, plate_tilt, roller_axis_angle):
+def slider_angle(plate_tilt, roller_axis_angle, spin_angle):
     """Angle alpha' between the rails of rotor 1 and rotor 2 (eq. 15) [rad].
 
     ``alpha' = Phi_2 - Phi_1 = E(varphi + alpha/2) - E(varphi - alpha/2)``; it
@@ -492,14 +492,14 @@ def slider_angle(spin_angle, plate_tilt, roller_axis_angle):
 
     Parameters
     ----------
-    spin_angle : array_like
-        Plate spin varphi [rad].
     plate_tilt, roller_axis_angle : array_like
         phi and alpha [rad].
+    spin_angle : array_like
+        Plate spin varphi [rad] (all three broadcast together).
     """
     half = 0.5 * np.asarray(roller_axis_angle, dtype=float)
     v = np.asarray(spin_angle, dtype=float)
-    return projected_angle(v + half, plate_tilt)[0] - projected_angle(v - half, plate_tilt)[0]
+    return projected_angle(plate_tilt, v + half)[0] - projected_angle(plate_tilt, v - half)[0]
 
 
 # --------------------------------------------------------------------------------------------
@@ -515,12 +515,22 @@ def roller_offsets(roller_axis_angle):
     return np.array([-h, np.pi - h, h, np.pi + h])
 
 
-def plate_point(theta, spin_angle, offset, plate_tilt, radius):
+def plate_point(plate_tilt, radius, theta, spin_angle, offset):
     """Plate point at angle ``offset`` and ``radius``, in the fixed frame (eq. 7-8) [m].
 
     ``r|0 = A_theta A_phi A_varphi r [0, sin c, cos c]
     = r [sin(phi) cos u, cos(theta) sin u + sin(theta) cos(phi) cos u,
     -sin(theta) sin u + cos(theta) cos(phi) cos u]``, ``u = varphi + c``.
+
+    Parameters
+    ----------
+    plate_tilt : array_like
+        phi [rad].
+    radius : array_like
+        r [m].
+    theta, spin_angle, offset : array_like
+        Shaft angle theta, plate spin varphi and the point's angle c in the plate
+        plane [rad]; all five arguments broadcast together.
 
     Returns
     -------
@@ -538,22 +548,23 @@ def plate_point(theta, spin_angle, offset, plate_tilt, radius):
     return radius * np.stack(np.broadcast_arrays(x, y, z))
 
 
-def groove_point(theta, cam, spin_angle, offset, plate_tilt, radius):
+def groove_point(plate_tilt, radius, theta, cam, spin_angle, offset):
     """The plate point of :func:`plate_point` seen in the cam frame (eq. 10-11) [m].
 
     ``r|4 = A_psi^T r|0``; the first two rotations combine to ``A_(theta - psi)``.
     With ``psi = -theta`` and ``varphi = -2 theta`` it closes after ``theta = pi``.
+    Arguments as :func:`plate_point`, with the cam angle psi [rad] after theta.
 
     Returns
     -------
     ndarray, shape (3, ...)
     """
     return plate_point(
+        plate_tilt,
+        radius,
         np.asarray(theta, dtype=float) - np.asarray(cam, dtype=float),
         spin_angle,
         offset,
-        plate_tilt,
-        radius,
     )
 
 
@@ -572,7 +583,7 @@ def roller_positions(params: WobbleCam, theta):
         Roller (order of :func:`roller_offsets`), coordinate x y z, ``theta``'s shape.
     """
     theta, v, c = _per_roller(params, theta)
-    p = plate_point(theta, v, c, params.plate_tilt, params.sphere_radius)
+    p = plate_point(params.plate_tilt, params.sphere_radius, theta, v, c)
     return np.moveaxis(p, 0, 1)
 
 
@@ -584,7 +595,7 @@ def groove_points(params: WobbleCam, theta):
     ndarray, shape (4, 3, ...)
     """
     theta, v, c = _per_roller(params, theta)
-    p = groove_point(theta, cam_angle(theta), v, c, params.plate_tilt, params.sphere_radius)
+    p = groove_point(params.plate_tilt, params.sphere_radius, theta, cam_angle(theta), v, c)
     return np.moveaxis(p, 0, 1)
 
 

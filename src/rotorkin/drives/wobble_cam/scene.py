@@ -90,7 +90,7 @@ def scene(result, cfg, frames: int = 120):
     offsets = wc.roller_offsets(params.roller_axis_angle)
 
     def plate(c, radius):  # plate points at angles c, (3, F, len(c)) [mm]
-        return wc.plate_point(theta[:, None], spin[:, None], np.atleast_1d(c), tilt, radius)
+        return wc.plate_point(tilt, radius, theta[:, None], spin[:, None], np.atleast_1d(c))
 
     # the sphere of the groove centre-lines: circles about x (unchanged by the cam's turn)
     t = np.linspace(0.0, 2.0 * np.pi, 73)

@@ -157,7 +157,7 @@ def _columns(params, layout, points) -> dict:
     theta = angle_grid(wc.period(params), points)
     q, d1, d2, d3 = wc.rotor_angles(params, theta)
     slider = q[1] - q[0]
-    da, db = wc.chamber_angles(slider, layout.piston_width, params.pistons_per_rotor)
+    da, db = wc.chamber_angles(layout.piston_width, slider, pistons=params.pistons_per_rotor)
     roller = wc.roller_positions(params, theta)[0] * 1e3
     groove = wc.groove_points(params, theta)[0] * 1e3
     cols = {"theta_deg": np.degrees(theta)}

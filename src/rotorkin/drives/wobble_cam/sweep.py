@@ -637,7 +637,7 @@ def _full_general_block(theta, tables, tilt, alpha, lo_a, hi_b, kvol, vc):
     """Block evaluator of every curve for a corrected spin law (the library's fused path)."""
 
     def fn(lo, hi):
-        rot, _ = rotor_kinematics(theta, tables, tilt[lo:hi, None], alpha[lo:hi, None],
+        rot, _ = rotor_kinematics(tilt[lo:hi, None], alpha[lo:hi, None], tables, theta,
                                   threads=1)  # fmt: skip
         q, d1, d2, d3 = rot
         res = {
@@ -672,12 +672,12 @@ def curves(p, points: int):
         rows = np.flatnonzero(n_spin == ns)
         spin = _spin_tables(p, float(ns), theta)
         t_, a_, nf = tilt[rows, None], alpha[rows, None], npist[rows, None]
-        q, d1, d2, d3 = wc.rotor_angles_from_spin(theta, spin, t_, a_)
+        q, d1, d2, d3 = wc.rotor_angles_from_spin(t_, a_, spin, theta)
         beta = p.extra.get("piston_width")
         if beta is None:
             beta = wch.piston_width(wc.chamber_gaps(t_, a_, nf), eps[rows, None])
         slider = q[1] - q[0]
-        delta_a, delta_b = wc.chamber_angles(slider, beta, nf)
+        delta_a, delta_b = wc.chamber_angles(beta, slider, pistons=nf)
         values = {
             "slider_angle_deg": np.degrees(slider),
             "chamber_a_angle_deg": np.degrees(delta_a),
