@@ -808,3 +808,17 @@ def test_every_dataclass_default_is_the_schema_default():
             if not same:
                 mismatched.append(f"{cls.__name__}.{name} = {ours!r}, schema {theirs!r}")
     assert not mismatched, "; ".join(mismatched)
+
+
+def test_study_keeps_the_rotor_motion_on_the_column_grid():
+    """StudyResult.motion: rotor 1 and rotor 2 over one turn, on the angles of the columns."""
+    res = study.evaluate(_cfg())
+    m = res.motion
+    assert m.members == ("rotor 1", "rotor 2") and m.unit == "rad"
+    theta = np.radians(res.columns["theta_deg"])
+    np.testing.assert_allclose(m.theta, theta, rtol=0, atol=1e-12)
+    assert m.theta[0] == 0.0 and m.theta[-1] == pytest.approx(2 * np.pi, abs=1e-12)
+    for k in (0, 1):
+        np.testing.assert_allclose(np.degrees(m.q[k]), res.columns[f"rotor{k + 1}_angle_deg"])
+        np.testing.assert_allclose(m.dq[k], res.columns[f"rotor{k + 1}_speed_ratio"])
+        np.testing.assert_allclose(m.d2q[k], res.columns[f"rotor{k + 1}_accel_per_rad"])

@@ -66,6 +66,8 @@ __all__ = [
     "section_volume_per_radian",
     "piston_offset",
     "chamber_count",
+    "chamber_volume",
+    "displacement",
     "volume_per_radian",
     "annulus_volume",
     "chamber_kinds",
@@ -398,6 +400,36 @@ def section_volume_per_radian(
     return out[()] if out.ndim == 0 else out
 
 
+def chamber_volume(volume_per_radian, chamber_angle, clearance_volume=0.0):
+    """Volume of a chamber from its angle, ``V = K delta + V_c`` [m^3].
+
+    Parameters
+    ----------
+    volume_per_radian : float or array_like
+        K [m^3/rad] (:func:`section_volume_per_radian`).
+    chamber_angle : float or array_like
+        delta [rad].
+    clearance_volume : float or array_like, optional
+        V_c [m^3]. All three broadcast together.
+    """
+    return volume_per_radian * chamber_angle + clearance_volume
+
+
+def displacement(swept_volume, chambers, cycles_per_rev):
+    """Volume the intake strokes draw in per shaft turn, ``V_s x 2N x cycles`` [m^3].
+
+    Parameters
+    ----------
+    swept_volume : float or array_like
+        Volume swept by one chamber in one stroke [m^3].
+    chambers : int or array_like
+        2N.
+    cycles_per_rev : float or array_like
+        Four-stroke cycles of each chamber per shaft turn [-].
+    """
+    return swept_volume * chambers * cycles_per_rev
+
+
 def volume_per_radian(machine: TwinRotor) -> float:
     """Volume of the cylinder per radian of chamber angle, K [m^3/rad].
 
@@ -468,7 +500,7 @@ def chamber_volumes_from_rotors(machine: TwinRotor, piston_width, q1, q2):
     """
     rel = np.asarray(q2, dtype=float) - np.asarray(q1, dtype=float)
     delta = _signs(machine, rel.ndim) * rel + _offsets(machine, piston_width, rel.ndim)
-    return volume_per_radian(machine) * delta + machine.clearance_volume
+    return chamber_volume(volume_per_radian(machine), delta, machine.clearance_volume)
 
 
 def chambers(machine: TwinRotor, motion: Motion, piston_width) -> Chambers:
@@ -516,7 +548,7 @@ def volume_limits(machine: TwinRotor, angle_min, angle_max):
     k, vc = volume_per_radian(machine), machine.clearance_volume
     lo = _per_chamber(machine, angle_min)
     hi = _per_chamber(machine, angle_max)
-    return k * lo + vc, k * hi + vc
+    return chamber_volume(k, lo, vc), chamber_volume(k, hi, vc)
 
 
 def swept_volume(machine: TwinRotor, swing) -> float:
@@ -560,7 +592,7 @@ def displacement_per_rev(machine: TwinRotor, swing, cycles_per_rev) -> float:
     cycles_per_rev : float
         Four-stroke cycles of each chamber per shaft turn [-].
     """
-    return swept_volume(machine, swing) * machine.chambers * cycles_per_rev
+    return displacement(swept_volume(machine, swing), machine.chambers, cycles_per_rev)
 
 
 def swept_volume_per_rev(machine: TwinRotor, swing, cycles_per_rev) -> float:

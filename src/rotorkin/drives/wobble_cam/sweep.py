@@ -299,12 +299,12 @@ def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> di
     """Volumes and the ideal cycle (:mod:`rotorkin.machines.twin_rotor`, closed forms)."""
     k = _section(p)
     vc = p.float("machine.clearance_volume")
-    va_min, va_max, vb_min, vb_max = k * a_lo + vc, k * a_hi + vc, k * b_lo + vc, k * b_hi + vc
+    va_min, va_max, vb_min, vb_max = (tr.chamber_volume(k, d, vc) for d in (a_lo, a_hi, b_lo, b_hi))
     eps_a, eps_b = va_max / va_min, vb_max / vb_min
     chambers = 2.0 * n_f
     per_rev = cycles / 2.0  # four-stroke cycles per rev
-    swept = k * ((ga[1] - beta) - (ga[0] - beta))
-    disp = swept * chambers * per_rev
+    swept = tr.chamber_volume(k, a_hi - a_lo)  # K swing (eq. 23)
+    disp = tr.displacement(swept, chambers, per_rev)
     pa, kk = p.float("loads.ambient_pressure"), p.float("loads.polytropic_exponent")
     q = p.float("loads.heat_per_cycle")
     end_a, end_b = pa * eps_a**kk, pa * eps_b**kk
