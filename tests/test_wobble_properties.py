@@ -254,3 +254,41 @@ def test_slider_angle_mirrors_and_chamber_kinds_swap(tilt, varphi):
     a60, b60 = wc.chamber_angles(beta, s60)
     _close(a120, b60, 1e-10)
     _close(b120, a60, 1e-10)
+
+
+@FAST
+@given(
+    st.sampled_from([-2.0, -0.5, 0.5, 1.0]),
+    st.lists(st.floats(-1.5, 1.5), min_size=1, max_size=3),
+    st.lists(st.floats(-1.5, 1.5), max_size=2),
+)
+def test_spin_correction_check_of_arrays_is_the_constructors(n, sa, sb):
+    """A non-monotone spin correction: violation() of an array of spin ratios names spin_a
+    exactly where the constructor refuses; the lowest rate is that of the sampled law."""
+    ns = np.array([n, -n, 2.0 * n])
+    code = wc.violation(45 * D, np.pi / 2, ns, 0.06, 4, tuple(sa), tuple(sb))
+    grid = np.linspace(0.0, 2.0 * np.pi, 4097)
+    for i, ni in enumerate(ns):
+        rate = wc.spin_angle(ni, sa, sb, grid)[1] * np.sign(ni)
+        assert float(wc.slowest_spin(ni, sa, sb)) == pytest.approx(rate.min(), abs=1e-12)
+        try:
+            wc.WobbleCam(45 * D, np.pi / 2, float(ni), 0.06, 4, tuple(sa), tuple(sb))
+        except ParameterError as exc:
+            assert exc.name == "spin_a" and wc.CHECKED[code[i] - 1] == "spin_a"
+        else:
+            assert code[i] == 0
+
+
+@FAST
+@given(
+    hnp.arrays(float, st.integers(1, 3), elements=st.sampled_from([-2.0, -1.0, 0.5, 1.5])),
+    st.lists(st.floats(-0.05, 0.05), max_size=3),  # sum k |a_k| < 0.5: monotone
+    hnp.arrays(float, st.integers(1, 5), elements=angles),
+)
+def test_spin_angle_broadcasts_spin_ratio_arrays(ns, sa, theta):
+    """spin_angle of ratios (k, 1) against angles (m,) equals the dataclass law per ratio."""
+    got = wc.spin_angle(ns[:, None], sa, (), theta)
+    for i, n in enumerate(ns):
+        ref = wc.spin_law(wc.WobbleCam(45 * D, np.pi / 2, float(n), 0.06, 4, tuple(sa)), theta)
+        for g, r in zip(got, ref, strict=True):
+            _close(g[i], r)

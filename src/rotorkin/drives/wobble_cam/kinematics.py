@@ -78,6 +78,7 @@ from rotorkin.machines.twin_rotor import first_violation
 __all__ = [
     "CHECKED",
     "violation",
+    "slowest_spin",
     "roller_axis_angle_limits",
     "chamber_gaps",
     "zero_width_ratio",
@@ -92,6 +93,7 @@ __all__ = [
     "WobbleCam",
     "PistonLayout",
     "max_plate_tilt",
+    "spin_angle",
     "spin_law",
     "cam_angle",
     "projected_angle",
@@ -120,7 +122,16 @@ __all__ = [
 # parameters
 # --------------------------------------------------------------------------------------------
 #: Fields of :class:`WobbleCam` that :func:`violation` checks, in the order it checks them.
-CHECKED = ("pistons_per_rotor", "roller_axis_angle", "plate_tilt", "spin_ratio", "sphere_radius")
+CHECKED = (
+    "pistons_per_rotor",
+    "roller_axis_angle",
+    "plate_tilt",
+    "spin_ratio",
+    "sphere_radius",
+    "spin_a",
+)
+#: Shaft angles on which a spin-law correction is checked for a monotone spin.
+_SPIN_CHECK = np.linspace(0.0, 2.0 * np.pi, 4097)
 
 
 def roller_axis_angle_limits(pistons=4):
@@ -132,7 +143,15 @@ def roller_axis_angle_limits(pistons=4):
     return np.pi / 2.0 - np.pi / n, np.pi / 2.0 + np.pi / n
 
 
-def violation(plate_tilt, roller_axis_angle, spin_ratio, sphere_radius, pistons_per_rotor=4):
+def violation(
+    plate_tilt,
+    roller_axis_angle,
+    spin_ratio,
+    sphere_radius,
+    pistons_per_rotor=4,
+    spin_a=(),
+    spin_b=(),
+):
     """Which parameter of the drive is not admissible, per design.
 
     Parameters broadcast together (floats or arrays): plate tilt phi [rad],
@@ -146,7 +165,9 @@ def violation(plate_tilt, roller_axis_angle, spin_ratio, sphere_radius, pistons_
         parameter (in the order of :data:`CHECKED`) out of range: N even and >= 2;
         alpha in :func:`roller_axis_angle_limits`; ``0 < phi <
         max_plate_tilt(alpha, N)`` (eq. 20); n a finite nonzero multiple of 0.5
-        (the motion repeats every shaft turn); r > 0.
+        (the motion repeats every shaft turn); r > 0; the correction ``spin_a``,
+        ``spin_b`` (shared by all designs) keeps the spin monotone,
+        ``sign(n) dvarphi/dtheta > 0`` on 4097 angles of a turn (:func:`slowest_spin`).
     """
     with np.errstate(invalid="ignore", divide="ignore"):
         n_p = np.asarray(pistons_per_rotor, dtype=float)
@@ -166,8 +187,22 @@ def violation(plate_tilt, roller_axis_angle, spin_ratio, sphere_radius, pistons_
                 ~(np.isfinite(p) & (p > 0.0) & (p < lim)),
                 ~half_int,
                 ~(np.isfinite(r) & (r > 0.0)),
+                ~(slowest_spin(n, spin_a, spin_b) > 0.0),
             ]
         )
+
+
+def slowest_spin(spin_ratio, spin_a=(), spin_b=()):
+    """Lowest ``sign(n) dvarphi/dtheta`` over a turn (4097 angles): > 0 for a monotone spin [-].
+
+    ``|n| + min(sign(n) c'(theta))`` with the correction ``c`` of :func:`spin_angle`;
+    broadcasts over ``spin_ratio`` (the correction is shared).
+    """
+    n = np.asarray(spin_ratio, dtype=float)
+    if not (len(spin_a) or len(spin_b)):
+        return np.abs(n)
+    rate = spin_angle(0.0, spin_a, spin_b, _SPIN_CHECK)[1]
+    return np.abs(n) + np.where(n > 0.0, np.min(rate), -np.max(rate))
 
 
 def _raise_violation(params, name):
@@ -199,6 +234,14 @@ def _raise_violation(params, name):
         )
     if name == "sphere_radius":
         raise ParameterError(name, fmt_mm(float(params.sphere_radius)), "sphere_radius > 0 mm")
+    if name == "spin_a":
+        low = float(slowest_spin(params.spin_ratio, params.spin_a, params.spin_b))
+        raise ParameterError(
+            "spin_a",
+            f"{list(params.spin_a)} (spin_b = {list(params.spin_b)})",
+            "a correction that keeps the spin monotone: sign(spin_ratio) dvarphi/dtheta "
+            f"> 0 everywhere (lowest here {low:.4g})",
+        )
     _check_pistons(n_p)  # pistons_per_rotor: raises
 
 
@@ -240,15 +283,8 @@ class WobbleCam:
 
     def __post_init__(self):
         _check_pistons(self.pistons_per_rotor)
-        code = int(
-            violation(
-                self.plate_tilt,
-                self.roller_axis_angle,
-                self.spin_ratio,
-                self.sphere_radius,
-                self.pistons_per_rotor,
-            )
-        )
+        args = (self.plate_tilt, self.roller_axis_angle, self.spin_ratio, self.sphere_radius)
+        code = int(violation(*args, self.pistons_per_rotor))
         if code:
             _raise_violation(self, CHECKED[code - 1])
         for name in ("spin_a", "spin_b"):
@@ -256,31 +292,28 @@ class WobbleCam:
             if not np.all(np.isfinite(coeffs)):
                 raise ParameterError(name, str(list(coeffs)), "finite coefficients [rad]")
             object.__setattr__(self, name, tuple(float(c) for c in coeffs))
-        if self.spin_a or self.spin_b:
-            rate = spin_law(self, np.linspace(0.0, 2.0 * np.pi, 4097))[1] * np.sign(self.spin_ratio)
-            if np.min(rate) <= 0.0:
-                raise ParameterError(
-                    "spin_a",
-                    f"{list(self.spin_a)} (spin_b = {list(self.spin_b)})",
-                    "a correction that keeps the spin monotone: sign(spin_ratio) dvarphi/dtheta "
-                    f"> 0 everywhere (lowest here {np.min(rate):.4g})",
-                )
+        code = int(violation(*args, self.pistons_per_rotor, self.spin_a, self.spin_b))
+        if code:
+            _raise_violation(self, CHECKED[code - 1])
 
 
 # --------------------------------------------------------------------------------------------
 # laws of the plate and the cam
 # --------------------------------------------------------------------------------------------
-def spin_law(params: WobbleCam, theta):
+def spin_angle(spin_ratio, spin_a, spin_b, theta):
     """Plate spin ``varphi(theta)`` and its derivatives (paper: ``varphi = -2 theta``).
 
     ``varphi = n theta + c(theta)``, with the periodic correction
-    ``c = sum_k a_k cos(k theta) + b_k sin(k theta)`` (``spin_a``, ``spin_b``,
-    k = 1, 2, ...; empty for the paper's law). The correction is 2 pi periodic,
-    so the motion still repeats every shaft turn.
+    ``c = sum_k a_k cos(k theta) + b_k sin(k theta)`` (k = 1, 2, ...; empty for
+    the paper's law). The correction is 2 pi periodic, so the motion still
+    repeats every shaft turn.
 
     Parameters
     ----------
-    params : WobbleCam
+    spin_ratio : float or array_like
+        n [-]; an array broadcasts with ``theta`` (e.g. shape (k, 1) against (m,)).
+    spin_a, spin_b : sequence of float
+        ``a_k``, ``b_k`` [rad] (may be empty).
     theta : array_like
         Shaft angle [rad].
 
@@ -288,12 +321,13 @@ def spin_law(params: WobbleCam, theta):
     -------
     tuple of 4 ndarray
         ``varphi`` [rad], ``dvarphi/dtheta`` [-], ``d2``, ``d3`` [1/rad, 1/rad^2]
-        (the last two are zero for the linear law), all of ``theta``'s shape.
+        (the last two are zero for the linear law), of the broadcast shape.
     """
     theta = np.asarray(theta, dtype=float)
-    n = float(params.spin_ratio)
-    out = [n * theta, np.zeros_like(theta) + n, np.zeros_like(theta), np.zeros_like(theta)]
-    for coeffs, phase in ((params.spin_a, 0.0), (params.spin_b, -0.5 * np.pi)):
+    n = np.asarray(spin_ratio, dtype=float)
+    zero = np.zeros(np.broadcast_shapes(n.shape, theta.shape))
+    out = [n * theta + zero, zero + n, zero.copy(), zero.copy()]
+    for coeffs, phase in ((spin_a, 0.0), (spin_b, -0.5 * np.pi)):
         # a cos(k t + phase): a sin term is a cos term shifted by -pi/2
         for k, amp in enumerate(coeffs, start=1):
             if amp == 0.0:
@@ -305,6 +339,14 @@ def spin_law(params: WobbleCam, theta):
             out[2] = out[2] - amp * k * k * c
             out[3] = out[3] + amp * k**3 * s
     return tuple(out)
+
+
+def spin_law(params: WobbleCam, theta):
+    """Plate spin ``varphi(theta)`` and its derivatives under the params' spin law.
+
+    :func:`spin_angle` with ``params.spin_ratio``, ``spin_a``, ``spin_b``.
+    """
+    return spin_angle(params.spin_ratio, params.spin_a, params.spin_b, theta)
 
 
 def cam_angle(theta):

@@ -209,11 +209,13 @@ def reasons(p, code: dict) -> np.ndarray:
             if f"machine.{name}" in code:
                 flag(r, first == i, code[f"machine.{name}"])
         tilt, alpha = p.float("drive.plate_tilt"), p.float("drive.roller_axis_angle")
+        d = p.cfg["drive"]
         first = wc.violation(tilt, alpha, p.float("drive.spin_ratio"),
-                             p.float("drive.sphere_radius"), m["pistons_per_rotor"])  # fmt: skip
+                             p.float("drive.sphere_radius"), m["pistons_per_rotor"],
+                             d.get("spin_a") or (), d.get("spin_b") or ())  # fmt: skip
         for i, name in enumerate(wc.CHECKED, start=1):
             key = "machine.pistons_per_rotor" if name == "pistons_per_rotor" else f"drive.{name}"
-            flag(r, first == i, code[key])
+            flag(r, first == i, code.get(key, code["other"]))
         npist = m["pistons_per_rotor"]
         n_f = np.where((npist >= 2) & (npist % 2 == 0), npist, 4).astype(float)
         gaps = wc.chamber_gaps(tilt, alpha, n_f)
@@ -375,11 +377,9 @@ def _omega_mean(p) -> float:
 # sampled peaks of the rotor coefficients
 # --------------------------------------------------------------------------------------------
 def _spin_tables(p, n_spin: float, theta):
-    """``2 varphi(theta)`` and ``varphi', varphi'', varphi'''`` on the grid (the spin law)."""
+    """The spin law and its three derivatives on the grid (:func:`~.kinematics.spin_angle`)."""
     d = p.cfg["drive"]
-    params = wc.WobbleCam(np.radians(30.0), np.pi / 2.0, n_spin, 0.05, 4,
-                          tuple(d.get("spin_a") or ()), tuple(d.get("spin_b") or ()))  # fmt: skip
-    return wc.spin_law(params, theta)
+    return wc.spin_angle(n_spin, d.get("spin_a") or (), d.get("spin_b") or (), theta)
 
 
 def _sampled(p, tilt, alpha, spin, samples: int, threads) -> dict:
