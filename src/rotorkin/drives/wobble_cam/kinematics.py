@@ -113,6 +113,8 @@ __all__ = [
     "groove_point",
     "roller_positions",
     "groove_points",
+    "volume_cycles",
+    "power_strokes",
     "volume_cycles_per_rev",
     "power_strokes_per_rev",
 ]
@@ -751,18 +753,30 @@ def piston_layout(params: WobbleCam, compression_ratio: float) -> PistonLayout:
 # --------------------------------------------------------------------------------------------
 # counts
 # --------------------------------------------------------------------------------------------
-def volume_cycles_per_rev(params: WobbleCam) -> int:
-    """Volume cycles of each chamber per shaft turn: ``2 |n|`` (alpha' has period pi in varphi).
+def volume_cycles(spin_ratio):
+    """Volume cycles of each chamber per shaft turn, ``2 |n|`` (alpha' has period pi in varphi).
 
-    Paper section 1.2 and 4.2.3: 4 at n = -2.
+    Paper section 1.2 and 4.2.3: 4 at n = -2. Broadcasts over ``spin_ratio`` [-];
+    whole numbers (as floats) for the admissible multiples of 0.5.
     """
-    return int(round(2.0 * abs(params.spin_ratio)))
+    return np.round(2.0 * np.abs(np.asarray(spin_ratio, dtype=float)))
+
+
+def power_strokes(spin_ratio, pistons=4, strokes_per_cycle=4):
+    """Power strokes per shaft turn: ``2N chambers x 2 |n| / (strokes_per_cycle / 2)``.
+
+    A four-stroke cycle takes two volume cycles: 16 at N = 4, n = -2 (paper
+    section 1.2). Broadcasts over ``spin_ratio`` and ``pistons``.
+    """
+    chambers = 2.0 * np.asarray(pistons, dtype=float)
+    return np.round(chambers * volume_cycles(spin_ratio) * 2 / strokes_per_cycle)
+
+
+def volume_cycles_per_rev(params: WobbleCam) -> int:
+    """:func:`volume_cycles` of the params' spin ratio, an int."""
+    return int(volume_cycles(params.spin_ratio))
 
 
 def power_strokes_per_rev(params: WobbleCam, strokes_per_cycle: int = 4) -> int:
-    """Power strokes per shaft turn: ``2N chambers x 2 |n| / (strokes_per_cycle / 2)``.
-
-    A four-stroke cycle takes two volume cycles: 16 at N = 4, n = -2 (paper section 1.2).
-    """
-    chambers = chamber_count(params.pistons_per_rotor)
-    return int(round(chambers * volume_cycles_per_rev(params) * 2 / strokes_per_cycle))
+    """:func:`power_strokes` of the params, an int (16 at N = 4, n = -2)."""
+    return int(power_strokes(params.spin_ratio, params.pistons_per_rotor, strokes_per_cycle))

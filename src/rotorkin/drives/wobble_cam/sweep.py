@@ -254,7 +254,7 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
     beta = p.extra["piston_width"] if fixed else wch.piston_width((ga, gb), eps)
     a_lo, a_hi, b_lo, b_hi = ga[0] - beta, ga[1] - beta, gb[0] - beta, gb[1] - beta
     d_lo, d_hi = np.where(kind_a, a_lo, b_lo), np.where(kind_a, a_hi, b_hi)
-    cycles = np.round(2.0 * np.abs(spin))  # volume cycles per rev, an integer
+    cycles = wc.volume_cycles(spin)  # volume cycles per rev, an integer
     chambers = 2.0 * n_f
     c = np.cos(tilt)
     val = {
@@ -265,7 +265,7 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
         "chamber_swing_deg": deg(amax - amin),
         "piston_width_deg": deg(beta),
         "volume_cycles_per_rev": cycles,
-        "power_strokes_per_rev": np.round(chambers * cycles * 2 / 4),
+        "power_strokes_per_rev": wc.power_strokes(spin, n_f),
         "max_plate_tilt_deg": deg(wc.max_plate_tilt(alpha, n_f)),
         "piston_offset_gamma_deg": deg(wc.piston_offset(n_f)),
         "chambers": chambers,
