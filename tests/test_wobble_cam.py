@@ -135,7 +135,7 @@ def test_rotor_derivatives_finite_differences(seed):
 
 @pytest.mark.parametrize("seed", range(4))
 def test_general_spin_law_chain_rule(seed):
-    """Spin law with a periodic correction (issue 4): varphi = n theta + a sin(k theta + b)."""
+    """Spin law with a periodic correction: varphi = n theta + a sin(k theta + b)."""
     rng = np.random.default_rng(300 + seed)
     phi, alpha = rng.uniform(0.1, 1.0), rng.uniform(1.0, 2.0)
     n, a, k, b = -2.0, rng.uniform(-0.3, 0.3), float(rng.integers(1, 5)), rng.uniform(0, 6)
@@ -591,7 +591,7 @@ def test_plot_writes_pngs(tmp_path):
 
 
 # --------------------------------------------------------------------------------------------
-# N pistons per rotor (issue 3): eq. 18-22 generalised
+# N pistons per rotor: eq. 18-22 generalised
 # --------------------------------------------------------------------------------------------
 def explicit_chambers_n(phi1, phi2, beta, n_p, gamma):
     """Place 2N pistons (N per rotor, 2 pi/N apart) and measure the 2N gaps minus the width."""
