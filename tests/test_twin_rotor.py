@@ -793,6 +793,7 @@ def test_no_heat_no_inertia_gives_nan_not_a_crash():
     assert s["energy_fluctuation_J"] > 0  # the gas spring still stores energy
 
 
+@pytest.mark.slow
 def test_plot_writes_engine_figures(tmp_path):
     paths = study.evaluate(
         example_cfg(**{"machine.pistons_per_rotor": 6, "drive.plate_tilt": '"40 deg"'})

@@ -575,6 +575,7 @@ def test_study_off_90deg_reports_both_kinds():
     assert s["chamber_angle_max_deg"] / s["chamber_angle_min_deg"] == pytest.approx(10.0)
 
 
+@pytest.mark.slow
 def test_plot_writes_pngs(tmp_path):
     for cfg in (_cfg(), _cfg(roller_axis_angle=70 * D, spin_ratio=-1.5)):
         paths = study.evaluate(cfg).write_figures(tmp_path)
