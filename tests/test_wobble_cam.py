@@ -823,3 +823,19 @@ def test_study_keeps_the_rotor_motion_on_the_column_grid():
         np.testing.assert_allclose(np.degrees(m.q[k]), res.columns[f"rotor{k + 1}_angle_deg"])
         np.testing.assert_allclose(m.dq[k], res.columns[f"rotor{k + 1}_speed_ratio"])
         np.testing.assert_allclose(m.d2q[k], res.columns[f"rotor{k + 1}_accel_per_rad"])
+
+
+def test_batch_peaks_of_a_corrected_spin_law_are_the_studys():
+    """The batch module evaluates a corrected spin law with the study's own functions."""
+    from rotorkin.core.batch import Designs
+    from rotorkin.drives.wobble_cam import sweep
+    from rotorkin.io.config import load_config
+
+    sets = ["drive.spin_a=[0.05, 0.02]", "drive.spin_b=[0.01]", "drive.plate_tilt=50 deg"]
+    cfg = load_config(None, "wobble-cam-engine", sets)[0]
+    names = ["rotor_accel_peak_per_rad", "rotor_jerk_peak_per_rad2"]
+    names += ["rotor_speed_ratio_min", "rotor_speed_ratio_max"]
+    got = sweep.metrics(Designs(cfg, {"drive.plate_tilt": np.radians([50.0])}, 1), names, 20001)
+    want = study.evaluate(cfg).summary
+    for k in names:
+        assert got[k][0] == pytest.approx(want[k], rel=1e-12), k

@@ -392,13 +392,12 @@ def _sampled(p, tilt, alpha, spin, samples: int, threads) -> dict:
     for n_spin in np.unique(spin):  # one table per spin ratio (usually one)
         rows = np.flatnonzero(spin == n_spin)
         tables = _spin_tables(p, float(n_spin), theta)
-        two_u = 2.0 * tables[0]
-        C, S = np.cos(two_u), np.sin(two_u)
         t_, a_ = tilt[rows], alpha[rows]
         if linear:
-            fn = _linear_block(C, S, t_, a_, float(n_spin))
+            two_u = 2.0 * tables[0]
+            fn = _linear_block(np.cos(two_u), np.sin(two_u), t_, a_, float(n_spin))
         else:
-            fn = _general_block(C, S, tables, t_, a_)
+            fn = _general_block(theta, tables, t_, a_)
         res = run_blocks(fn, rows.size, samples, threads)
         for key, values in res.items():
             out[key][rows] = values
@@ -457,34 +456,30 @@ def _linear_block(C, S, tilt, alpha, n_spin):
     return fn
 
 
-def _general_block(C, S, tables, tilt, alpha):
-    """Block evaluator for a corrected spin law (chain rule through varphi)."""
-    _, g1, g2, g3 = tables
+def _general_block(theta, tables, tilt, alpha):
+    """Block evaluator for a corrected spin law: the library's fused path, reduced to peaks."""
 
     def fn(lo, hi):
-        c = np.cos(tilt[lo:hi])[:, None]
-        ca, sa = np.cos(alpha[lo:hi])[:, None], np.sin(alpha[lo:hi])[:, None]
-        a, b = 0.5 * (1.0 + c * c), 0.5 * (1.0 - c * c)
-        m = hi - lo
-        res = {"acc": np.zeros(m), "jerk": np.zeros(m), "r_min": np.full(m, np.inf),
-               "r_max": np.full(m, -np.inf)}  # fmt: skip
-        for sign in (-1.0, 1.0):
-            c2 = C * ca - sign * S * sa
-            s2 = S * ca + sign * C * sa
-            inv = 1.0 / (a - b * c2)
-            e1 = c * inv
-            e2 = -2.0 * b * c * s2 * inv * inv
-            e3 = c * inv * inv * (8.0 * b * b * s2 * s2 * inv - 4.0 * b * c2)
-            h1 = e1 * g1
-            h2 = e2 * g1**2 + e1 * g2
-            h3 = e3 * g1**3 + 3.0 * e2 * g1 * g2 + e1 * g3
-            res["acc"] = np.maximum(res["acc"], np.abs(h2).max(axis=1))
-            res["jerk"] = np.maximum(res["jerk"], np.abs(h3).max(axis=1))
-            res["r_min"] = np.minimum(res["r_min"], (1.0 + h1).min(axis=1))
-            res["r_max"] = np.maximum(res["r_max"], (1.0 + h1).max(axis=1))
-        return res
+        return _rotor_peaks(theta, tables, tilt[lo:hi, None], alpha[lo:hi, None])[0]
 
     return fn
+
+
+def _rotor_peaks(theta, tables, tilt, alpha):
+    """Peaks of the rotors' second and third derivatives, extremes of the first, and Phi.
+
+    :func:`rotorkin.drives.wobble_cam.fast.rotor_kinematics` on designs ``(m, 1)``
+    against the grid; returns the reductions and the rotor angles ``(2, m, samples)``.
+    """
+    rot, _ = rotor_kinematics(tilt, alpha, tables, theta, threads=1)
+    q, d1, d2, d3 = rot
+    res = {
+        "acc": np.abs(d2).max(axis=(0, 2)),
+        "jerk": np.abs(d3).max(axis=(0, 2)),
+        "r_min": d1.min(axis=(0, 2)),
+        "r_max": d1.max(axis=(0, 2)),
+    }
+    return res, q
 
 
 # --------------------------------------------------------------------------------------------
@@ -637,15 +632,7 @@ def _full_general_block(theta, tables, tilt, alpha, lo_a, hi_b, kvol, vc):
     """Block evaluator of every curve for a corrected spin law (the library's fused path)."""
 
     def fn(lo, hi):
-        rot, _ = rotor_kinematics(tilt[lo:hi, None], alpha[lo:hi, None], tables, theta,
-                                  threads=1)  # fmt: skip
-        q, d1, d2, d3 = rot
-        res = {
-            "acc": np.abs(d2).max(axis=(0, 2)),
-            "jerk": np.abs(d3).max(axis=(0, 2)),
-            "r_min": d1.min(axis=(0, 2)),
-            "r_max": d1.max(axis=(0, 2)),
-        }
+        res, q = _rotor_peaks(theta, tables, tilt[lo:hi, None], alpha[lo:hi, None])
         _reduce_chambers(res, q[0], q[1].copy(), np.empty_like(q[0]), lo_a[lo:hi, None],
                          hi_b[lo:hi, None], kvol[lo:hi, None], vc[lo:hi, None])  # fmt: skip
         return res
