@@ -408,6 +408,40 @@ def _sampled(p, tilt, alpha, spin, samples: int, threads) -> dict:
     return val
 
 
+def _accel_terms(C, S, ca, sa, a, b, sign, c2, s2, t1, t2, t3):
+    """In place, for ``u = varphi + sign alpha/2``: ``c2 = cos 2u``, ``s2 = sin 2u``,
+    ``t1 = 1/D``, ``t2 = 1/D^2``, ``t3 = sin 2u / D^2`` (``E'' = -2 b c t3``).
+
+    ``C``, ``S``: ``cos 2 varphi``, ``sin 2 varphi`` on the grid; ``ca``, ``sa``:
+    ``cos alpha``, ``sin alpha`` per design; ``D = a - b cos 2u`` with
+    ``a, b = (1 +- c^2)/2`` (:func:`rotorkin.drives.wobble_cam.kinematics.projected_angle`).
+    """
+    np.multiply(C, ca, out=c2)
+    np.multiply(S, sa, out=t1)
+    np.subtract(c2, t1, out=c2) if sign > 0 else np.add(c2, t1, out=c2)  # cos 2u
+    np.multiply(S, ca, out=s2)
+    np.multiply(C, sa, out=t1)
+    np.add(s2, t1, out=s2) if sign > 0 else np.subtract(s2, t1, out=s2)  # sin 2u
+    np.multiply(c2, b, out=t1)
+    np.subtract(a, t1, out=t1)
+    np.divide(1.0, t1, out=t1)  # 1/D
+    np.multiply(t1, t1, out=t2)  # 1/D^2
+    np.multiply(s2, t2, out=t3)  # sin 2u / D^2
+
+
+def _jerk_term(b8, b4, c2, s2, t1, t2, t3):
+    """In place after :func:`_accel_terms`: ``t3 = (8 b^2 sin^2 2u / D - 4 b cos 2u) / D^2``.
+
+    The third derivative of E is ``c t3``; ``c2`` is overwritten.
+    """
+    np.multiply(s2, s2, out=t3)
+    np.multiply(t3, t1, out=t3)
+    np.multiply(t3, b8, out=t3)
+    np.multiply(c2, b4, out=c2)
+    np.subtract(t3, c2, out=t3)
+    np.multiply(t3, t2, out=t3)
+
+
 def _linear_block(C, S, tilt, alpha, n_spin):
     """Block evaluator for the linear spin law: peaks of ``n^2 |E''|`` and ``|n^3 E'''|``."""
 
@@ -426,24 +460,9 @@ def _linear_block(C, S, tilt, alpha, n_spin):
         acc = np.zeros(m)
         jerk = np.zeros(m)
         for sign in (-1.0, 1.0):  # rotor 1 (u = n theta - alpha/2), rotor 2 (+)
-            np.multiply(C, ca, out=c2)
-            np.multiply(S, sa, out=t1)
-            np.subtract(c2, t1, out=c2) if sign > 0 else np.add(c2, t1, out=c2)
-            np.multiply(S, ca, out=s2)
-            np.multiply(C, sa, out=t1)
-            np.add(s2, t1, out=s2) if sign > 0 else np.subtract(s2, t1, out=s2)
-            np.multiply(c2, b, out=t1)
-            np.subtract(a, t1, out=t1)
-            np.divide(1.0, t1, out=t1)  # 1/D
-            np.multiply(t1, t1, out=t2)  # 1/D^2
-            np.multiply(s2, t2, out=t3)  # sin 2u / D^2
+            _accel_terms(C, S, ca, sa, a, b, sign, c2, s2, t1, t2, t3)
             acc = np.maximum(acc, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
-            np.multiply(s2, s2, out=t3)
-            np.multiply(t3, t1, out=t3)
-            np.multiply(t3, b8, out=t3)
-            np.multiply(c2, b4, out=c2)
-            np.subtract(t3, c2, out=t3)
-            np.multiply(t3, t2, out=t3)  # (8 b^2 sin^2 2u / D - 4 b cos 2u) / D^2
+            _jerk_term(b8, b4, c2, s2, t1, t2, t3)
             jerk = np.maximum(jerk, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
         cc = c[:, 0]
         return {
@@ -565,9 +584,10 @@ def _full_linear_block(C, S, ring, n_spin, tilt, alpha, lo_a, hi_b, kvol, vc):
     ``theta + varphi``. With ``u_k = varphi -+ alpha/2``, ``c = cos phi``:
     ``Phi_k = theta + u_k + atan(S_k/(g - C_k))``, ``g = (1 + c)/(1 - c)``, and
     ``D``, ``Phi'``, ``Phi''``, ``Phi'''`` as in the module doc. The operations on
-    ``Phi''`` and ``Phi'''`` are those of :func:`_linear_block`, so the peaks are
-    bit for bit the same; their positive per-design factors (``2 b c n^2``,
-    ``|c n^3|``) are applied to the peaks, after the reduction.
+    ``Phi''`` and ``Phi'''`` are :func:`_linear_block`'s (:func:`_accel_terms`,
+    :func:`_jerk_term`), so the peaks are bit for bit the same; their positive
+    per-design factors (``2 b c n^2``, ``|c n^3|``) are applied to the peaks, after
+    the reduction.
     """
     local = threading.local()
 
@@ -587,17 +607,7 @@ def _full_linear_block(C, S, ring, n_spin, tilt, alpha, lo_a, hi_b, kvol, vc):
         acc, jerk = np.zeros(m), np.zeros(m)
         r_min, r_max = np.full(m, np.inf), np.full(m, -np.inf)
         for sign, q in ((-1.0, q1), (1.0, q2)):  # rotor 1 (u = n theta - alpha/2), rotor 2 (+)
-            np.multiply(C, ca, out=c2)
-            np.multiply(S, sa, out=t1)
-            np.subtract(c2, t1, out=c2) if sign > 0 else np.add(c2, t1, out=c2)  # cos 2u
-            np.multiply(S, ca, out=s2)
-            np.multiply(C, sa, out=t1)
-            np.add(s2, t1, out=s2) if sign > 0 else np.subtract(s2, t1, out=s2)  # sin 2u
-            np.multiply(c2, b, out=t1)
-            np.subtract(a, t1, out=t1)
-            np.divide(1.0, t1, out=t1)  # 1/D
-            np.multiply(t1, t1, out=t2)  # 1/D^2
-            np.multiply(s2, t2, out=t3)  # sin 2u / D^2, Phi'' / (-2 b c n^2)
+            _accel_terms(C, S, ca, sa, a, b, sign, c2, s2, t1, t2, t3)  # Phi'' / (-2 b c n^2)
             acc = np.maximum(acc, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
             np.multiply(t1, nc, out=w)
             np.add(w, 1.0, out=w)  # Phi' = 1 + n c / D
@@ -607,12 +617,7 @@ def _full_linear_block(C, S, ring, n_spin, tilt, alpha, lo_a, hi_b, kvol, vc):
             np.arctan(w, out=w)
             np.add(w, ring, out=q)
             np.add(q, sign * half, out=q)  # Phi = theta + varphi -+ alpha/2 + atan(...)
-            np.multiply(s2, s2, out=t3)
-            np.multiply(t3, t1, out=t3)
-            np.multiply(t3, b8, out=t3)
-            np.multiply(c2, b4, out=c2)
-            np.subtract(t3, c2, out=t3)
-            np.multiply(t3, t2, out=t3)  # (8 b^2 sin^2 2u / D - 4 b cos 2u) / D^2, Phi''' / c n^3
+            _jerk_term(b8, b4, c2, s2, t1, t2, t3)  # Phi3 / (c n^3)
             jerk = np.maximum(jerk, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
         cc = c[:, 0]
         res = {
