@@ -9,29 +9,25 @@ same names), computed for arrays of designs:
   pressures, work;
 * sampled peaks: the acceleration and jerk coefficients of both rotors are
   evaluated on ``samples`` shaft angles per design (a design x angle array, in
-  blocks) and reduced to their peaks, as the study does on its 20001-point grid.
-  With the paper's linear spin law ``u_k = n theta -+ alpha/2``, so
-  ``cos 2u_k`` and ``sin 2u_k`` follow from tables of ``cos 2n theta``,
-  ``sin 2n theta`` and the design's ``cos alpha``, ``sin alpha`` by the angle-sum
-  formulas: no transcendental function per design and angle.
+  blocks) and reduced to their peaks, as the study does on its 20001-point grid,
+  by the library's own fused kinematics
+  (:func:`rotorkin.drives.wobble_cam.fast.rotor_kinematics`, designs ``(m, 1)``
+  against the angles): the same functions as the study, for either spin law.
 * on request (:data:`SAMPLED_METRICS`, ``--metrics``; the sweep benchmark's
   workload): every kinematic curve per design and sampled angle -- both rotor
-  angles (one ``arctan`` each) and their three derivatives, the slider angle, the
-  chamber angles of both kinds and their volumes -- reduced to extremes and
-  peaks. The closed forms above give the same extremes exactly; the sampled
-  ones agree with them to the sampling error (tested), and equal the extremes
-  of the study's columns when the grids are the same.
+  angles and their three derivatives, the slider angle, the chamber angles of
+  both kinds and their volumes -- reduced to extremes and peaks. The closed
+  forms above give the same extremes exactly; the sampled ones agree with them
+  to the sampling error (tested), and equal the extremes of the study's columns
+  when the grids are the same.
 
-With ``D = (1 + c^2)/2 - (1 - c^2)/2 cos 2u`` (``c = cos phi``), the projected
-angle's derivatives are ``E' = c/D``, ``E'' = -c (1 - c^2) sin 2u / D^2``,
-``E''' = c/D^2 (2 (1 - c^2)^2 sin^2 2u / D - 2 (1 - c^2) cos 2u)``
-(:func:`rotorkin.drives.wobble_cam.kinematics.projected_angle`); the rotors' follow by the
-chain rule through the spin law.
+The closed forms are the drive's and the machine's broadcasting functions
+(:mod:`rotorkin.drives.wobble_cam.kinematics`, :mod:`rotorkin.drives.wobble_cam.chambers`,
+:mod:`rotorkin.machines.twin_rotor`) called with arrays of designs; admissibility is
+their vectorised ``violation`` functions.
 """
 
 from __future__ import annotations
-
-import threading
 
 import numpy as np
 
@@ -391,13 +387,8 @@ def _sampled(p, tilt, alpha, spin, samples: int, threads) -> dict:
     out = {k: np.empty(n) for k in ("acc", "jerk", "r_min", "r_max")}
     for n_spin in np.unique(spin):  # one table per spin ratio (usually one)
         rows = np.flatnonzero(spin == n_spin)
-        tables = _spin_tables(p, float(n_spin), theta)
-        t_, a_ = tilt[rows], alpha[rows]
-        if linear:
-            two_u = 2.0 * tables[0]
-            fn = _linear_block(np.cos(two_u), np.sin(two_u), t_, a_, float(n_spin))
-        else:
-            fn = _general_block(theta, tables, t_, a_)
+        law = float(n_spin) if linear else _spin_tables(p, float(n_spin), theta)
+        fn = _general_block(theta, law, tilt[rows], alpha[rows])
         res = run_blocks(fn, rows.size, samples, threads)
         for key, values in res.items():
             out[key][rows] = values
@@ -408,89 +399,25 @@ def _sampled(p, tilt, alpha, spin, samples: int, threads) -> dict:
     return val
 
 
-def _accel_terms(C, S, ca, sa, a, b, sign, c2, s2, t1, t2, t3):
-    """In place, for ``u = varphi + sign alpha/2``: ``c2 = cos 2u``, ``s2 = sin 2u``,
-    ``t1 = 1/D``, ``t2 = 1/D^2``, ``t3 = sin 2u / D^2`` (``E'' = -2 b c t3``).
+def _general_block(theta, law, tilt, alpha):
+    """Block evaluator of the rotor peaks: the library's fused path, reduced per design.
 
-    ``C``, ``S``: ``cos 2 varphi``, ``sin 2 varphi`` on the grid; ``ca``, ``sa``:
-    ``cos alpha``, ``sin alpha`` per design; ``D = a - b cos 2u`` with
-    ``a, b = (1 +- c^2)/2`` (:func:`rotorkin.drives.wobble_cam.kinematics.projected_angle`).
+    ``law``: the spin ratio n (linear law) or the spin law's 4 tables on ``theta``.
     """
-    np.multiply(C, ca, out=c2)
-    np.multiply(S, sa, out=t1)
-    np.subtract(c2, t1, out=c2) if sign > 0 else np.add(c2, t1, out=c2)  # cos 2u
-    np.multiply(S, ca, out=s2)
-    np.multiply(C, sa, out=t1)
-    np.add(s2, t1, out=s2) if sign > 0 else np.subtract(s2, t1, out=s2)  # sin 2u
-    np.multiply(c2, b, out=t1)
-    np.subtract(a, t1, out=t1)
-    np.divide(1.0, t1, out=t1)  # 1/D
-    np.multiply(t1, t1, out=t2)  # 1/D^2
-    np.multiply(s2, t2, out=t3)  # sin 2u / D^2
-
-
-def _jerk_term(b8, b4, c2, s2, t1, t2, t3):
-    """In place after :func:`_accel_terms`: ``t3 = (8 b^2 sin^2 2u / D - 4 b cos 2u) / D^2``.
-
-    The third derivative of E is ``c t3``; ``c2`` is overwritten.
-    """
-    np.multiply(s2, s2, out=t3)
-    np.multiply(t3, t1, out=t3)
-    np.multiply(t3, b8, out=t3)
-    np.multiply(c2, b4, out=c2)
-    np.subtract(t3, c2, out=t3)
-    np.multiply(t3, t2, out=t3)
-
-
-def _linear_block(C, S, tilt, alpha, n_spin):
-    """Block evaluator for the linear spin law: peaks of ``n^2 |E''|`` and ``|n^3 E'''|``."""
-
-    local = threading.local()  # scratch arrays of each thread, reused from block to block
 
     def fn(lo, hi):
-        c = np.cos(tilt[lo:hi])[:, None]
-        ca, sa = np.cos(alpha[lo:hi])[:, None], np.sin(alpha[lo:hi])[:, None]
-        a, b = 0.5 * (1.0 + c * c), 0.5 * (1.0 - c * c)
-        b8, b4 = 8.0 * b * b, 4.0 * b
-        m = hi - lo
-        scratch = getattr(local, "scratch", None)
-        if scratch is None or scratch.shape[1] < m:
-            scratch = local.scratch = np.empty((5, m, C.size))
-        c2, s2, t1, t2, t3 = scratch[:, :m]
-        acc = np.zeros(m)
-        jerk = np.zeros(m)
-        for sign in (-1.0, 1.0):  # rotor 1 (u = n theta - alpha/2), rotor 2 (+)
-            _accel_terms(C, S, ca, sa, a, b, sign, c2, s2, t1, t2, t3)
-            acc = np.maximum(acc, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
-            _jerk_term(b8, b4, c2, s2, t1, t2, t3)
-            jerk = np.maximum(jerk, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
-        cc = c[:, 0]
-        return {
-            "acc": 2.0 * b[:, 0] * cc * n_spin * n_spin * acc,
-            "jerk": np.abs(cc * n_spin**3) * jerk,
-            "r_min": np.full(m, np.nan),
-            "r_max": np.full(m, np.nan),
-        }
+        return _rotor_peaks(theta, law, tilt[lo:hi, None], alpha[lo:hi, None])[0]
 
     return fn
 
 
-def _general_block(theta, tables, tilt, alpha):
-    """Block evaluator for a corrected spin law: the library's fused path, reduced to peaks."""
-
-    def fn(lo, hi):
-        return _rotor_peaks(theta, tables, tilt[lo:hi, None], alpha[lo:hi, None])[0]
-
-    return fn
-
-
-def _rotor_peaks(theta, tables, tilt, alpha):
+def _rotor_peaks(theta, law, tilt, alpha):
     """Peaks of the rotors' second and third derivatives, extremes of the first, and Phi.
 
     :func:`rotorkin.drives.wobble_cam.fast.rotor_kinematics` on designs ``(m, 1)``
     against the grid; returns the reductions and the rotor angles ``(2, m, samples)``.
     """
-    rot, _ = rotor_kinematics(tilt, alpha, tables, theta, threads=1)
+    rot, _ = rotor_kinematics(tilt, alpha, law, theta, threads=1)
     q, d1, d2, d3 = rot
     res = {
         "acc": np.abs(d2).max(axis=(0, 2)),
@@ -514,7 +441,7 @@ def _sampled_full(p, tilt, alpha, spin, n_f, beta, samples: int, threads) -> dic
     Per design and angle: both rotor angles ``Phi_k`` and ``Phi_k'``, ``Phi_k''``,
     ``Phi_k'''``, the slider angle ``Phi_2 - Phi_1``, the chamber angles of both kinds
     (eq. 18-19) and their volumes ``K delta + V_c``. Returns the peaks of
-    :func:`_sampled` (bit for bit the same numbers) and :data:`SAMPLED_METRICS`.
+    :func:`_sampled` (the same evaluation) and :data:`SAMPLED_METRICS`.
     """
     n = p.n
     tilt, alpha, spin, n_f, beta = (full(v, n) for v in (tilt, alpha, spin, n_f, beta))
@@ -528,14 +455,8 @@ def _sampled_full(p, tilt, alpha, spin, n_f, beta, samples: int, threads) -> dic
     per = (tilt, alpha, lo_a, hi_b, kvol, vc)
     for n_spin in np.unique(spin):
         rows = np.flatnonzero(spin == n_spin)
-        tables = _spin_tables(p, float(n_spin), theta)
-        args = tuple(v[rows] for v in per)
-        if linear:
-            two_u = 2.0 * tables[0]
-            ring = (1.0 + float(n_spin)) * theta  # theta + varphi
-            fn = _full_linear_block(np.cos(two_u), np.sin(two_u), ring, float(n_spin), *args)
-        else:
-            fn = _full_general_block(theta, tables, *args)
+        law = float(n_spin) if linear else _spin_tables(p, float(n_spin), theta)
+        fn = _full_general_block(theta, law, *(v[rows] for v in per))
         res = run_blocks(fn, rows.size, samples, threads)
         for key, values in res.items():
             out[key][rows] = values
@@ -577,67 +498,11 @@ def _reduce_chambers(res, q1, q2, w, lo_a, hi_b, kvol, vc) -> None:
         res[f"v{kind}_min"], res[f"v{kind}_max"] = w.min(axis=1), w.max(axis=1)
 
 
-def _full_linear_block(C, S, ring, n_spin, tilt, alpha, lo_a, hi_b, kvol, vc):
-    """Block evaluator of every curve for the linear spin law (in place, per-thread scratch).
-
-    ``C``, ``S``: ``cos 2 varphi``, ``sin 2 varphi`` on the grid; ``ring``:
-    ``theta + varphi``. With ``u_k = varphi -+ alpha/2``, ``c = cos phi``:
-    ``Phi_k = theta + u_k + atan(S_k/(g - C_k))``, ``g = (1 + c)/(1 - c)``, and
-    ``D``, ``Phi'``, ``Phi''``, ``Phi'''`` as in the module doc. The operations on
-    ``Phi''`` and ``Phi'''`` are :func:`_linear_block`'s (:func:`_accel_terms`,
-    :func:`_jerk_term`), so the peaks are bit for bit the same; their positive
-    per-design factors (``2 b c n^2``, ``|c n^3|``) are applied to the peaks, after
-    the reduction.
-    """
-    local = threading.local()
+def _full_general_block(theta, law, tilt, alpha, lo_a, hi_b, kvol, vc):
+    """Block evaluator of every curve (the library's fused path), reduced per design."""
 
     def fn(lo, hi):
-        c = np.cos(tilt[lo:hi])[:, None]
-        ca, sa = np.cos(alpha[lo:hi])[:, None], np.sin(alpha[lo:hi])[:, None]
-        half = 0.5 * alpha[lo:hi][:, None]
-        a, b = 0.5 * (1.0 + c * c), 0.5 * (1.0 - c * c)
-        b8, b4 = 8.0 * b * b, 4.0 * b
-        g = (1.0 + c) / (1.0 - c)
-        nc = n_spin * c
-        m = hi - lo
-        scratch = getattr(local, "scratch", None)
-        if scratch is None or scratch.shape[1] < m:
-            scratch = local.scratch = np.empty((8, m, C.size))
-        c2, s2, t1, t2, t3, w, q1, q2 = scratch[:, :m]
-        acc, jerk = np.zeros(m), np.zeros(m)
-        r_min, r_max = np.full(m, np.inf), np.full(m, -np.inf)
-        for sign, q in ((-1.0, q1), (1.0, q2)):  # rotor 1 (u = n theta - alpha/2), rotor 2 (+)
-            _accel_terms(C, S, ca, sa, a, b, sign, c2, s2, t1, t2, t3)  # Phi'' / (-2 b c n^2)
-            acc = np.maximum(acc, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
-            np.multiply(t1, nc, out=w)
-            np.add(w, 1.0, out=w)  # Phi' = 1 + n c / D
-            r_min, r_max = np.minimum(r_min, w.min(axis=1)), np.maximum(r_max, w.max(axis=1))
-            np.subtract(g, c2, out=w)
-            np.divide(s2, w, out=w)
-            np.arctan(w, out=w)
-            np.add(w, ring, out=q)
-            np.add(q, sign * half, out=q)  # Phi = theta + varphi -+ alpha/2 + atan(...)
-            _jerk_term(b8, b4, c2, s2, t1, t2, t3)  # Phi3 / (c n^3)
-            jerk = np.maximum(jerk, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
-        cc = c[:, 0]
-        res = {
-            "acc": 2.0 * b[:, 0] * cc * n_spin * n_spin * acc,
-            "jerk": np.abs(cc * n_spin**3) * jerk,
-            "r_min": r_min,
-            "r_max": r_max,
-        }
-        _reduce_chambers(res, q1, q2, w, lo_a[lo:hi, None], hi_b[lo:hi, None],
-                         kvol[lo:hi, None], vc[lo:hi, None])  # fmt: skip
-        return res
-
-    return fn
-
-
-def _full_general_block(theta, tables, tilt, alpha, lo_a, hi_b, kvol, vc):
-    """Block evaluator of every curve for a corrected spin law (the library's fused path)."""
-
-    def fn(lo, hi):
-        res, q = _rotor_peaks(theta, tables, tilt[lo:hi, None], alpha[lo:hi, None])
+        res, q = _rotor_peaks(theta, law, tilt[lo:hi, None], alpha[lo:hi, None])
         _reduce_chambers(res, q[0], q[1].copy(), np.empty_like(q[0]), lo_a[lo:hi, None],
                          hi_b[lo:hi, None], kvol[lo:hi, None], vc[lo:hi, None])  # fmt: skip
         return res
