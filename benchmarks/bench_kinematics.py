@@ -144,10 +144,10 @@ def before(params, theta, beta):
     half = 0.5 * params.roller_axis_angle
     sign = np.array([-1.0, 1.0]).reshape((2,) + (1,) * theta.ndim)
     u = spin[0] + sign * half
-    h = compose(wc.projected_angle(u, params.plate_tilt), (u, spin[1], spin[2], spin[3]))
+    h = compose(wc.projected_angle(params.plate_tilt, u), (u, spin[1], spin[2], spin[3]))
     full = (2, *theta.shape)
     q = tuple(np.broadcast_to(x, full).copy() for x in (theta + h[0], 1.0 + h[1], h[2], h[3]))
-    return q, wc.chamber_angles(q[0][1] - q[0][0], beta, params.pistons_per_rotor)
+    return q, wc.chamber_angles(beta, q[0][1] - q[0][0], pistons=params.pistons_per_rotor)
 
 
 def _as_rows(rotor, da, db):
@@ -162,7 +162,7 @@ def agreement(params, beta, points=2000):
     k2 = wc.kinematics(params, np.tile(theta, 64), beta, threads=2)  # large enough for 2 threads
     two = _as_rows((k2.q, k2.dq, k2.d2q, k2.d3q), k2.chamber_a, k2.chamber_b)[:, :points]
     q = wc.rotor_angles(params, theta)
-    split = _as_rows(q, *wc.chamber_angles(q[0][1] - q[0][0], beta, PISTONS))
+    split = _as_rows(q, *wc.chamber_angles(beta, q[0][1] - q[0][0], pistons=PISTONS))
     qb, (da, db) = before(params, theta, beta)
     old = _as_rows(qb, da, db)
     pp = per_point(theta, SPIN, TILT, ALPHA, beta, PISTONS)
@@ -193,10 +193,10 @@ def measure(params, beta, size, cap, cap_before, rounds, budget):
         "library": lambda: wc.kinematics(params, theta, beta, threads=1),
         "library_2threads": lambda: wc.kinematics(params, theta, beta, threads=2),
         "library_out": lambda: rotor_kinematics(
-            theta, SPIN, TILT, ALPHA, (beta, PISTONS), threads=1, out=out
+            TILT, ALPHA, SPIN, theta, chamber=(beta, PISTONS), threads=1, out=out
         ),
         "rotor_angles_path": lambda: wc.chamber_angles(
-            np.subtract(*wc.rotor_angles(params, theta, threads=1)[0][::-1]), beta, PISTONS
+            beta, np.subtract(*wc.rotor_angles(params, theta, threads=1)[0][::-1]), pistons=PISTONS
         ),
     }
     if size <= cap_before:

@@ -98,8 +98,10 @@ def test_cam_validation_names_the_key():
     for kwargs, key in cases:
         with pytest.raises(ParameterError) as err:
             sph.SphericalCam(0.06, **kwargs)
-        assert err.value.name == key and "mm" in str(err.value)
-    with pytest.raises(ParameterError, match="drive.sphere_radius"):
+        # the dataclass names its field; from_config names the config key
+        assert err.value.name == key.split(".")[1] and "mm" in str(err.value)
+        assert sph.config_key(err.value.name) == key
+    with pytest.raises(ParameterError, match="^sphere_radius"):
         sph.SphericalCam(-1.0)
 
 
@@ -257,7 +259,7 @@ def test_check_roller_radius(example):
     with pytest.raises(ParameterError) as err:
         sph.check_roller_radius(drive, big)
     msg = str(err.value)
-    assert msg.startswith("cam.roller_radius = 6 mm is not admissible: roller_radius < 5.04")
+    assert msg.startswith("roller_radius = 6 mm is not admissible: roller_radius < 5.04")
     assert "theta = 22.5 deg" in msg and "roller 2" in msg
 
 
@@ -366,7 +368,7 @@ def test_argument_errors(example):
         sph.pressure_angle(drive, 0.0, frame="cam")
     with pytest.raises(ParameterError, match="radius"):
         sph.groove_walls(drive, cam, 0.0, radius=0.003)
-    with pytest.raises(ParameterError, match="drive.sphere_radius"):
+    with pytest.raises(ParameterError, match="^sphere_radius"):
         sph.groove_walls(drive, sph.SphericalCam(0.07), 0.0)
 
 

@@ -14,8 +14,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rotorkin.analysis.engine_cycle import POWER
+from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam import study as study
+from rotorkin.machines import twin_rotor as tr
 
 D = np.pi / 180.0
 HALF_LAST_DIGIT_DEG = 0.005
@@ -67,7 +70,7 @@ def test_chamber_swing_table1():
     assert deg(lay.swing) == pytest.approx(39.0, abs=0.5)
     theta = np.linspace(0, 2 * np.pi, 14401)
     q = wc.rotor_angles(table1(), theta)[0]
-    da, db = wc.chamber_angles(q[1] - q[0], lay.piston_width)
+    da, db = wc.chamber_angles(lay.piston_width, q[1] - q[0])
     for k in (da, db):
         assert deg(k.max() - k.min()) == pytest.approx(38.94, abs=HALF_LAST_DIGIT_DEG)
 
@@ -103,7 +106,7 @@ def test_volume_cycles_and_power_strokes():
     lay = wc.piston_layout(p, 10.0)
     theta = np.linspace(0, 2 * np.pi, 36000, endpoint=False)
     q = wc.rotor_angles(p, theta)[0]
-    da, _ = wc.chamber_angles(q[1] - q[0], lay.piston_width)
+    da, _ = wc.chamber_angles(lay.piston_width, q[1] - q[0])
     minima = int(np.sum((da < np.roll(da, 1)) & (da < np.roll(da, -1))))
     assert minima == wc.volume_cycles_per_rev(p) == 4
     assert wc.CHAMBERS * minima == 32
@@ -275,7 +278,7 @@ def test_fig11_groups_a_and_b_same_amplitude_but_not_coincident():
     spread = []
     for a_deg in (60.0, 70.0, 80.0, 90.0):
         a = a_deg * D
-        s1, s2 = wc.slider_angle(v, phi, a), wc.slider_angle(v, phi, np.pi - a)
+        s1, s2 = wc.slider_angle(phi, a, v), wc.slider_angle(phi, np.pi - a, v)
         assert s1.max() - s1.min() == pytest.approx(s2.max() - s2.min(), abs=1e-12)
         p = wc.WobbleCam(phi, a)
         lay = wc.piston_layout(p, 10.0)
@@ -316,12 +319,9 @@ def test_sixteen_power_strokes_and_two_chambers_firing_through_the_machine():
     """Section 1.2: "each output-shaft turn ... 16 power strokes"; "at every instant 2 working
     chambers are in the power stroke". Counted on the machine's four-stroke assignment over one
     turn (exact integers), sampled inside every stroke interval (0.1 deg steps)."""
-    from rotorkin.analysis.engine_cycle import POWER
-    from rotorkin.machines import twin_rotor as tr
-
     p, m = table1(), tr.TwinRotor()
     theta = np.arange(0.05, 360.0, 0.1) * D
-    s = tr.strokes(p, m, theta)
+    s = eng.strokes(p, m, theta)
     assert s.shape == (8, theta.size)
     assert np.all(np.sum(s == POWER, axis=0) == 2)
     starts = np.sum((s == POWER) & (np.roll(s, 1, axis=1) != POWER))

@@ -20,6 +20,7 @@ from rotorkin.analysis.timing import shaft_speed
 from rotorkin.analysis.torque import equivalent_inertia, inertia_torque, kinetic_energy
 from rotorkin.cli import main
 from rotorkin.core.errors import ParameterError
+from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam import study as study
 from rotorkin.io.config import load_config
@@ -179,9 +180,9 @@ def d5(f, x, h):
 def test_volumes_against_explicit_pistons_and_section_integral(seed):
     rng = np.random.default_rng(seed)
     drive, machine, _ = random_engine(rng)
-    layout = tr.piston_layout(drive, machine)
+    layout = eng.piston_layout(drive, machine)
     theta = rng.uniform(-6, 6, 120)
-    got = tr.chambers(drive, machine, theta).volume
+    got = eng.chambers(drive, machine, theta).volume
     assert got.shape == (2 * machine.pistons_per_rotor, 120)
     np.testing.assert_allclose(
         got, explicit_volumes(drive, machine, layout, theta), rtol=1e-9, atol=1e-15
@@ -203,12 +204,10 @@ def test_volume_bookkeeping_chambers_plus_pistons_fill_the_annulus(seed):
     """sum_j (V_j - V_c) + 2N pistons of width beta = the annulus volume, at every angle."""
     rng = np.random.default_rng(50 + seed)
     drive, machine, _ = random_engine(rng)
-    ch = tr.chambers(drive, machine, rng.uniform(-5, 5, (3, 40)))
+    ch = eng.chambers(drive, machine, rng.uniform(-5, 5, (3, 40)))
     k = section_volume_per_radian(machine)
     n_p = machine.pistons_per_rotor
-    total = (
-        np.sum(ch.volume - machine.clearance_volume, axis=0) + 2 * n_p * ch.layout.piston_width * k
-    )
+    total = np.sum(ch.volume - machine.clearance_volume, axis=0) + 2 * n_p * ch.piston_width * k
     np.testing.assert_allclose(total, 2 * np.pi * k, rtol=1e-12)
     assert tr.annulus_volume(machine) == pytest.approx(2 * np.pi * k, rel=1e-10)
     assert np.all(ch.volume > machine.clearance_volume)  # no interference anywhere
@@ -218,21 +217,21 @@ def test_volume_bookkeeping_chambers_plus_pistons_fill_the_annulus(seed):
 def test_volume_derivatives_by_finite_differences(seed):
     rng = np.random.default_rng(100 + seed)
     drive, machine, _ = random_engine(rng)
-    layout = tr.piston_layout(drive, machine)
+    layout = eng.piston_layout(drive, machine)
     theta = rng.uniform(-4, 4, 60)
-    ch = tr.chambers(drive, machine, theta, layout)
+    ch = eng.chambers(drive, machine, theta, layout)
     scale = np.max(np.abs(ch.dvolume))
-    fd = d5(lambda t: tr.chambers(drive, machine, t, layout).volume, theta, 1e-3)
+    fd = d5(lambda t: eng.chambers(drive, machine, t, layout).volume, theta, 1e-3)
     np.testing.assert_allclose(ch.dvolume, fd, rtol=0, atol=1e-7 * scale)
-    fd2 = d5(lambda t: tr.chambers(drive, machine, t, layout).dvolume, theta, 1e-3)
+    fd2 = d5(lambda t: eng.chambers(drive, machine, t, layout).dvolume, theta, 1e-3)
     np.testing.assert_allclose(ch.d2volume, fd2, rtol=0, atol=1e-6 * np.max(np.abs(ch.d2volume)))
     # dV_j/dq_i: vary one rotor at a time
     q1, q2 = ch.motion.q
     h = 1e-4
     for i in (0, 1):
         dq = np.array([h, 0.0]) if i == 0 else np.array([0.0, h])
-        vp = tr.chamber_volumes_from_rotors(machine, layout, q1 + dq[0], q2 + dq[1])
-        vm = tr.chamber_volumes_from_rotors(machine, layout, q1 - dq[0], q2 - dq[1])
+        vp = eng.chamber_volumes_from_rotors(machine, layout, q1 + dq[0], q2 + dq[1])
+        vm = eng.chamber_volumes_from_rotors(machine, layout, q1 - dq[0], q2 - dq[1])
         fdq = (vp - vm) / (2 * h)
         np.testing.assert_allclose(
             np.broadcast_to(ch.dvolume_dq[i][:, None], fdq.shape), fdq, rtol=1e-8, atol=1e-16
@@ -250,24 +249,26 @@ def test_torus_volume_is_pappus_and_rectangle_the_sector_formula():
 def test_compression_ratio_with_clearance_textbook_relation():
     """eps_geo = (V_s + V_0 + V_c) / (V_0 + V_c), V_0 = K delta_min; = 10 at Table 1 without V_c."""
     drive, machine, _ = table1_engine()
-    layout = tr.piston_layout(drive, machine)
-    assert tr.compression_ratio_geometric(machine, layout) == pytest.approx((10.0, 10.0), rel=1e-12)
+    layout = eng.piston_layout(drive, machine)
+    assert eng.compression_ratio_geometric(machine, layout) == pytest.approx(
+        (10.0, 10.0), rel=1e-12
+    )
     k = 0.5 * (0.08**2 - 0.04**2) * 0.04
     amax, amin = eq15(0.0, 45 * D, 90 * D), eq15(np.pi / 2, 45 * D, 90 * D)
     beta = (11 * amin - np.pi * 13 / 4) / 9  # eq. 21
     v0 = k * (amin - np.pi / 4 - beta)
     vs = k * (amax - amin)
-    assert tr.swept_volume(machine, layout) == pytest.approx(vs, rel=1e-12)
+    assert eng.swept_volume(machine, layout) == pytest.approx(vs, rel=1e-12)
     for vc in (1e-6, 3.3e-6, 2e-5):
         _, m, _ = table1_engine(clearance_volume=vc)
-        got = tr.compression_ratio_geometric(m, tr.piston_layout(drive, m))
+        got = eng.compression_ratio_geometric(m, eng.piston_layout(drive, m))
         assert got == pytest.approx(((vs + v0 + vc) / (v0 + vc),) * 2, rel=1e-12)
         assert got[0] < 10.0
     # with clearance, the dense-sampled explicit volumes give the same ratio
     _, m, _ = table1_engine(clearance_volume=2e-6)
-    v = explicit_volumes(drive, m, tr.piston_layout(drive, m), np.linspace(0, np.pi, 4001))
+    v = explicit_volumes(drive, m, eng.piston_layout(drive, m), np.linspace(0, np.pi, 4001))
     assert v[0].max() / v[0].min() == pytest.approx(
-        tr.compression_ratio_geometric(m, tr.piston_layout(drive, m))[0], rel=1e-9
+        eng.compression_ratio_geometric(m, eng.piston_layout(drive, m))[0], rel=1e-9
     )
 
 
@@ -276,9 +277,9 @@ def test_volume_limits_off_90_deg(seed):
     """alpha != 90 deg: the kinds differ; the limits equal dense-sampled extremes."""
     rng = np.random.default_rng(150 + seed)
     drive, machine, _ = random_engine(rng, n_pistons=int(rng.choice([4, 6])), spin=-2.0)
-    layout = tr.piston_layout(drive, machine)
+    layout = eng.piston_layout(drive, machine)
     v = explicit_volumes(drive, machine, layout, np.linspace(0, np.pi / 2, 2001))
-    v_min, v_max = tr.volume_limits(machine, layout)
+    v_min, v_max = eng.volume_limits(machine, layout)
     np.testing.assert_allclose(v.min(axis=1), v_min, rtol=1e-9)
     np.testing.assert_allclose(v.max(axis=1), v_max, rtol=1e-9)
 
@@ -300,12 +301,12 @@ def test_strokes_follow_the_volume(seed):
     are on the power stroke at every instant; 2N |n| power strokes per turn."""
     rng = np.random.default_rng(200 + seed)
     drive, machine, _ = random_engine(rng)
-    layout = tr.piston_layout(drive, machine)
+    layout = eng.piston_layout(drive, machine)
     edges, mids, h = _intervals(drive, turns=2.0)
     # sample inside each interval (away from the ends)
     frac = np.linspace(0.02, 0.98, 9)
     theta = (edges[:-1, None] + frac * h).ravel()
-    s = tr.strokes(drive, machine, theta).reshape(machine.chambers, len(mids), len(frac))
+    s = eng.strokes(drive, machine, theta).reshape(machine.chambers, len(mids), len(frac))
     assert np.all(s == s[..., :1])  # constant inside an interval
     s = s[..., 0]
     assert np.all(np.mod(np.diff(s, axis=1), 4) == 1)  # in order, one stroke per interval
@@ -320,7 +321,7 @@ def test_strokes_follow_the_volume(seed):
     assert starts == 2 * machine.pistons_per_rotor * abs(drive.spin_ratio)
     assert starts == wc.power_strokes_per_rev(drive)
     # at a boundary, the stroke that starts there
-    at = tr.strokes(drive, machine, edges[1:-1])
+    at = eng.strokes(drive, machine, edges[1:-1])
     np.testing.assert_array_equal(at, s[:, 1:])
 
 
@@ -329,13 +330,13 @@ def test_table1_timing_chamber1_and_fixed_ports():
     TDCs of all chambers fall on 2 fixed housing positions 180 deg apart (spark plugs), the
     intake TDCs on the 2 others: the timing is realizable with ports fixed in the housing."""
     drive, machine, _ = table1_engine()
-    layout = tr.piston_layout(drive, machine)
-    assert int(tr.strokes(drive, machine, 0.0)[0]) == ec.COMPRESSION
-    assert int(tr.strokes(drive, machine, 45 * D)[0]) == ec.POWER
+    layout = eng.piston_layout(drive, machine)
+    assert int(eng.strokes(drive, machine, 0.0)[0]) == ec.COMPRESSION
+    assert int(eng.strokes(drive, machine, 45 * D)[0]) == ec.POWER
     edges, _, h = _intervals(drive, turns=2.0)
     edges = edges[:-1]  # events in [0, 4 pi)
-    before = tr.strokes(drive, machine, edges - 1e-6)
-    after = tr.strokes(drive, machine, edges + 1e-6)
+    before = eng.strokes(drive, machine, edges - 1e-6)
+    after = eng.strokes(drive, machine, edges + 1e-6)
     q1, q2 = rotor_angles_matrices(drive, edges)
     g, beta = gamma_from_eq18_19(4), layout.piston_width
     pos = {ec.POWER: [], ec.INTAKE: []}
@@ -368,7 +369,7 @@ def test_pressure_of_chamber_against_ode_through_a_cycle(seed):
     power (solve_ivp on the explicit volumes), p_a on intake/exhaust, heat at TDC."""
     rng = np.random.default_rng(300 + seed)
     drive, machine, cycle = random_engine(rng, spin=float(rng.choice([-2.0, -1.0, 2.0])))
-    layout = tr.piston_layout(drive, machine)
+    layout = eng.piston_layout(drive, machine)
     k = cycle.polytropic_exponent
     edges, _, h = _intervals(drive, turns=2.0)
 
@@ -378,11 +379,11 @@ def test_pressure_of_chamber_against_ode_through_a_cycle(seed):
         return explicit_volumes(drive, machine, layout, np.atleast_1d(t), k_section)[0]
 
     v_lo = vol(np.pi / (2 * abs(drive.spin_ratio)))[0]  # chamber 1 (kind A): TDC
-    state = tr.strokes(drive, machine, edges[:-1] + 0.5 * h)[0]
+    state = eng.strokes(drive, machine, edges[:-1] + 0.5 * h)[0]
     p_start_power = np.nan
     for a, s in zip(edges[:-1], state, strict=True):
         t = np.linspace(a + 1e-9, a + h - 1e-9, 7)
-        got = tr.engine_state(drive, machine, cycle, t).pressure[0]
+        got = eng.engine_state(drive, machine, cycle, t).pressure[0]
         if s in (ec.INTAKE, ec.EXHAUST):
             np.testing.assert_allclose(got, cycle.ambient_pressure, rtol=1e-15)
             continue
@@ -410,18 +411,18 @@ def test_energy_shaft_torque_integral_equals_sum_of_pdv(seed):
     volumes' extremes), to 1e-9."""
     rng = np.random.default_rng(400 + seed)
     drive, machine, cycle = random_engine(rng)
-    layout = tr.piston_layout(drive, machine)
+    layout = eng.piston_layout(drive, machine)
     edges, mids, h = _intervals(drive, turns=1.0)
     x, w = np.polynomial.legendre.leggauss(40)
     nodes = edges[:-1, None] + 0.5 * h * (x + 1.0)
-    st = tr.engine_state(drive, machine, cycle, nodes)
+    st = eng.engine_state(drive, machine, cycle, nodes)
     torque_integral = float(np.sum(st.shaft_torque * w) * 0.5 * h)
     # independent: chamber extremes from the explicit model at the exact extreme angles
     v_bdc_a = explicit_volumes(drive, machine, layout, np.array([0.0]))[:, 0]
     v_tdc_a = explicit_volumes(drive, machine, layout, np.array([h]))[:, 0]
     v_max = np.maximum(v_bdc_a, v_tdc_a)
     v_min = np.minimum(v_bdc_a, v_tdc_a)
-    strokes = tr.strokes(drive, machine, mids)
+    strokes = eng.strokes(drive, machine, mids)
     total = 0.0
     for j in range(machine.chambers):
         for s in strokes[j]:
@@ -435,7 +436,7 @@ def test_energy_shaft_torque_integral_equals_sum_of_pdv(seed):
             )
             total += val
     assert torque_integral == pytest.approx(total, rel=1e-9)
-    closed = tr.indicated_work_per_rev(drive, machine, cycle, layout)
+    closed = eng.indicated_work_per_rev(drive, machine, cycle, layout)
     assert closed == pytest.approx(total, rel=1e-9)
     # the virtual-work torque equals sum_j p_j dV_j/dtheta
     np.testing.assert_allclose(
@@ -450,9 +451,9 @@ def test_energy_shaft_torque_integral_equals_sum_of_pdv(seed):
 def test_efficiency_is_otto_with_the_geometric_ratio():
     for vc in (0.0, 2e-6):
         drive, machine, cycle = table1_engine(clearance_volume=vc)
-        layout = tr.piston_layout(drive, machine)
-        eps = tr.compression_ratio_geometric(machine, layout)[0]
-        work = tr.indicated_work_per_rev(drive, machine, cycle, layout)
+        layout = eng.piston_layout(drive, machine)
+        eps = eng.compression_ratio_geometric(machine, layout)[0]
+        work = eng.indicated_work_per_rev(drive, machine, cycle, layout)
         heat = 16 * cycle.heat_per_cycle  # 16 power strokes per turn, paper section 1.2
         assert work / heat == pytest.approx(1 - eps ** (1 - 1.35), rel=1e-12)
 
@@ -464,7 +465,7 @@ def test_instantaneous_power_balance_with_a_speed_profile(seed):
     is 1/2 (J_s omega^2 + sum J_i (dPhi_i/dt)^2) with dPhi_i/dt also by differences in time."""
     rng = np.random.default_rng(500 + seed)
     drive, machine, cycle = random_engine(rng, spin=float(rng.choice([-2.0, -1.0, 1.0])))
-    layout = tr.piston_layout(drive, machine)
+    layout = eng.piston_layout(drive, machine)
     samples = 300.0 + rng.uniform(-30, 30, 7)
     omega_of = lambda th: shaft_speed(th, samples, 2 * np.pi)[0]  # noqa: E731
     dt = 1e-5
@@ -501,7 +502,7 @@ def test_instantaneous_power_balance_with_a_speed_profile(seed):
         dke = (-ke[4] + 8 * ke[3] - 8 * ke[1] + ke[0]) / (12 * dt)
         vols = explicit_volumes(drive, machine, layout, th)
         dvdt = ddt(vols.T, 4)
-        st = tr.engine_state(drive, machine, cycle, theta_c)
+        st = eng.engine_state(drive, machine, cycle, theta_c)
         w, wd = (float(x) for x in shaft_speed(theta_c, samples, 2 * np.pi)[:2])
         m = st.chambers.motion
         t_in = inertia_torque(machine.inertia_shaft, machine.member_inertias, m.dq, m.d2q, w, wd)
@@ -521,7 +522,7 @@ def test_flywheel_against_independent_energy_integral():
         inertia_shaft=0.004, inertia_rotor_1=0.008, inertia_rotor_2=0.008
     )
     theta = np.linspace(0, 2 * np.pi, 200_001)
-    st = tr.engine_state(drive, machine, cycle, theta)
+    st = eng.engine_state(drive, machine, cycle, theta)
     w = 3000 * np.pi / 30
     dq, d2q = st.chambers.motion.dq, st.chambers.motion.d2q
     # inertia torque written out: d/dtheta of 1/2 J_eq w^2 at constant w
@@ -545,8 +546,11 @@ def test_shapes_0d_1d_3d_agree():
     drive, machine, cycle = random_engine(np.random.default_rng(9), n_pistons=6, spin=-2.0)
     t3 = np.random.default_rng(1).uniform(-4, 4, (2, 3, 4))
     t1 = t3.ravel()
-    s3, s1 = tr.engine_state(drive, machine, cycle, t3), tr.engine_state(drive, machine, cycle, t1)
-    s0 = tr.engine_state(drive, machine, cycle, np.float64(t1[5]))
+    s3, s1 = (
+        eng.engine_state(drive, machine, cycle, t3),
+        eng.engine_state(drive, machine, cycle, t1),
+    )
+    s0 = eng.engine_state(drive, machine, cycle, np.float64(t1[5]))
     for name in ("volume", "dvolume", "d2volume"):
         a3, a1 = getattr(s3.chambers, name), getattr(s1.chambers, name)
         assert a3.shape == (12, 2, 3, 4)
@@ -560,7 +564,9 @@ def test_shapes_0d_1d_3d_agree():
     assert s3.shaft_torque.shape == (2, 3, 4) and s0.shaft_torque.shape == ()
     np.testing.assert_array_equal(s3.shaft_torque.ravel(), s1.shaft_torque)
     assert tr.volume_gradient(machine).shape == (2, 12)
-    assert tr.chamber_volumes_from_rotors(machine, s0.chambers.layout, 0.1, 1.2).shape == (12,)
+    assert tr.chamber_volumes_from_rotors(machine, s0.chambers.piston_width, 0.1, 1.2).shape == (
+        12,
+    )
 
 
 # --------------------------------------------------------------------------------------------
@@ -606,7 +612,7 @@ def test_pistons_message_says_why():
 
 def test_drive_and_machine_must_agree_on_pistons():
     with pytest.raises(ValueError, match="pistons"):
-        tr.chambers(wc.WobbleCam(0.5), tr.TwinRotor(pistons_per_rotor=6), 0.0)
+        eng.chambers(wc.WobbleCam(0.5), tr.TwinRotor(pistons_per_rotor=6), 0.0)
 
 
 def test_inactive_section_sizes_are_not_checked():
@@ -787,6 +793,7 @@ def test_no_heat_no_inertia_gives_nan_not_a_crash():
     assert s["energy_fluctuation_J"] > 0  # the gas spring still stores energy
 
 
+@pytest.mark.slow
 def test_plot_writes_engine_figures(tmp_path):
     paths = study.evaluate(
         example_cfg(**{"machine.pistons_per_rotor": 6, "drive.plate_tilt": '"40 deg"'})

@@ -135,7 +135,7 @@ def test_rotor_derivatives_finite_differences(seed):
 
 @pytest.mark.parametrize("seed", range(4))
 def test_general_spin_law_chain_rule(seed):
-    """Spin law with a periodic correction (issue 4): varphi = n theta + a sin(k theta + b)."""
+    """Spin law with a periodic correction: varphi = n theta + a sin(k theta + b)."""
     rng = np.random.default_rng(300 + seed)
     phi, alpha = rng.uniform(0.1, 1.0), rng.uniform(1.0, 2.0)
     n, a, k, b = -2.0, rng.uniform(-0.3, 0.3), float(rng.integers(1, 5)), rng.uniform(0, 6)
@@ -145,9 +145,9 @@ def test_general_spin_law_chain_rule(seed):
         return n * t + a * s, n + a * k * c, -a * k**2 * s, -a * k**3 * c
 
     theta = rng.uniform(-4, 4, 80)
-    ders = wc.rotor_angles_from_spin(theta, spin(theta), phi, alpha)
+    ders = wc.rotor_angles_from_spin(phi, alpha, spin(theta), theta)
     for i in (0, 1, 2):
-        fd = d5(lambda t, i=i: wc.rotor_angles_from_spin(t, spin(t), phi, alpha)[i], theta, 1e-3)
+        fd = d5(lambda t, i=i: wc.rotor_angles_from_spin(phi, alpha, spin(t), t)[i], theta, 1e-3)
         scale = max(1.0, np.max(np.abs(ders[i + 1])))
         np.testing.assert_allclose(ders[i + 1], fd, rtol=0, atol=2e-7 * scale)
     # position still equals the rotation-matrix projection
@@ -159,19 +159,19 @@ def test_projected_angle_derivatives_and_branch():
     rng = np.random.default_rng(7)
     phi = rng.uniform(0.05, 1.4, 200)
     u = rng.uniform(-20, 20, 200)
-    e = wc.projected_angle(u, phi)
+    e = wc.projected_angle(phi, u)
     for i in (0, 1, 2):
-        fd = d5(lambda x, i=i: wc.projected_angle(x, phi)[i], u, 1e-3)
+        fd = d5(lambda x, i=i: wc.projected_angle(phi, x)[i], u, 1e-3)
         scale = np.maximum(1.0, np.abs(e[i + 1]))
         assert np.all(np.abs(e[i + 1] - fd) < 1e-6 * scale)
     # the atan2 of the definition, modulo 2 pi; and E(u + pi) = E(u) + pi, E odd
     np.testing.assert_allclose(
         wrap(e[0] - np.arctan2(np.sin(u), np.cos(phi) * np.cos(u))), 0, atol=1e-12
     )
-    np.testing.assert_allclose(wc.projected_angle(u + np.pi, phi)[0], e[0] + np.pi, atol=1e-12)
-    np.testing.assert_allclose(wc.projected_angle(-u, phi)[0], -e[0], atol=1e-12)
+    np.testing.assert_allclose(wc.projected_angle(phi, u + np.pi)[0], e[0] + np.pi, atol=1e-12)
+    np.testing.assert_allclose(wc.projected_angle(phi, -u)[0], -e[0], atol=1e-12)
     # no tilt: the projection is the plate angle itself
-    np.testing.assert_allclose(wc.projected_angle(u, 0.0)[0], u, atol=1e-12)
+    np.testing.assert_allclose(wc.projected_angle(0.0, u)[0], u, atol=1e-12)
 
 
 def test_speed_ratio_extremes_in_summary_match_samples():
@@ -212,7 +212,7 @@ def test_slider_angle_against_eq15_and_matrices(seed):
     rng = np.random.default_rng(400 + seed)
     phi, alpha = rng.uniform(0.02, 1.4), rng.uniform(0.1, np.pi - 0.1)
     varphi = rng.uniform(-10, 10, 300)
-    got = wc.slider_angle(varphi, phi, alpha)
+    got = wc.slider_angle(phi, alpha, varphi)
     np.testing.assert_allclose(got, eq15_printed(varphi, phi, alpha), atol=1e-9)
     # explicit projections at an arbitrary theta: alpha' does not depend on theta
     theta = rng.uniform(-10, 10, 300)
@@ -222,7 +222,7 @@ def test_slider_angle_against_eq15_and_matrices(seed):
     dot = r1[..., 1] * r2[..., 1] + r1[..., 2] * r2[..., 2]
     np.testing.assert_allclose(got, np.arctan2(cross, dot), atol=1e-9)
     # period pi in varphi, values in (0, pi)
-    np.testing.assert_allclose(wc.slider_angle(varphi + np.pi, phi, alpha), got, atol=1e-12)
+    np.testing.assert_allclose(wc.slider_angle(phi, alpha, varphi + np.pi), got, atol=1e-12)
     assert np.all((got > 0) & (got < np.pi))
 
 
@@ -252,7 +252,7 @@ def test_slider_extremes_by_optimisation(seed):
     )  # varphi = pi/2 (mod pi)
     # d alpha'/d varphi vanishes exactly where sin(2 varphi) sin(alpha) = 0
     v = rng.uniform(0.05, np.pi / 2 - 0.05, 50)
-    fd = d5(lambda x: wc.slider_angle(x, phi, alpha), v, 1e-4)
+    fd = d5(lambda x: wc.slider_angle(phi, alpha, x), v, 1e-4)
     assert np.all(fd < 0)  # strictly falling between 0 and pi/2
 
 
@@ -297,7 +297,7 @@ def test_chamber_angles_against_explicit_pistons(seed):
     beta = rng.uniform(0.0, 0.1)
     theta = rng.uniform(-5, 5, 100)
     q = wc.rotor_angles(p, theta)[0]
-    da, db = wc.chamber_angles(q[1] - q[0], beta)
+    da, db = wc.chamber_angles(beta, q[1] - q[0])
     ours = np.sort(
         np.concatenate([np.repeat(da[:, None], 4, 1), np.repeat(db[:, None], 4, 1)], 1), 1
     )
@@ -318,7 +318,7 @@ def test_piston_layout_against_dense_simulation(seed):
     ch = explicit_chambers(q[0], q[1], lay.piston_width)
     # the tightest chamber reaches ratio eps; no chamber goes below the design minimum
     lo = ch.min()
-    da, db = wc.chamber_angles(q[1] - q[0], lay.piston_width)
+    da, db = wc.chamber_angles(lay.piston_width, q[1] - q[0])
     kinds = {"A": da, "B": db}
     tight = kinds[lay.design_kind]
     other = kinds["B" if lay.design_kind == "A" else "A"]
@@ -411,8 +411,8 @@ def test_shapes_0d_1d_3d_agree():
         "rotor": lambda t: np.stack(wc.rotor_angles(p, t)),
         "roller": lambda t: wc.roller_positions(p, t),
         "groove": lambda t: wc.groove_points(p, t),
-        "slider": lambda t: wc.slider_angle(t, p.plate_tilt, p.roller_axis_angle),
-        "proj": lambda t: np.stack(wc.projected_angle(t, p.plate_tilt)),
+        "slider": lambda t: wc.slider_angle(p.plate_tilt, p.roller_axis_angle, t),
+        "proj": lambda t: np.stack(wc.projected_angle(p.plate_tilt, t)),
         "spin": lambda t: np.stack(wc.spin_law(p, t)),
         "cam": wc.cam_angle,
     }
@@ -426,14 +426,14 @@ def test_shapes_0d_1d_3d_agree():
     assert m.q.shape == m.dq.shape == m.d2q.shape == m.d3q.shape == (2, 2, 3, 4)
     assert m.members == ("rotor 1", "rotor 2") and m.unit == "rad"
     assert wc.motion(p, 0.3).q.shape == (2,)
-    np.testing.assert_allclose(m.relative[0], wc.slider_angle(p.spin_ratio * t3, 0.6, 1.4))
+    np.testing.assert_allclose(m.relative[0], wc.slider_angle(0.6, 1.4, p.spin_ratio * t3))
 
 
 @pytest.mark.parametrize("n", [-2.0, -1.5, -1.0, 0.5, 1.0, 3.0])
 def test_volume_cycles_counted(n):
     p = wc.WobbleCam(0.7, np.pi / 2, n)
     theta = np.linspace(0, 2 * np.pi, 40000, endpoint=False)
-    s = wc.slider_angle(wc.spin_law(p, theta)[0], p.plate_tilt, p.roller_axis_angle)
+    s = wc.slider_angle(p.plate_tilt, p.roller_axis_angle, wc.spin_law(p, theta)[0])
     minima = np.sum((s < np.roll(s, 1)) & (s < np.roll(s, -1)))
     assert minima == wc.volume_cycles_per_rev(p) == round(2 * abs(n))
     assert wc.power_strokes_per_rev(p) == 8 * minima // 2
@@ -575,6 +575,7 @@ def test_study_off_90deg_reports_both_kinds():
     assert s["chamber_angle_max_deg"] / s["chamber_angle_min_deg"] == pytest.approx(10.0)
 
 
+@pytest.mark.slow
 def test_plot_writes_pngs(tmp_path):
     for cfg in (_cfg(), _cfg(roller_axis_angle=70 * D, spin_ratio=-1.5)):
         paths = study.evaluate(cfg).write_figures(tmp_path)
@@ -591,7 +592,7 @@ def test_plot_writes_pngs(tmp_path):
 
 
 # --------------------------------------------------------------------------------------------
-# N pistons per rotor (issue 3): eq. 18-22 generalised
+# N pistons per rotor: eq. 18-22 generalised
 # --------------------------------------------------------------------------------------------
 def explicit_chambers_n(phi1, phi2, beta, n_p, gamma):
     """Place 2N pistons (N per rotor, 2 pi/N apart) and measure the 2N gaps minus the width."""
@@ -619,8 +620,8 @@ def test_piston_offset_from_eq18_19(n_p):
     assert g == pytest.approx(np.pi / 4 - np.pi / (2 * n_p), abs=1e-15)
     rng = np.random.default_rng(n_p)
     s, beta = rng.uniform(0.5, 2.5, 50), rng.uniform(0, 0.2)
-    da, db = wc.chamber_angles(s, beta, n_p)
-    np.testing.assert_allclose(db, wc.chamber_angles(np.pi - s, beta, n_p)[0], atol=1e-14)
+    da, db = wc.chamber_angles(beta, s, pistons=n_p)
+    np.testing.assert_allclose(db, wc.chamber_angles(beta, np.pi - s, pistons=n_p)[0], atol=1e-14)
     np.testing.assert_allclose(da + db + 2 * beta, 2 * np.pi / n_p, atol=1e-14)  # eq. 18
     lo, hi = wc.slider_angle_limits(n_p)
     assert (lo, hi) == pytest.approx((2 * g, 2 * np.pi / n_p + 2 * g))
@@ -637,7 +638,7 @@ def test_chamber_angles_n_against_explicit_pistons(seed):
     beta = rng.uniform(0.0, 0.05)
     theta = rng.uniform(-5, 5, 100)
     q = wc.rotor_angles(p, theta)[0]
-    da, db = wc.chamber_angles(q[1] - q[0], beta, n_p)
+    da, db = wc.chamber_angles(beta, q[1] - q[0], pistons=n_p)
     ours = np.sort(
         np.concatenate([np.repeat(da[:, None], n_p, 1), np.repeat(db[:, None], n_p, 1)], 1), 1
     )
@@ -680,7 +681,7 @@ def test_piston_layout_n_against_dense_simulation(seed):
     q = wc.rotor_angles(p, np.linspace(0, np.pi, 20001))[0]
     g = np.pi / 4 - np.pi / (2 * n_p)
     ch = explicit_chambers_n(q[0], q[1], lay.piston_width, n_p, g)
-    da, db = wc.chamber_angles(q[1] - q[0], lay.piston_width, n_p)
+    da, db = wc.chamber_angles(lay.piston_width, q[1] - q[0], pistons=n_p)
     tight = {"A": da, "B": db}[lay.design_kind]
     assert tight.min() == pytest.approx(ch.min(), abs=1e-9)
     assert tight.max() / tight.min() == pytest.approx(eps, rel=1e-6)
@@ -725,7 +726,7 @@ def test_roller_axis_and_tilt_ranges_follow_n():
     # default N = 4 is unchanged
     assert wc.WobbleCam(0.5).pistons_per_rotor == 4
     s = np.linspace(1.0, 2.0, 5)
-    np.testing.assert_array_equal(wc.chamber_angles(s, 0.1), wc.chamber_angles(s, 0.1, 4))
+    np.testing.assert_array_equal(wc.chamber_angles(0.1, s), wc.chamber_angles(0.1, s, pistons=4))
     assert float(wc.max_plate_tilt(1.2)) == float(wc.max_plate_tilt(1.2, 4))
 
 
@@ -747,7 +748,7 @@ def test_spin_correction_derivatives_match_finite_differences():
     # the rotor angles under the corrected law are those of the linear-law formula at varphi
     q = wc.rotor_angles(p, t)[0]
     q_ref = wc.rotor_angles_from_spin(
-        t, (v, v * 0 + 1, v * 0, v * 0), p.plate_tilt, p.roller_axis_angle
+        p.plate_tilt, p.roller_axis_angle, (v, v * 0 + 1, v * 0, v * 0), t
     )[0]
     np.testing.assert_allclose(q, q_ref, rtol=0, atol=1e-12)
 
@@ -755,3 +756,86 @@ def test_spin_correction_derivatives_match_finite_differences():
 def test_spin_correction_that_reverses_the_spin_is_refused():
     with pytest.raises(ParameterError, match="spin_a"):
         wc.WobbleCam(np.radians(45.0), spin_a=(0.0, 0.0, 0.0, 1.0))  # 4 * 1.0 > |n| = 2
+
+
+# --------------------------------------------------------------------------------------------
+# one source of defaults: the schema
+# --------------------------------------------------------------------------------------------
+def _schema_defaults() -> dict:
+    """Every section of a minimal wobble_cam config, parsed through the schema (SI)."""
+    from rotorkin.core.schema import validate_model
+    from rotorkin.drives.wobble_cam.schema import WobbleConfig
+
+    return validate_model(WobbleConfig, {"drive": {"type": "wobble_cam", "plate_tilt": "45 deg"}})
+
+
+def _dataclass_defaults(cls) -> dict:
+    from dataclasses import MISSING, fields
+
+    out = {}
+    for f in fields(cls):
+        if f.default is not MISSING:
+            out[f.name] = f.default
+        elif f.default_factory is not MISSING:
+            out[f.name] = f.default_factory()
+    return out
+
+
+def test_every_dataclass_default_is_the_schema_default():
+    """WobbleCam, TwinRotor, SphericalCam and IdealCycle defaults equal the config's (SI)."""
+    from rotorkin.analysis.engine_cycle import IdealCycle
+    from rotorkin.drives.wobble_cam.cam import SphericalCam
+    from rotorkin.machines.twin_rotor import TwinRotor
+
+    cfg = _schema_defaults()
+    # the study builds WobbleCam.pistons_per_rotor from machine.pistons_per_rotor
+    sections = {
+        wc.WobbleCam: {**cfg["drive"], "pistons_per_rotor": cfg["machine"]["pistons_per_rotor"]},
+        TwinRotor: cfg["machine"],
+        SphericalCam: cfg["cam"],
+        IdealCycle: cfg["loads"],
+    }
+    mismatched = []
+    for cls, section in sections.items():
+        for name, ours in _dataclass_defaults(cls).items():
+            assert name in section, f"{cls.__name__}.{name} has no config key"
+            theirs = section[name]
+            if isinstance(ours, (tuple, list)):
+                same = tuple(ours) == tuple(theirs)
+            elif isinstance(ours, str):
+                same = ours == theirs
+            else:
+                same = float(ours) == pytest.approx(float(theirs), rel=1e-15, abs=0.0)
+            if not same:
+                mismatched.append(f"{cls.__name__}.{name} = {ours!r}, schema {theirs!r}")
+    assert not mismatched, "; ".join(mismatched)
+
+
+def test_study_keeps_the_rotor_motion_on_the_column_grid():
+    """StudyResult.motion: rotor 1 and rotor 2 over one turn, on the angles of the columns."""
+    res = study.evaluate(_cfg())
+    m = res.motion
+    assert m.members == ("rotor 1", "rotor 2") and m.unit == "rad"
+    theta = np.radians(res.columns["theta_deg"])
+    np.testing.assert_allclose(m.theta, theta, rtol=0, atol=1e-12)
+    assert m.theta[0] == 0.0 and m.theta[-1] == pytest.approx(2 * np.pi, abs=1e-12)
+    for k in (0, 1):
+        np.testing.assert_allclose(np.degrees(m.q[k]), res.columns[f"rotor{k + 1}_angle_deg"])
+        np.testing.assert_allclose(m.dq[k], res.columns[f"rotor{k + 1}_speed_ratio"])
+        np.testing.assert_allclose(m.d2q[k], res.columns[f"rotor{k + 1}_accel_per_rad"])
+
+
+def test_batch_peaks_of_a_corrected_spin_law_are_the_studys():
+    """The batch module evaluates a corrected spin law with the study's own functions."""
+    from rotorkin.core.batch import Designs
+    from rotorkin.drives.wobble_cam import sweep
+    from rotorkin.io.config import load_config
+
+    sets = ["drive.spin_a=[0.05, 0.02]", "drive.spin_b=[0.01]", "drive.plate_tilt=50 deg"]
+    cfg = load_config(None, "wobble-cam-engine", sets)[0]
+    names = ["rotor_accel_peak_per_rad", "rotor_jerk_peak_per_rad2"]
+    names += ["rotor_speed_ratio_min", "rotor_speed_ratio_max"]
+    got = sweep.metrics(Designs(cfg, {"drive.plate_tilt": np.radians([50.0])}, 1), names, 20001)
+    want = study.evaluate(cfg).summary
+    for k in names:
+        assert got[k][0] == pytest.approx(want[k], rel=1e-12), k

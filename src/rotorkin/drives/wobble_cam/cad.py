@@ -38,7 +38,9 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
+import ezdxf
 import numpy as np
+import trimesh
 
 from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError, RotorkinError
@@ -88,7 +90,10 @@ def setup(cfg: dict):
             "makes STL files beyond 50 MB; coarser than a tenth of the roller radius loses the "
             "groove's shape)",
         )
-    sph.check_roller_radius(drive, cam)
+    try:
+        sph.check_roller_radius(drive, cam)
+    except ParameterError as exc:
+        raise ParameterError(sph.config_key(exc.name), exc.value, exc.admissible) from None
     return drive, cam, tol
 
 
@@ -195,8 +200,6 @@ def _write_crossings(path: Path, drive, cam) -> None:
 
 
 def _export_dxf(path: Path, curves: dict) -> None:
-    import ezdxf
-
     doc = ezdxf.new("R2010", setup=True)
     doc.units = ezdxf.units.MM
     for layer, colour in _LAYERS.values():
@@ -279,8 +282,6 @@ def _piece_samples(drive, roller, t0, t1, uv, tol):
 # --------------------------------------------------------------------------------------------
 def _sphere_mesh(radius: float, tol: float):
     """Icosphere with vertices on the sphere, refined until within tol; (mesh, deviation)."""
-    import trimesh
-
     for sub in range(1, 9):
         m = trimesh.creation.icosphere(subdivisions=sub, radius=radius)
         dev = radius - float(np.min(np.abs(np.sum(m.face_normals * m.triangles[:, 0], 1))))
@@ -291,8 +292,6 @@ def _sphere_mesh(radius: float, tol: float):
 
 def _piece_mesh(sections):
     """Closed triangle mesh of swept sections (m, k, 3), ends capped, outward normals."""
-    import trimesh
-
     m, k, _ = sections.shape
     idx = np.arange(m * k).reshape(m, k)
     a, b = idx[:-1], np.roll(idx[:-1], -1, axis=1)
@@ -323,8 +322,6 @@ def cam_mesh(drive, cam, tol: float):
         construction: the spheres' facets; sweep sag plus arc sag on the groove bottom),
         ``pieces``, ``sections``, ``faces``.
     """
-    import trimesh
-
     outer, dev_o = _sphere_mesh(cam.outer_radius, tol)
     inner, dev_i = _sphere_mesh(cam.inner_radius, tol)
     floor = _tool_floor(drive, cam)
@@ -464,7 +461,7 @@ def export_wobble(cfg: dict, fmt: str, stage_dir, name: str) -> list[Path]:
         STEP without build123d.
     """
     if fmt not in FORMATS:
-        raise ParameterError("--format", repr(fmt), " | ".join(FORMATS))
+        raise ParameterError("fmt", repr(fmt), " | ".join(FORMATS))
     stage = Path(stage_dir)
     if fmt == "step":
         _bd()
@@ -504,8 +501,6 @@ def _fmt(value, digits=4) -> str:
 
 def check_rows(cfg: dict) -> list[tuple[str, str]]:
     """(check, value) rows of the spherical cam's grooves (:mod:`.cam`)."""
-    from rotorkin.drives.wobble_cam import cam as sph
-
     drive, cam = sph.from_config(cfg)
     crossings = sph.groove_crossings(drive)
     s = sph.summary(drive, cam)

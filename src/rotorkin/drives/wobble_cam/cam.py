@@ -22,10 +22,23 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.optimize import minimize_scalar
 
 from rotorkin.core.angles import fmt_deg, fmt_mm
 from rotorkin.core.errors import ParameterError
 from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.drives.wobble_cam.cam_crossings import (
+    GrooveCrossing,
+    groove_crossings,
+    groove_separation,
+)
+from rotorkin.drives.wobble_cam.grooves import (
+    _SEARCH_SAMPLES,
+    _partials,
+    distinct_grooves,
+    groove_derivatives,
+    groove_period,
+)
 
 __all__ = [
     "ROLLER_NAMES",
@@ -46,30 +59,15 @@ __all__ = [
     "guided",
     "pressure_angle_peaks",
     "summary",
+    "GrooveCrossing",
+    "groove_crossings",
+    "groove_separation",
 ]
-
-#: Names defined in :mod:`rotorkin.drives.wobble_cam.cam_crossings`, reachable from here too.
-_CROSSING_NAMES = ("GrooveCrossing", "groove_crossings", "groove_separation")
-
-
-def __getattr__(name):
-    if name in _CROSSING_NAMES:  # lazily: spherical_crossings imports this module
-        from rotorkin.drives.wobble_cam import cam_crossings as spherical_crossings
-
-        return getattr(spherical_crossings, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
 
 #: People's names of the rollers, in the order of ``wobble_cam.roller_offsets`` (group 1: 1, 1').
 ROLLER_NAMES = ("1", "1'", "2", "2'")
 #: The same names for file names and CSV column stems.
 ROLLER_SLUGS = ("1", "1p", "2", "2p")
-#: d psi / d theta of the drive's cam law ``psi = -theta`` (linear, so this is exact).
-_CAM_RATE = float(wc.cam_angle(1.0) - wc.cam_angle(0.0))
-#: Samples per groove period for the searches (minimum, crossings); refined afterwards.
-_SEARCH_SAMPLES = 4096
-#: Fraction of a step by which search samples are shifted off round angles.
-_SAMPLE_SHIFT = 0.5 * (np.sqrt(5.0) - 1.0)
 
 
 @dataclass(frozen=True)
@@ -94,18 +92,18 @@ class SphericalCam:
     """
 
     sphere_radius: float
-    roller_radius: float = 0.006
+    roller_radius: float = 0.004
     shell_thickness: float = 0.012
     groove_depth: float = 0.008
 
     def __post_init__(self):
         r = float(self.sphere_radius)
         if not (np.isfinite(r) and r > 0.0):
-            raise ParameterError("drive.sphere_radius", fmt_mm(r), "sphere_radius > 0 mm")
+            raise ParameterError("sphere_radius", fmt_mm(r), "sphere_radius > 0 mm")
         t = float(self.shell_thickness)
         if not (np.isfinite(t) and 0.0 < t < 2.0 * r):
             raise ParameterError(
-                "cam.shell_thickness",
+                "shell_thickness",
                 fmt_mm(t),
                 f"0 mm < shell_thickness < {fmt_mm(2.0 * r)} (twice the sphere radius: the "
                 "shell spans sphere_radius -+ shell_thickness/2)",
@@ -113,7 +111,7 @@ class SphericalCam:
         d = float(self.groove_depth)
         if not (np.isfinite(d) and 0.5 * t < d < t):
             raise ParameterError(
-                "cam.groove_depth",
+                "groove_depth",
                 fmt_mm(d),
                 f"{fmt_mm(0.5 * t)} < groove_depth < {fmt_mm(t)} (the groove, cut from the "
                 "shell's inner surface, must reach the roller centres at sphere_radius and "
@@ -123,7 +121,7 @@ class SphericalCam:
         ri = r - 0.5 * t
         if not (np.isfinite(rho) and 0.0 < rho < ri):
             raise ParameterError(
-                "cam.roller_radius",
+                "roller_radius",
                 fmt_mm(rho),
                 f"0 mm < roller_radius < {fmt_mm(ri)} (the shell's inner radius)",
             )
@@ -175,63 +173,21 @@ def from_config(cfg: dict):
         raise ParameterError(key, exc.value, exc.admissible) from None
     c = cfg.get("cam") or {}
     keys = ("roller_radius", "shell_thickness", "groove_depth")
-    cam = SphericalCam(drive.sphere_radius, **{k: c[k] for k in keys if k in c})
+    try:
+        cam = SphericalCam(drive.sphere_radius, **{k: c[k] for k in keys if k in c})
+    except ParameterError as exc:
+        raise ParameterError(config_key(exc.name), exc.value, exc.admissible) from None
     return drive, cam
+
+
+def config_key(name: str) -> str:
+    """Config key of a :class:`SphericalCam` field (``sphere_radius`` is the drive's)."""
+    return "drive.sphere_radius" if name == "sphere_radius" else f"cam.{name}"
 
 
 # --------------------------------------------------------------------------------------------
 # centre-lines and their derivatives
 # --------------------------------------------------------------------------------------------
-def _cross_x(v):
-    """``e_x x v`` for v of shape (3, ...)."""
-    return np.stack([np.zeros_like(v[0]), -v[2], v[1]])
-
-
-def _partials(drive: wc.WobbleCam, theta):
-    """Groove point ``p``, ``dp/d(theta - psi)``, ``dp/du`` (shape (3, 4, ...)) and the spin law.
-
-    ``p = plate_point(theta - psi, u)``, ``u = varphi + c`` (eq. 10-11). Exact partials:
-    ``dp/d(theta - psi) = -e_x x p`` (``A_t`` turns z towards +y, a turn about -x) and
-    ``dp/du = plate_point(theta - psi, u + pi/2)`` (the plate radius turned by 90 deg).
-    """
-    theta = np.asarray(theta, dtype=float)
-    c = wc.roller_offsets(drive.roller_axis_angle).reshape((4,) + (1,) * theta.ndim)
-    spin = wc.spin_law(drive, theta)
-    cam = wc.cam_angle(theta)
-    phi, r = drive.plate_tilt, drive.sphere_radius
-    p = wc.groove_point(theta, cam, spin[0], c, phi, r)
-    pu = wc.groove_point(theta, cam, spin[0], c + 0.5 * np.pi, phi, r)
-    return p, -_cross_x(p), pu, spin
-
-
-def groove_derivatives(drive: wc.WobbleCam, theta):
-    """Groove centre-lines of the 4 rollers and their first two derivatives (cam frame).
-
-    ``g(theta) = plate_point(theta - psi, varphi + c)`` (eq. 10-11,
-    :func:`rotorkin.drives.wobble_cam.kinematics.groove_points`), with ``psi = -theta`` and the
-    spin law of ``drive`` (periodic correction included); derivatives by the chain
-    rule from the exact partials of :func:`_partials`.
-
-    Parameters
-    ----------
-    drive : WobbleCam
-    theta : array_like, shape (...)
-        Shaft angle [rad].
-
-    Returns
-    -------
-    (g, dg, d2g) : tuple of ndarray, shape (4, 3, ...)
-        [m], [m/rad], [m/rad^2]; roller index first.
-    """
-    p, pt, pu, spin = _partials(drive, theta)
-    w = 1.0 - _CAM_RATE  # d(theta - psi)/d theta
-    d1 = pt * w + pu * spin[1]
-    ptu = -_cross_x(pu)
-    ptt = -_cross_x(pt)
-    d2 = ptt * w * w + 2.0 * ptu * w * spin[1] - p * spin[1] ** 2 + pu * spin[2]
-    return tuple(np.moveaxis(x, 0, 1) for x in (p, d1, d2))
-
-
 def groove_frame(drive: wc.WobbleCam, theta):
     """Unit radial ``e_r``, tangent ``t`` and wall normal ``n = e_r x t`` (cam frame).
 
@@ -248,7 +204,7 @@ def groove_frame(drive: wc.WobbleCam, theta):
 def _check_pair(drive: wc.WobbleCam, cam: SphericalCam) -> None:
     if abs(cam.sphere_radius - drive.sphere_radius) > 1e-12 * drive.sphere_radius:
         raise ParameterError(
-            "drive.sphere_radius",
+            "sphere_radius",
             f"{fmt_mm(drive.sphere_radius)} (cam: {fmt_mm(cam.sphere_radius)})",
             "the same sphere radius for the drive and its cam",
         )
@@ -365,51 +321,8 @@ def roller_radius_limit(drive: wc.WobbleCam, theta, radius=None):
     return rad / np.sqrt(1.0 + (drive.sphere_radius * k) ** 2)
 
 
-def groove_period(drive: wc.WobbleCam) -> float:
-    """Shaft angle after which every groove centre-line closes: pi, 2 pi or 4 pi [rad].
-
-    ``theta - psi = 2 theta`` closes after pi; the spin law adds ``n T`` (a multiple of
-    2 pi needed) and its correction (2 pi periodic). Found by testing the candidates.
-    """
-    theta = np.linspace(0.0, 2.0 * np.pi, 64, endpoint=False)
-    g0 = groove_derivatives(drive, theta)[0]
-    for period in (np.pi, 2.0 * np.pi, 4.0 * np.pi):
-        g1 = groove_derivatives(drive, theta + period)[0]
-        if np.max(np.abs(g1 - g0)) < 1e-9 * drive.sphere_radius:
-            return period
-    raise ParameterError(  # pragma: no cover - WobbleCam admits only closing laws
-        "drive.spin_ratio", f"{drive.spin_ratio:g}", "a law whose grooves close"
-    )
-
-
-def distinct_grooves(drive: wc.WobbleCam) -> list[int]:
-    """Rollers whose grooves are distinct curves (all 4, or 2 when rollers share grooves).
-
-    When the plate has turned by pi relative to the cam after a shift of the shaft
-    angle by a multiple of pi shorter than the groove period (spin ratio -1, -1/2,
-    ...), roller ``c`` runs on in the groove of roller ``c + pi``: one groove for two
-    rollers. Checked numerically for every such shift.
-    """
-    period = groove_period(drive)
-    theta = np.linspace(0.0, period, 97)
-    g = groove_derivatives(drive, theta)[0]
-    shifts = np.pi * np.arange(1, int(round(period / np.pi)))
-    shifted = [groove_derivatives(drive, theta + x)[0] for x in shifts]
-    keep: list[int] = []
-    for j in range(4):
-        if not any(
-            np.max(np.abs(gs[i] - g[j])) < 1e-9 * drive.sphere_radius
-            for i in keep
-            for gs in shifted
-        ):
-            keep.append(j)
-    return keep
-
-
 def _refine_min(fun, theta0, step):
     """Refine a sampled minimum of a scalar function of theta (bounded Brent)."""
-    from scipy.optimize import minimize_scalar
-
     res = minimize_scalar(
         fun, bounds=(theta0 - step, theta0 + step), method="bounded", options={"xatol": 1e-12}
     )
@@ -436,7 +349,7 @@ def sharpest_bend(drive: wc.WobbleCam, roller: int | None = None):
 
 
 def check_roller_radius(drive: wc.WobbleCam, cam: SphericalCam) -> float:
-    """Raise ``ParameterError("cam.roller_radius")`` where the roller undercuts a wall.
+    """Raise ``ParameterError("roller_radius")`` where the roller undercuts a wall.
 
     The check is ``rho < R_i / sqrt(1 + (r kappa_g)^2)`` (:func:`roller_radius_limit` at
     the inner shell radius, the strictest radius where the wall exists) everywhere on
@@ -452,7 +365,7 @@ def check_roller_radius(drive: wc.WobbleCam, cam: SphericalCam) -> float:
     limit = cam.inner_radius / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
     if cam.roller_radius >= limit:
         raise ParameterError(
-            "cam.roller_radius",
+            "roller_radius",
             fmt_mm(cam.roller_radius),
             f"roller_radius < {fmt_mm(limit)}: at shaft angle theta = {fmt_deg(theta)} "
             f"(roller {ROLLER_NAMES[roller]}) the groove centre-line bends with radius "
@@ -485,8 +398,6 @@ def guided(drive: wc.WobbleCam, cam: SphericalCam, theta, crossings=None):
     -------
     ndarray of bool, shape (4, ...)
     """
-    from rotorkin.drives.wobble_cam.cam_crossings import groove_crossings
-
     _check_pair(drive, cam)
     crossings = groove_crossings(drive) if crossings is None else crossings
     g = groove_derivatives(drive, theta)[0]  # (4, 3, ...)
@@ -567,8 +478,6 @@ def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict
     (``2 rho / sin`` of the crossing angle); ``cam_groove_separation_mm`` (closest
     centre-lines of two different grooves, 0 where they cross); ``cam_groove_width_mm``.
     """
-    from rotorkin.drives.wobble_cam.cam_crossings import groove_crossings, groove_separation
-
     _check_pair(drive, cam)
     period = groove_period(drive)
     theta = np.linspace(0.0, 2.0 * np.pi, samples)

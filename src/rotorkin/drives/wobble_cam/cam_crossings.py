@@ -10,8 +10,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial import cKDTree
 
-from rotorkin.drives.wobble_cam import cam as sph
+from rotorkin.drives.wobble_cam import grooves as gr
 from rotorkin.drives.wobble_cam import kinematics as wc
 
 __all__ = ["GrooveCrossing", "groove_crossings", "groove_separation"]
@@ -55,8 +56,8 @@ def _newton_crossing(drive, ri, rj, t1, t2, iterations=30):
     """Gauss-Newton on ``g_i(t1) = g_j(t2)``, vectorized over candidates (pinv: no singular)."""
     k = np.arange(len(ri))
     for _ in range(iterations + 1):
-        g1, d1, _ = sph.groove_derivatives(drive, t1)
-        g2, d2, _ = sph.groove_derivatives(drive, t2)
+        g1, d1, _ = gr.groove_derivatives(drive, t1)
+        g2, d2, _ = gr.groove_derivatives(drive, t2)
         a, da, b, db = g1[ri, :, k], d1[ri, :, k], g2[rj, :, k], d2[rj, :, k]
         jac = np.stack([da, -db], axis=2)  # (K, 3, 2)
         rhs = -np.einsum("kia,ki->ka", jac, a - b)
@@ -68,7 +69,7 @@ def _newton_crossing(drive, ri, rj, t1, t2, iterations=30):
 
 
 def groove_crossings(
-    drive: wc.WobbleCam, samples: int = sph._SEARCH_SAMPLES
+    drive: wc.WobbleCam, samples: int = gr._SEARCH_SAMPLES
 ) -> list[GrooveCrossing]:
     """Every crossing of the groove centre-lines: self-crossings and between rollers.
 
@@ -89,14 +90,12 @@ def groove_crossings(
     list of GrooveCrossing
         Sorted by rollers, then shaft angle.
     """
-    from scipy.spatial import cKDTree
-
-    period = sph.groove_period(drive)
-    rollers = np.array(sph.distinct_grooves(drive))
+    period = gr.groove_period(drive)
+    rollers = np.array(gr.distinct_grooves(drive))
     step = period / samples
     # offset by an irrational fraction of a step: crossings rarely fall on a sample
-    theta = (np.arange(samples) + sph._SAMPLE_SHIFT) * step
-    g = sph.groove_derivatives(drive, theta)[0][rollers]  # (m, 3, N)
+    theta = (np.arange(samples) + gr._SAMPLE_SHIFT) * step
+    g = gr.groove_derivatives(drive, theta)[0][rollers]  # (m, 3, N)
     m, n = len(rollers), samples
     pts = np.moveaxis(g, 1, 2).reshape(-1, 3)  # (m N, 3)
     idx = np.arange(m * n)
@@ -132,8 +131,8 @@ def groove_crossings(
     if not np.any(hit):
         return []
     a, b, s, u = a[hit], b[hit], s[hit], u[hit]
-    t1 = (a % n + sph._SAMPLE_SHIFT + s) * step
-    t2 = (b % n + sph._SAMPLE_SHIFT + u) * step
+    t1 = (a % n + gr._SAMPLE_SHIFT + s) * step
+    t2 = (b % n + gr._SAMPLE_SHIFT + u) * step
     ri, rj = rollers[a // n], rollers[b // n]
     t1, t2, res, point, d1, d2 = _newton_crossing(drive, ri, rj, t1, t2)
     out: dict = {}
@@ -165,12 +164,10 @@ def groove_separation(drive: wc.WobbleCam, samples: int = 2048):
     (distance, rollers, theta) : float [m], tuple of int, tuple of float [rad]
         0 where two grooves cross; ``(inf, (), ())`` with one distinct groove.
     """
-    from scipy.spatial import cKDTree
-
-    period = sph.groove_period(drive)
-    rollers = sph.distinct_grooves(drive)
+    period = gr.groove_period(drive)
+    rollers = gr.distinct_grooves(drive)
     theta = np.linspace(0.0, period, samples, endpoint=False)
-    g = sph.groove_derivatives(drive, theta)[0]
+    g = gr.groove_derivatives(drive, theta)[0]
     best = (np.inf, (), ())
     for ii, i in enumerate(rollers):
         tree = cKDTree(g[i].T)

@@ -1,26 +1,23 @@
-"""Pistons and chambers of the wobble-cam twin-rotor engine (eq. 17-23 of Chen Hu et al. 2015).
+"""Slider-angle limits and chamber angles of the wobble-cam engine (Chen Hu et al. 2015).
 
 The bookkeeping between the slider (rail) angle ``alpha' = Phi_2 - Phi_1`` of
 :mod:`rotorkin.drives.wobble_cam.kinematics` and the chambers between the pistons of the
-two rotors: the piston offset gamma, the interference limits of eq. 20 and the
-plate-tilt limit they set, the extremes of the slider angle (eq. 17), the
-chamber angles of both kinds (eq. 18-19), the piston width for a design
-compression ratio (eq. 21-22) and the cycle counts. Every public name is also
-importable from :mod:`rotorkin.drives.wobble_cam.kinematics` (where the conventions are
-stated); ``params`` is a :class:`rotorkin.drives.wobble_cam.kinematics.WobbleCam`.
+two rotors: the interference limits of eq. 20 and the plate-tilt limit they
+set, the extremes of the slider angle (eq. 17) and the chamber angles of both
+kinds (eq. 18-19). The functions take plain numbers (floats or arrays); the
+piston width for a design compression ratio (eq. 21-22) and the cycle counts, which take a
+:class:`rotorkin.drives.wobble_cam.kinematics.WobbleCam`, are in
+:mod:`rotorkin.drives.wobble_cam.kinematics`. The piston offset gamma and the
+chamber count are the machine's (:mod:`rotorkin.machines.twin_rotor`). Every
+public name is also importable from :mod:`rotorkin.drives.wobble_cam.kinematics`
+(where the conventions are stated).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import TYPE_CHECKING
-
 import numpy as np
 
-from rotorkin.core.errors import ParameterError
-
-if TYPE_CHECKING:
-    from rotorkin.drives.wobble_cam.kinematics import WobbleCam
+from rotorkin.machines.twin_rotor import chamber_count, piston_offset
 
 __all__ = [
     "PISTON_OFFSET",
@@ -31,33 +28,17 @@ __all__ = [
     "max_plate_tilt",
     "slider_angle_extremes",
     "chamber_angles",
-    "min_compression_ratio",
-    "PistonLayout",
-    "piston_layout",
-    "volume_cycles_per_rev",
-    "power_strokes_per_rev",
+    "chamber_gaps",
+    "design_kind_a",
+    "zero_width_ratio",
+    "piston_width",
+    "compression_ratio_violation",
 ]
 
 #: Angle gamma between a piston's centre line and the nearest rail [rad] (eq. 18-19, N = 4).
 PISTON_OFFSET = np.pi / 8.0
 #: Number of chambers between the two 4-piston rotors.
 CHAMBERS = 8
-
-
-def piston_offset(pistons=4):
-    """Angle gamma between a piston's centre line and the nearest rail [rad] (eq. 18-19).
-
-    With 2 rails per rotor (pi apart) and N pistons (2 pi/N apart): eq. 18 gives
-    ``alpha'_1 + alpha'_2 = pi`` and ``delta_A + delta_B + 2 beta = 2 pi/N``; eq. 19,
-    ``alpha' = delta + beta + 2 gamma``, written for both chamber kinds then
-    gives ``gamma = pi/4 - pi/(2N)`` (pi/8 at the paper's N = 4; 0 at N = 2).
-    """
-    return np.pi / 4.0 - np.pi / (2.0 * np.asarray(pistons, dtype=float))
-
-
-def chamber_count(pistons=4) -> int:
-    """Chambers between two rotors of N pistons each: ``2 N`` (8 in the paper)."""
-    return 2 * int(pistons)
 
 
 def slider_angle_limits(pistons=4):
@@ -69,22 +50,11 @@ def slider_angle_limits(pistons=4):
 
     Returns
     -------
-    (lower, upper) : tuple of float
+    (lower, upper) : tuple of ndarray
+        Of ``pistons``' shape (it may be an array).
     """
-    g2 = 2.0 * float(piston_offset(pistons))
-    return g2, 2.0 * np.pi / float(pistons) + g2
-
-
-def _check_pistons(pistons):
-    """ParameterError unless N is an even integer >= 2."""
-    ok = isinstance(pistons, (int, np.integer)) and not isinstance(pistons, bool)
-    if not (ok and pistons >= 2 and pistons % 2 == 0):
-        raise ParameterError(
-            "pistons_per_rotor",
-            repr(pistons),
-            "an even integer >= 2 (each rotor has 2 rails 180 deg apart, so its pistons must "
-            "repeat every 180 deg for eq. 18-19 and the period of one shaft turn)",
-        )
+    g2 = 2.0 * piston_offset(pistons)
+    return g2, 2.0 * np.pi / np.asarray(pistons, dtype=float) + g2
 
 
 def max_plate_tilt(roller_axis_angle, pistons=4):
@@ -104,8 +74,8 @@ def max_plate_tilt(roller_axis_angle, pistons=4):
         Angle alpha between the roller groups [rad],
         ``pi/2 - pi/N < alpha < pi/2 + pi/N`` (outside, no tilt is admissible and
         NaN is returned).
-    pistons : int, optional
-        Pistons per rotor N (even, default 4).
+    pistons : int or array_like, optional
+        Pistons per rotor N (even, default 4); broadcasts with ``roller_axis_angle``.
 
     Returns
     -------
@@ -113,7 +83,7 @@ def max_plate_tilt(roller_axis_angle, pistons=4):
         Limit plate tilt [rad].
     """
     t = np.tan(np.asarray(roller_axis_angle, dtype=float) / 2.0)
-    tn = np.tan(np.pi / 4.0 - np.pi / (2.0 * float(pistons)))
+    tn = np.tan(np.pi / 4.0 - np.pi / (2.0 * np.asarray(pistons, dtype=float)))
     cos_lim = np.maximum(t * tn, tn / t)
     with np.errstate(invalid="ignore"):
         return np.where(cos_lim < 1.0, np.arccos(np.minimum(cos_lim, 1.0)), np.nan)
@@ -139,7 +109,7 @@ def slider_angle_extremes(plate_tilt, roller_axis_angle):
     return 2.0 * np.arctan(t / c), 2.0 * np.arctan(c * t)
 
 
-def chamber_angles(slider, piston_width, pistons=4):
+def chamber_angles(piston_width, slider, *, pistons=4):
     """Angles of the two chamber kinds from the slider angle (eq. 18-19) [rad].
 
     ``delta_A = alpha' - 2 gamma - beta`` (rotor-1 piston to the rotor-2 piston
@@ -151,146 +121,90 @@ def chamber_angles(slider, piston_width, pistons=4):
 
     Parameters
     ----------
+    piston_width : float or array_like
+        beta [rad].
     slider : array_like
         alpha' [rad].
-    piston_width : float
-        beta [rad].
-    pistons : int, optional
+    pistons : int or array_like, optional
         N, pistons per rotor (default 4, the paper's).
+
+    All three broadcast together.
 
     Returns
     -------
     (delta_A, delta_B) : tuple of ndarray
     """
     slider = np.asarray(slider, dtype=float)
-    g2 = 2.0 * float(piston_offset(pistons))
-    a = slider - g2 - piston_width
-    b = 2.0 * np.pi / float(pistons) + g2 - slider - piston_width
+    lo, hi = slider_angle_limits(pistons)
+    a = slider - lo - piston_width
+    b = hi - slider - piston_width
     return a, b
 
 
-def _gaps(params: WobbleCam):
-    """Smallest and largest centre-line gap of chamber kinds A and B [rad]."""
-    amax, amin = slider_angle_extremes(params.plate_tilt, params.roller_axis_angle)
-    amax, amin = float(amax), float(amin)
-    lo, hi = slider_angle_limits(params.pistons_per_rotor)
+# --------------------------------------------------------------------------------------------
+# piston width for a design compression ratio (eq. 21-22)
+# --------------------------------------------------------------------------------------------
+def chamber_gaps(plate_tilt, roller_axis_angle, pistons=4):
+    """Smallest and largest centre-line gap of chamber kinds A and B [rad].
+
+    The chamber angle of zero-width pistons: kind A ``alpha' - 2 gamma``,
+    kind B ``2 pi/N + 2 gamma - alpha'`` at the slider-angle extremes (eq. 17-19).
+    All arguments broadcast together.
+
+    Returns
+    -------
+    ((a_min, a_max), (b_min, b_max)) : tuple of tuples of ndarray
+    """
+    amax, amin = slider_angle_extremes(plate_tilt, roller_axis_angle)
+    lo, hi = slider_angle_limits(pistons)
     return (amin - lo, amax - lo), (hi - amax, hi - amin)
 
 
-def min_compression_ratio(params: WobbleCam) -> float:
-    """Compression ratio reached with zero-width pistons; any design ratio must exceed it.
+def design_kind_a(gaps):
+    """Whether kind A is the tighter chamber kind (smaller minimum gap; A on a tie)."""
+    (a0, _), (b0, _) = gaps
+    return a0 <= b0
 
-    The piston width beta of :func:`piston_layout` is positive iff
-    ``eps > g_max / g_min``, the ratio of the largest to the smallest
-    centre-line gap of the tighter chamber kind.
+
+def zero_width_ratio(gaps):
+    """Compression ratio of zero-width pistons, ``g_max / g_min`` of the tighter kind [-].
+
+    Any design compression ratio must exceed it (the piston width of
+    :func:`piston_width` is positive iff ``eps > g_max / g_min``).
     """
-    ga, gb = _gaps(params)
-    lo, hi = min((ga, gb), key=lambda g: g[0])
-    return hi / lo
+    (a0, a1), (b0, b1) = gaps
+    return np.where(design_kind_a(gaps), a1 / a0, b1 / b0)
 
 
-@dataclass(frozen=True)
-class PistonLayout:
-    """Piston width and chamber extremes for a design compression ratio.
+def piston_width(gaps, compression_ratio):
+    """Piston width beta giving the design compression ratio eps (eq. 21-22, generalised) [rad].
 
-    Attributes
-    ----------
-    compression_ratio : float
-        Design ratio eps, reached by the tighter chamber kind.
-    piston_width : float
-        beta [rad].
-    chamber_a_min, chamber_a_max, chamber_b_min, chamber_b_max : float
-        Extremes of delta_A and delta_B [rad].
-    compression_ratio_a, compression_ratio_b : float
-        ``delta_max / delta_min`` of each kind.
-    design_kind : str
-        ``"A"`` or ``"B"``: the kind with the smaller minimum (ratio = eps).
+    The tighter chamber kind, with centre-line gaps ``g_min, g_max``
+    (:func:`chamber_gaps`), gets exactly ``eps = delta_max/delta_min``:
+    ``beta = (eps g_min - g_max) / (eps - 1)``. Broadcasts over designs.
     """
-
-    compression_ratio: float
-    piston_width: float
-    chamber_a_min: float
-    chamber_a_max: float
-    chamber_b_min: float
-    chamber_b_max: float
-    compression_ratio_a: float
-    compression_ratio_b: float
-    design_kind: str
-
-    @property
-    def swing(self) -> float:
-        """``delta_max - delta_min = alpha'_max - alpha'_min`` (eq. 23) [rad]."""
-        return self.chamber_a_max - self.chamber_a_min
+    (a0, a1), (b0, b1) = gaps
+    kind_a = design_kind_a(gaps)
+    gmin, gmax = np.where(kind_a, a0, b0), np.where(kind_a, a1, b1)
+    eps = np.asarray(compression_ratio, dtype=float)
+    return (eps * gmin - gmax) / (eps - 1.0)
 
 
-def piston_layout(params: WobbleCam, compression_ratio: float) -> PistonLayout:
-    """Piston width beta giving the design compression ratio (eq. 21-22, generalised).
+def compression_ratio_violation(gaps, compression_ratio, piston_width=None):
+    """Where a design compression ratio (or a given piston width) is not admissible.
 
-    The chamber kind with the smaller minimum angle gets exactly
-    ``eps = delta_max/delta_min`` (volume proportional to angle, no clearance
-    volume): with its centre-line gaps ``g_min, g_max``,
-    ``beta = (eps g_min - g_max) / (eps - 1)``. At ``alpha = 90 deg`` both kinds
-    coincide (``alpha'_max + alpha'_min = pi``) and this is eq. 21 (N = 4),
-    ``beta = (eps+1)/(eps-1) alpha'_min - pi (eps+3) / (4 (eps-1))``; for N pistons
-    ``beta = (eps+1)/(eps-1) alpha'_min - (pi + (eps-1)(pi/2 - pi/N)) / (eps-1)``. For other
-    alpha the paper's eq. 21 does not hold (it assumes
-    ``alpha'_max + alpha'_min = pi``); the other kind then has a lower ratio
-    (Fig. 11).
+    ``eps`` must be finite and above ``max(1, zero_width_ratio(gaps))``; a given
+    piston width (pistons as manufactured) must be below the smallest gap.
 
-    Parameters
-    ----------
-    params : WobbleCam
-    compression_ratio : float
-        eps, ``min_compression_ratio(params) < eps < inf``.
-
-    Raises
-    ------
-    ParameterError
-        named ``"compression_ratio"`` when eps is not admissible.
+    Returns
+    -------
+    ndarray of bool
+        True where inadmissible.
     """
-    eps = float(compression_ratio)
-    lo_ratio = min_compression_ratio(params)
-    if not (np.isfinite(eps) and eps > max(lo_ratio, 1.0)):
-        raise ParameterError(
-            "compression_ratio",
-            f"{eps:g}",
-            f"compression_ratio > {lo_ratio:.4g} (the ratio of zero-width pistons at this "
-            "plate tilt and roller axis angle; a smaller one needs a negative piston width, "
-            "eq. 21)",
-        )
-    ga, gb = _gaps(params)
-    kind, (gmin, gmax) = min((("A", ga), ("B", gb)), key=lambda k: k[1][0])
-    beta = (eps * gmin - gmax) / (eps - 1.0)
-    a = (ga[0] - beta, ga[1] - beta)
-    b = (gb[0] - beta, gb[1] - beta)
-    return PistonLayout(
-        compression_ratio=eps,
-        piston_width=beta,
-        chamber_a_min=a[0],
-        chamber_a_max=a[1],
-        chamber_b_min=b[0],
-        chamber_b_max=b[1],
-        compression_ratio_a=a[1] / a[0],
-        compression_ratio_b=b[1] / b[0],
-        design_kind=kind,
-    )
-
-
-# --------------------------------------------------------------------------------------------
-# counts
-# --------------------------------------------------------------------------------------------
-def volume_cycles_per_rev(params: WobbleCam) -> int:
-    """Volume cycles of each chamber per shaft turn: ``2 |n|`` (alpha' has period pi in varphi).
-
-    Paper section 1.2 and 4.2.3: 4 at n = -2.
-    """
-    return int(round(2.0 * abs(params.spin_ratio)))
-
-
-def power_strokes_per_rev(params: WobbleCam, strokes_per_cycle: int = 4) -> int:
-    """Power strokes per shaft turn: ``2N chambers x 2 |n| / (strokes_per_cycle / 2)``.
-
-    A four-stroke cycle takes two volume cycles: 16 at N = 4, n = -2 (paper section 1.2).
-    """
-    chambers = chamber_count(params.pistons_per_rotor)
-    return int(round(chambers * volume_cycles_per_rev(params) * 2 / strokes_per_cycle))
+    eps = np.asarray(compression_ratio, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        bad = ~(np.isfinite(eps) & (eps > np.maximum(zero_width_ratio(gaps), 1.0)))
+        if piston_width is not None:
+            (a0, _), (b0, _) = gaps
+            bad = bad | ~(np.minimum(a0, b0) > piston_width)
+    return bad

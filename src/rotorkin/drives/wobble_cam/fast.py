@@ -94,20 +94,20 @@ def _pool(size: int) -> ThreadPoolExecutor:
 
 
 def rotor_kinematics(
-    theta, spin, plate_tilt, roller_axis_angle, chamber=None, *, threads=None, out=None
+    plate_tilt, roller_axis_angle, spin, theta, *, chamber=None, threads=None, out=None
 ):
     """Rotor angles, their three derivatives and (optionally) the chamber angles, fused.
 
     Parameters
     ----------
-    theta : array_like, shape (...)
-        Shaft angle [rad].
+    plate_tilt, roller_axis_angle : float or array_like
+        phi and alpha [rad], ``0 <= phi < pi/2``; broadcast with ``theta``.
     spin : float or sequence of 4 array_like
         The spin law: a number ``n`` for the linear law ``varphi = n theta``
         (the paper's ``n = -2``), or ``varphi, varphi', varphi'', varphi'''``
         at ``theta`` [rad, -, 1/rad, 1/rad^2].
-    plate_tilt, roller_axis_angle : float or array_like
-        phi and alpha [rad], ``0 <= phi < pi/2``; broadcast with ``theta``.
+    theta : array_like, shape (...)
+        Shaft angle [rad].
     chamber : (piston_width, pistons), optional
         beta [rad] (float or array_like, broadcast) and N (pistons per rotor):
         also return the chamber angles of both kinds (eq. 18-19).

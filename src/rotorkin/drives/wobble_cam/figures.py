@@ -2,7 +2,8 @@
 and of the twin-rotor engine built on it (chamber volumes, p-V diagram, shaft
 torque with and without inertia, four-stroke timing: ours, the paper has none).
 
-matplotlib is imported lazily inside the functions (Agg backend).
+matplotlib.pyplot through :func:`rotorkin.render.figures.pyplot` (the command line
+chooses the backend).
 """
 
 from __future__ import annotations
@@ -11,7 +12,13 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorkin.analysis import engine_cycle as ec
+from rotorkin.analysis.engine_cycle import STROKE_NAMES, IdealCycle
+from rotorkin.analysis.timing import shaft_speed
+from rotorkin.analysis.torque import inertia_torque
+from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.render.figures import pyplot, save_in
 
 __all__ = [
     "plot_all",
@@ -25,17 +32,7 @@ __all__ = [
     "fig_four_stroke",
 ]
 
-_DPI = 120
 _ROLLER_COLOURS = ("C0", "C9", "C3", "C1")
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def _closing_turns(params) -> float:
@@ -92,7 +89,7 @@ def _four_views(fig, curves, radius_mm, title):
         ax = fig.add_subplot(2, 2, i + 2)
         for p, style in curves:
             ax.plot(p[a], p[b], **style)
-        ax.add_patch(_plt().Circle((0, 0), radius_mm, fill=False, color="0.7", lw=0.6, ls=":"))
+        ax.add_patch(pyplot().Circle((0, 0), radius_mm, fill=False, color="0.7", lw=0.6, ls=":"))
         ax.set_xlabel(f"{'xyz'[a]} [mm]")
         ax.set_ylabel(f"{'xyz'[b]} [mm]")
         ax.set_aspect("equal")
@@ -108,7 +105,7 @@ def _four_views(fig, curves, radius_mm, title):
 
 def fig_roller_trajectory(params, outdir: Path, points: int = 1441) -> Path:
     """Fig. 8: trajectory of roller 1's centre in the fixed frame over one shaft turn."""
-    plt = _plt()
+    plt = pyplot()
     turns = 1.0 if float(params.spin_ratio).is_integer() else 2.0
     theta = np.linspace(0.0, 2.0 * np.pi * turns, points)
     p = wc.roller_positions(params, theta)[0] * 1e3
@@ -120,15 +117,12 @@ def fig_roller_trajectory(params, outdir: Path, points: int = 1441) -> Path:
         f"Fig. 8  Roller trajectory in the fixed frame xyz\n{_tag(params)}",
     )
     fig.tight_layout(rect=(0, 0.04, 1, 1))
-    path = Path(outdir) / "fig08_roller_trajectory.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save_in(fig, outdir, "fig08_roller_trajectory.png")
 
 
 def fig_groove_centreline(params, outdir: Path, points: int = 1441) -> Path:
     """Fig. 9: figure-eight groove centre-lines in the cam frame (roller 1 bold)."""
-    plt = _plt()
+    plt = pyplot()
     theta = np.linspace(0.0, _closing_turns(params), points)
     g = wc.groove_points(params, theta) * 1e3
     names = (
@@ -158,18 +152,15 @@ def fig_groove_centreline(params, outdir: Path, points: int = 1441) -> Path:
         "Fig. 9  Figure-eight groove centre-lines in the cam frame x4y4z4\n" + _tag(params),
     )
     fig.tight_layout(rect=(0, 0.07, 1, 1))
-    path = Path(outdir) / "fig09_groove_centreline.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save_in(fig, outdir, "fig09_groove_centreline.png")
 
 
 def fig_chamber_angle(params, layout, outdir: Path, points: int = 1441) -> Path:
     """Fig. 10: chamber angles delta_A and delta_B over one shaft turn [deg]."""
-    plt = _plt()
+    plt = pyplot()
     theta = np.linspace(0.0, 2.0 * np.pi, points)
     q = wc.rotor_angles(params, theta)[0]
-    da, db = wc.chamber_angles(q[1] - q[0], layout.piston_width, params.pistons_per_rotor)
+    da, db = wc.chamber_angles(layout.piston_width, q[1] - q[0], pistons=params.pistons_per_rotor)
     fig, ax = plt.subplots(figsize=(9, 5))
     t = np.degrees(theta)
     ax.plot(t, np.degrees(da), color="C0", lw=1.8, label="chamber kind A, delta_A (eq. 19)")
@@ -196,15 +187,12 @@ def fig_chamber_angle(params, layout, outdir: Path, points: int = 1441) -> Path:
     ax.grid(True, alpha=0.4)
     ax.legend(loc="upper right", ncol=2, fontsize=9)
     fig.tight_layout()
-    path = Path(outdir) / "fig10_chamber_angle.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save_in(fig, outdir, "fig10_chamber_angle.png")
 
 
 def fig_rotor_kinematics(params, outdir: Path, points: int = 2881) -> Path:
     """Rotor angles relative to their mean motion and the 3 kinematic coefficients."""
-    plt = _plt()
+    plt = pyplot()
     theta = np.linspace(0.0, 2.0 * np.pi, points)
     q, d1, d2, d3 = wc.rotor_angles(params, theta)
     mean = 1.0 + params.spin_ratio
@@ -231,10 +219,7 @@ def fig_rotor_kinematics(params, outdir: Path, points: int = 2881) -> Path:
     axes[0, 0].legend(loc="center right")
     fig.suptitle("Rotor kinematics (exact closed forms)\n" + _tag(params))
     fig.tight_layout()
-    path = Path(outdir) / "fig_rotor_kinematics.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save_in(fig, outdir, "fig_rotor_kinematics.png")
 
 
 # --------------------------------------------------------------------------------------------
@@ -277,7 +262,6 @@ def _engine_tag(params, machine, cycle) -> str:
 
 def _stroke_bands(ax, theta_deg, stroke, alpha=0.35, labels=True):
     """Shade the strokes of one chamber along the x axis."""
-    from rotorkin.analysis.engine_cycle import STROKE_NAMES
 
     edges = np.flatnonzero(np.diff(stroke)) + 1
     starts = np.concatenate([[0], edges])
@@ -294,14 +278,13 @@ def _stroke_bands(ax, theta_deg, stroke, alpha=0.35, labels=True):
 
 def fig_chamber_volumes(params, layout, machine, cycle, outdir: Path, points: int = 2881) -> Path:
     """Chamber volumes of both kinds and dV/dtheta over one turn; chamber 1 strokes shaded."""
-    from rotorkin.machines import twin_rotor as tr
 
-    plt = _plt()
+    plt = pyplot()
     theta = np.linspace(0.0, 2.0 * np.pi, points)
-    ch = tr.chambers(params, machine, theta, layout)
-    stroke = tr.strokes(params, machine, theta)[0]
+    ch = eng.chambers(params, machine, theta, layout)
+    stroke = eng.strokes(params, machine, theta)[0]
     t = np.degrees(theta)
-    v_min, v_max = tr.volume_limits(machine, layout)
+    v_min, v_max = eng.volume_limits(machine, layout)
     fig, (ax, ax2) = plt.subplots(
         2, 1, figsize=(10, 7.5), sharex=True, gridspec_kw={"height_ratios": (3, 2)}
     )
@@ -310,12 +293,12 @@ def fig_chamber_volumes(params, layout, machine, cycle, outdir: Path, points: in
     ax.plot(t, ch.volume[1] * 1e6, color="C3", lw=1.6, ls="--", label="kind B (chambers 2, 4, ...)")
     for v in (v_min[0], v_max[0]):
         ax.axhline(v * 1e6, color="0.4", lw=0.7, ls=":")
-    eps_a, eps_b = tr.compression_ratio_geometric(machine, layout)
+    eps_a, eps_b = eng.compression_ratio_geometric(machine, layout)
     ax.set_title(
         f"(a) V_max = {v_max.max() * 1e6:.2f} cm^3, V_min = {v_min.min() * 1e6:.2f} cm^3, "
-        f"swept {tr.swept_volume(machine, layout) * 1e6:.2f} cm^3 per stroke,\n"
+        f"swept {eng.swept_volume(machine, layout) * 1e6:.2f} cm^3 per stroke,\n"
         f"eps_geo A/B = {eps_a:.3g}/{eps_b:.3g}, "
-        f"displacement {tr.displacement_per_rev(params, machine, layout) * 1e6:.0f} cm^3/rev; "
+        f"displacement {eng.displacement_per_rev(params, machine, layout) * 1e6:.0f} cm^3/rev; "
         "shading: strokes of chamber 1",
         fontsize=9,
     )
@@ -334,23 +317,18 @@ def fig_chamber_volumes(params, layout, machine, cycle, outdir: Path, points: in
         "Chamber volumes over one shaft turn\n" + _engine_tag(params, machine, cycle), fontsize=10
     )
     fig.tight_layout()
-    path = Path(outdir) / "fig_chamber_volumes.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save_in(fig, outdir, "fig_chamber_volumes.png")
 
 
 def fig_pv_diagram(params, layout, machine, cycle, outdir: Path, points: int = 4001) -> Path:
     """p-V diagram of one four-stroke cycle of chamber 1 (kind A) and 2 (kind B), lin and log."""
-    from rotorkin.analysis import engine_cycle as ec
-    from rotorkin.machines import twin_rotor as tr
 
-    plt = _plt()
+    plt = pyplot()
     span = 2.0 * np.pi / abs(params.spin_ratio)  # four strokes
     theta = np.linspace(0.0, span, points)
-    st = tr.engine_state(params, machine, cycle, theta)
-    v_min, v_max = tr.volume_limits(machine, layout)
-    eps_a, eps_b = tr.compression_ratio_geometric(machine, layout)
+    st = eng.engine_state(params, machine, cycle, theta)
+    v_min, v_max = eng.volume_limits(machine, layout)
+    eps_a, eps_b = eng.compression_ratio_geometric(machine, layout)
     work = ec.indicated_work(cycle, v_max[:2], v_min[:2])
     fig, axes = plt.subplots(1, 2, figsize=(12, 5.2))
     for ax, log in zip(axes, (False, True), strict=True):
@@ -400,28 +378,22 @@ def fig_pv_diagram(params, layout, machine, cycle, outdir: Path, points: int = 4
         "p-V diagram, ideal four-stroke cycle\n" + _engine_tag(params, machine, cycle), fontsize=10
     )
     fig.tight_layout()
-    path = Path(outdir) / "fig_pv_diagram.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save_in(fig, outdir, "fig_pv_diagram.png")
 
 
 def fig_shaft_torque(
     params, layout, machine, cycle, speed, outdir: Path, points: int = 2881
 ) -> Path:
     """Shaft torque without and with inertia, the inertia torque and the rotors' gas torques."""
-    from rotorkin.analysis.timing import shaft_speed
-    from rotorkin.analysis.torque import inertia_torque
-    from rotorkin.machines import twin_rotor as tr
 
-    plt = _plt()
+    plt = pyplot()
     theta = np.linspace(0.0, 2.0 * np.pi, points)
-    st = tr.engine_state(params, machine, cycle, theta)
+    st = eng.engine_state(params, machine, cycle, theta)
     m = st.chambers.motion
     w = shaft_speed(theta, speed, 2.0 * np.pi)
     t_in = inertia_torque(machine.inertia_shaft, machine.member_inertias, m.dq, m.d2q, w[0], w[1])
     net = st.shaft_torque - t_in
-    mean = tr.indicated_work_per_rev(params, machine, cycle, layout) / (2.0 * np.pi)
+    mean = eng.indicated_work_per_rev(params, machine, cycle, layout) / (2.0 * np.pi)
     t = np.degrees(theta)
     rpm = float(np.mean(w[0])) * 30.0 / np.pi
     fig, axes = plt.subplots(3, 1, figsize=(10, 10), sharex=True)
@@ -455,20 +427,15 @@ def fig_shaft_torque(
     _xaxis(ax, 360)
     fig.suptitle("Shaft torque over one turn\n" + _engine_tag(params, machine, cycle), fontsize=10)
     fig.tight_layout()
-    path = Path(outdir) / "fig_shaft_torque.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save_in(fig, outdir, "fig_shaft_torque.png")
 
 
 def fig_four_stroke(params, layout, machine, cycle, outdir: Path, points: int = 2881) -> Path:
     """Four-stroke timing of every chamber over one shaft turn and the chamber pressures."""
-    from rotorkin.analysis.engine_cycle import STROKE_NAMES
-    from rotorkin.machines import twin_rotor as tr
 
-    plt = _plt()
+    plt = pyplot()
     theta = np.linspace(0.0, 2.0 * np.pi, points)
-    st = tr.engine_state(params, machine, cycle, theta)
+    st = eng.engine_state(params, machine, cycle, theta)
     t = np.degrees(theta)
     nch = machine.chambers
     fig, (ax, ax2) = plt.subplots(
@@ -530,10 +497,7 @@ def fig_four_stroke(params, layout, machine, cycle, outdir: Path, points: int = 
     _xaxis(ax2, 360)
     fig.suptitle("Four-stroke assignment\n" + _engine_tag(params, machine, cycle), fontsize=10)
     fig.tight_layout()
-    path = Path(outdir) / "fig_four_stroke.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return path
+    return save_in(fig, outdir, "fig_four_stroke.png")
 
 
 def plot_all(params, layout, outdir: Path, machine=None, cycle=None, speed=None) -> list[Path]:
@@ -558,8 +522,6 @@ def plot_all(params, layout, outdir: Path, machine=None, cycle=None, speed=None)
         fig_rotor_kinematics(params, outdir),
     ]
     if machine is not None:
-        from rotorkin.analysis.engine_cycle import IdealCycle
-
         cycle = IdealCycle() if cycle is None else cycle
         speed = 100.0 * np.pi if speed is None else speed
         paths += [

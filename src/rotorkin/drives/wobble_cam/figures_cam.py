@@ -6,7 +6,7 @@ shell's inner surface and the crossings; (b) the same unrolled around the cam ax
 (c) the pressure angle of each roller over a shaft turn; (d) the undercut limit of the
 roller radius along each groove against the roller radius.
 
-matplotlib is imported lazily (Agg backend).
+matplotlib.pyplot through :func:`rotorkin.render.figures.pyplot`.
 """
 
 from __future__ import annotations
@@ -16,22 +16,13 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.drives.wobble_cam import cam as sph
+from rotorkin.render.figures import pyplot, save_in
 
 __all__ = ["plot_spherical_cam"]
 
-_DPI = 120
 _COLOURS = ("C0", "C9", "C3", "C1")
 #: Rollers 1', 2' dashed on top of 1, 2 (a group's two rollers often coincide).
 _STYLE = ({"lw": 2.2}, {"lw": 1.1, "ls": "--"}, {"lw": 2.2}, {"lw": 1.1, "ls": "--"})
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def _unrolled(p):
@@ -71,7 +62,7 @@ def plot_spherical_cam(source, outdir, cam=None, points: int = 1441) -> list[Pat
         drive = source
         if cam is None:
             raise TypeError("plot_spherical_cam(drive, outdir, cam=...) needs the SphericalCam")
-    plt = _plt()
+    plt = pyplot()
     period = sph.groove_period(drive)
     theta = np.linspace(0.0, period, points)
     g = sph.groove_derivatives(drive, theta)[0] * 1e3
@@ -188,7 +179,4 @@ def plot_spherical_cam(source, outdir, cam=None, points: int = 1441) -> list[Pat
         f"groove to {cam.bottom_radius * 1e3:.4g} mm"
     )
     fig.tight_layout(rect=(0, 0, 1, 0.97))
-    path = Path(outdir) / "fig_spherical_cam.png"
-    fig.savefig(path, dpi=_DPI)
-    plt.close(fig)
-    return [path]
+    return [save_in(fig, outdir, "fig_spherical_cam.png")]

@@ -4,23 +4,39 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.render.figures import BASELINE as _BASE
 from rotorkin.render.figures import SYNTHESIZED as _SYN
 from rotorkin.render.figures import degree_axis as _deg_axis
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save_in as _save
+from rotorkin.synthesis import DWELL_TOLERANCE
 
 __all__ = ["plot_wobble"]
 
 
-def plot_wobble(outdir, base, synth, slow, offset, objective):
-    """Chamber-angle laws (baseline, target, synthesized), spin laws and grooves."""
-    from rotorkin.drives.wobble_cam import kinematics as wc
-    from rotorkin.drives.wobble_cam import synthesis as sw
-    from rotorkin.synthesis import DWELL_TOLERANCE
+#: Shaft angles [rad] at which :func:`plot_wobble` draws the laws (its ``target`` too).
+LAW_THETA = np.linspace(0.0, np.pi, 1441)
 
+
+def plot_wobble(outdir, base, synth, target, groove_closing, offset, objective):
+    """Chamber-angle laws (baseline, target, synthesized), spin laws and grooves.
+
+    Parameters
+    ----------
+    outdir : path
+    base, synth : WobbleCam
+        Baseline and synthesized drives.
+    target : ndarray
+        Target slider angle at :data:`LAW_THETA` [rad].
+    groove_closing : float
+        Shaft angle after which the baseline's grooves close [rad].
+    offset : float
+        ``2 gamma + beta``: slider angle minus chamber angle of kind A [rad].
+    objective : str
+    """
     plt = _plt()
-    theta = np.linspace(0.0, np.pi, 1441)
+    theta = LAW_THETA
     x = np.degrees(theta)
     fig, axes = plt.subplots(3, 1, figsize=(9, 9.5), sharex=True)
     amax, amin = (
@@ -35,19 +51,16 @@ def plot_wobble(outdir, base, synth, slow, offset, objective):
             alpha=0.15,
             lw=0,
         )
-    target = sw.target_slider_angle(
-        theta, base.spin_ratio, base.plate_tilt, base.roller_axis_angle, slow
-    )[0]
     for p, st in ((base, _BASE), (synth, _SYN)):
         sp = wc.spin_law(p, theta)
-        delta = wc.slider_angle(sp[0], p.plate_tilt, p.roller_axis_angle) - offset
+        delta = wc.slider_angle(p.plate_tilt, p.roller_axis_angle, sp[0]) - offset
         axes[0].plot(x, np.degrees(delta), **st)
         axes[1].plot(x, sp[1], **st)
     axes[0].plot(x, np.degrees(target - offset), color="k", ls=(0, (4, 3)), lw=1.0, label="target")
     axes[0].plot([], [], color="C2", alpha=0.3, lw=6, label="dwell bands")
     for p, st in ((base, _BASE), (synth, _SYN)):
         sp = wc.spin_law(p, theta)[0]
-        err = np.degrees(wc.slider_angle(sp, p.plate_tilt, p.roller_axis_angle) - target)
+        err = np.degrees(wc.slider_angle(p.plate_tilt, p.roller_axis_angle, sp) - target)
         axes[2].semilogy(
             x,
             np.maximum(np.abs(err), 1e-17),
@@ -79,7 +92,7 @@ def plot_wobble(outdir, base, synth, slow, offset, objective):
     paths = [_save(fig, outdir, "synthesis_chamber_law.png")]
 
     fig, axes = plt.subplots(1, 3, figsize=(14, 5))
-    tg = np.linspace(0.0, sw.groove_closing_angle(base), 1441)
+    tg = np.linspace(0.0, groove_closing, 1441)
     R = base.sphere_radius * 1e3
     for p, st in ((base, _BASE), (synth, _SYN)):
         g = wc.groove_points(p, tg)[0] * 1e3

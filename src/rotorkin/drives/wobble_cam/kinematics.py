@@ -40,9 +40,11 @@ print ``cos phi cos phi`` for ``cos(phi) cos(varphi)``; eq. 18's text says
 paper's symbols phi and varphi are swapped against ours in eq. 2-3 and 14-15
 (the OCR's); here ``phi`` is always the plate tilt and ``varphi`` the spin.
 
-The pistons and chambers (eq. 17-23, :mod:`rotorkin.drives.wobble_cam.chambers`) and
-the fused fast path of the kinematics (:mod:`rotorkin.drives.wobble_cam.fast`)
-live in their own modules; every public name is importable from here.
+The slider-angle limits and chamber angles (eq. 17-20,
+:mod:`rotorkin.drives.wobble_cam.chambers`) and the fused fast path of the
+kinematics (:mod:`rotorkin.drives.wobble_cam.fast`) live in their own modules;
+every public name is importable from here. The piston offset gamma and the
+chamber count are the machine's (:mod:`rotorkin.machines.twin_rotor`).
 """
 
 from __future__ import annotations
@@ -57,22 +59,32 @@ from rotorkin.core.motion import Motion
 from rotorkin.drives.wobble_cam.chambers import (
     CHAMBERS,
     PISTON_OFFSET,
-    PistonLayout,
-    _check_pistons,
     chamber_angles,
     chamber_count,
+    chamber_gaps,
+    compression_ratio_violation,
+    design_kind_a,
     max_plate_tilt,
-    min_compression_ratio,
-    piston_layout,
     piston_offset,
-    power_strokes_per_rev,
+    piston_width,
     slider_angle_extremes,
     slider_angle_limits,
-    volume_cycles_per_rev,
+    zero_width_ratio,
 )
 from rotorkin.drives.wobble_cam.fast import rotor_kinematics
+from rotorkin.machines.twin_rotor import check_pistons as _check_pistons
+from rotorkin.machines.twin_rotor import first_violation
 
 __all__ = [
+    "CHECKED",
+    "violation",
+    "slowest_spin",
+    "roller_axis_angle_limits",
+    "chamber_gaps",
+    "zero_width_ratio",
+    "compression_ratio_violation",
+    "design_kind_a",
+    "piston_width",
     "PISTON_OFFSET",
     "CHAMBERS",
     "piston_offset",
@@ -81,6 +93,7 @@ __all__ = [
     "WobbleCam",
     "PistonLayout",
     "max_plate_tilt",
+    "spin_angle",
     "spin_law",
     "cam_angle",
     "projected_angle",
@@ -100,6 +113,8 @@ __all__ = [
     "groove_point",
     "roller_positions",
     "groove_points",
+    "volume_cycles",
+    "power_strokes",
     "volume_cycles_per_rev",
     "power_strokes_per_rev",
 ]
@@ -108,8 +123,128 @@ __all__ = [
 # --------------------------------------------------------------------------------------------
 # parameters
 # --------------------------------------------------------------------------------------------
-def _is_half_integer(x) -> bool:
-    return bool(np.isfinite(x) and x != 0 and abs(2.0 * x - np.round(2.0 * x)) < 1e-9)
+#: Fields of :class:`WobbleCam` that :func:`violation` checks, in the order it checks them.
+CHECKED = (
+    "pistons_per_rotor",
+    "roller_axis_angle",
+    "plate_tilt",
+    "spin_ratio",
+    "sphere_radius",
+    "spin_a",
+)
+#: Shaft angles on which a spin-law correction is checked for a monotone spin.
+_SPIN_CHECK = np.linspace(0.0, 2.0 * np.pi, 4097)
+
+
+def roller_axis_angle_limits(pistons=4):
+    """Open range of the roller axis angle alpha admitting some plate tilt (eq. 20) [rad].
+
+    ``pi/2 - pi/N < alpha < pi/2 + pi/N`` (45..135 deg at N = 4); broadcasts.
+    """
+    n = np.asarray(pistons, dtype=float)
+    return np.pi / 2.0 - np.pi / n, np.pi / 2.0 + np.pi / n
+
+
+def violation(
+    plate_tilt,
+    roller_axis_angle,
+    spin_ratio,
+    sphere_radius,
+    pistons_per_rotor=4,
+    spin_a=(),
+    spin_b=(),
+):
+    """Which parameter of the drive is not admissible, per design.
+
+    Parameters broadcast together (floats or arrays): plate tilt phi [rad],
+    roller axis angle alpha [rad], spin ratio n [-], sphere radius r [m],
+    pistons per rotor N [-].
+
+    Returns
+    -------
+    ndarray of int16
+        0 where admissible, else ``1 + CHECKED.index(name)`` of the first
+        parameter (in the order of :data:`CHECKED`) out of range: N even and >= 2;
+        alpha in :func:`roller_axis_angle_limits`; ``0 < phi <
+        max_plate_tilt(alpha, N)`` (eq. 20); n a finite nonzero multiple of 0.5
+        (the motion repeats every shaft turn); r > 0; the correction ``spin_a``,
+        ``spin_b`` (shared by all designs) keeps the spin monotone,
+        ``sign(n) dvarphi/dtheta > 0`` on 4097 angles of a turn (:func:`slowest_spin`).
+    """
+    with np.errstate(invalid="ignore", divide="ignore"):
+        n_p = np.asarray(pistons_per_rotor, dtype=float)
+        ok_n = (n_p >= 2) & (n_p % 2 == 0)
+        n_f = np.where(ok_n, n_p, 4.0)
+        a = np.asarray(roller_axis_angle, dtype=float)
+        lo, hi = roller_axis_angle_limits(n_f)
+        p = np.asarray(plate_tilt, dtype=float)
+        lim = max_plate_tilt(a, n_f)
+        n = np.asarray(spin_ratio, dtype=float)
+        half_int = np.isfinite(n) & (n != 0) & (np.abs(2.0 * n - np.round(2.0 * n)) < 1e-9)
+        r = np.asarray(sphere_radius, dtype=float)
+        return first_violation(
+            [
+                ~ok_n,
+                ~(np.isfinite(a) & (lo < a) & (a < hi)),
+                ~(np.isfinite(p) & (p > 0.0) & (p < lim)),
+                ~half_int,
+                ~(np.isfinite(r) & (r > 0.0)),
+                ~(slowest_spin(n, spin_a, spin_b) > 0.0),
+            ]
+        )
+
+
+def slowest_spin(spin_ratio, spin_a=(), spin_b=()):
+    """Lowest ``sign(n) dvarphi/dtheta`` over a turn (4097 angles): > 0 for a monotone spin [-].
+
+    ``|n| + min(sign(n) c'(theta))`` with the correction ``c`` of :func:`spin_angle`;
+    broadcasts over ``spin_ratio`` (the correction is shared).
+    """
+    n = np.asarray(spin_ratio, dtype=float)
+    if not (len(spin_a) or len(spin_b)):
+        return np.abs(n)
+    rate = spin_angle(0.0, spin_a, spin_b, _SPIN_CHECK)[1]
+    return np.abs(n) + np.where(n > 0.0, np.min(rate), -np.max(rate))
+
+
+def _raise_violation(params, name):
+    """ParameterError naming the field ``name`` of ``params``, its value and its range."""
+    n_p = params.pistons_per_rotor
+    a = float(params.roller_axis_angle)
+    if name == "roller_axis_angle":
+        lo, hi = (float(x) for x in roller_axis_angle_limits(n_p))
+        raise ParameterError(
+            name,
+            fmt_deg(a),
+            f"{fmt_deg(lo)} < roller_axis_angle < {fmt_deg(hi)} (eq. 20: beyond, no plate "
+            f"tilt is admissible for {n_p}-piston rotors)",
+        )
+    if name == "plate_tilt":
+        lim = float(max_plate_tilt(a, n_p))
+        raise ParameterError(
+            name,
+            fmt_deg(float(params.plate_tilt)),
+            f"0 deg < plate_tilt < {np.degrees(lim):.2f} deg (eq. 20 limit at "
+            f"roller_axis_angle = {fmt_deg(a)}, {n_p} pistons per rotor)",
+        )
+    if name == "spin_ratio":
+        raise ParameterError(
+            name,
+            f"{float(params.spin_ratio):g}",
+            "a finite nonzero multiple of 0.5 (e.g. -2, the paper's law), so that "
+            "the motion repeats every shaft turn",
+        )
+    if name == "sphere_radius":
+        raise ParameterError(name, fmt_mm(float(params.sphere_radius)), "sphere_radius > 0 mm")
+    if name == "spin_a":
+        low = float(slowest_spin(params.spin_ratio, params.spin_a, params.spin_b))
+        raise ParameterError(
+            "spin_a",
+            f"{list(params.spin_a)} (spin_b = {list(params.spin_b)})",
+            "a correction that keeps the spin monotone: sign(spin_ratio) dvarphi/dtheta "
+            f"> 0 everywhere (lowest here {low:.4g})",
+        )
+    _check_pistons(n_p)  # pistons_per_rotor: raises
 
 
 @dataclass(frozen=True)
@@ -130,7 +265,7 @@ class WobbleCam:
         repeats every shaft turn. Paper: -2 (default).
     sphere_radius : float, optional
         Radius r of the inner roller centres, i.e. of the groove centre-line
-        sphere [m] (default 0.05; the paper gives no value).
+        sphere [m] (default 0.06, the config default; the paper gives no value).
     pistons_per_rotor : int, optional
         Pistons N on each rotor, even, >= 2 (paper: 4, default). It only sets the
         interference limits of eq. 20 (and the chamber bookkeeping).
@@ -143,72 +278,44 @@ class WobbleCam:
     plate_tilt: float
     roller_axis_angle: float = np.pi / 2.0
     spin_ratio: float = -2.0
-    sphere_radius: float = 0.05
+    sphere_radius: float = 0.06
     pistons_per_rotor: int = 4
     spin_a: tuple = ()
     spin_b: tuple = ()
 
     def __post_init__(self):
-        n_p = self.pistons_per_rotor
-        _check_pistons(n_p)
-        a = float(self.roller_axis_angle)
-        lo, hi = np.pi / 2.0 - np.pi / n_p, np.pi / 2.0 + np.pi / n_p
-        if not (np.isfinite(a) and lo < a < hi):
-            raise ParameterError(
-                "roller_axis_angle",
-                fmt_deg(a),
-                f"{fmt_deg(lo)} < roller_axis_angle < {fmt_deg(hi)} (eq. 20: beyond, no plate "
-                f"tilt is admissible for {n_p}-piston rotors)",
-            )
-        lim = float(max_plate_tilt(a, n_p))
-        p = float(self.plate_tilt)
-        if not (np.isfinite(p) and 0.0 < p < lim):
-            raise ParameterError(
-                "plate_tilt",
-                fmt_deg(p),
-                f"0 deg < plate_tilt < {np.degrees(lim):.2f} deg (eq. 20 limit at "
-                f"roller_axis_angle = {fmt_deg(a)}, {n_p} pistons per rotor)",
-            )
-        if not _is_half_integer(float(self.spin_ratio)):
-            raise ParameterError(
-                "spin_ratio",
-                f"{float(self.spin_ratio):g}",
-                "a finite nonzero multiple of 0.5 (e.g. -2, the paper's law), so that "
-                "the motion repeats every shaft turn",
-            )
-        r = float(self.sphere_radius)
-        if not (np.isfinite(r) and r > 0.0):
-            raise ParameterError("sphere_radius", fmt_mm(r), "sphere_radius > 0 mm")
+        _check_pistons(self.pistons_per_rotor)
+        args = (self.plate_tilt, self.roller_axis_angle, self.spin_ratio, self.sphere_radius)
+        code = int(violation(*args, self.pistons_per_rotor))
+        if code:
+            _raise_violation(self, CHECKED[code - 1])
         for name in ("spin_a", "spin_b"):
             coeffs = np.asarray(getattr(self, name), dtype=float).ravel()
             if not np.all(np.isfinite(coeffs)):
                 raise ParameterError(name, str(list(coeffs)), "finite coefficients [rad]")
             object.__setattr__(self, name, tuple(float(c) for c in coeffs))
-        if self.spin_a or self.spin_b:
-            rate = spin_law(self, np.linspace(0.0, 2.0 * np.pi, 4097))[1] * np.sign(self.spin_ratio)
-            if np.min(rate) <= 0.0:
-                raise ParameterError(
-                    "spin_a",
-                    f"{list(self.spin_a)} (spin_b = {list(self.spin_b)})",
-                    "a correction that keeps the spin monotone: sign(spin_ratio) dvarphi/dtheta "
-                    f"> 0 everywhere (lowest here {np.min(rate):.4g})",
-                )
+        code = int(violation(*args, self.pistons_per_rotor, self.spin_a, self.spin_b))
+        if code:
+            _raise_violation(self, CHECKED[code - 1])
 
 
 # --------------------------------------------------------------------------------------------
 # laws of the plate and the cam
 # --------------------------------------------------------------------------------------------
-def spin_law(params: WobbleCam, theta):
+def spin_angle(spin_ratio, spin_a, spin_b, theta):
     """Plate spin ``varphi(theta)`` and its derivatives (paper: ``varphi = -2 theta``).
 
     ``varphi = n theta + c(theta)``, with the periodic correction
-    ``c = sum_k a_k cos(k theta) + b_k sin(k theta)`` (``spin_a``, ``spin_b``,
-    k = 1, 2, ...; empty for the paper's law). The correction is 2 pi periodic,
-    so the motion still repeats every shaft turn.
+    ``c = sum_k a_k cos(k theta) + b_k sin(k theta)`` (k = 1, 2, ...; empty for
+    the paper's law). The correction is 2 pi periodic, so the motion still
+    repeats every shaft turn.
 
     Parameters
     ----------
-    params : WobbleCam
+    spin_ratio : float or array_like
+        n [-]; an array broadcasts with ``theta`` (e.g. shape (k, 1) against (m,)).
+    spin_a, spin_b : sequence of float
+        ``a_k``, ``b_k`` [rad] (may be empty).
     theta : array_like
         Shaft angle [rad].
 
@@ -216,12 +323,13 @@ def spin_law(params: WobbleCam, theta):
     -------
     tuple of 4 ndarray
         ``varphi`` [rad], ``dvarphi/dtheta`` [-], ``d2``, ``d3`` [1/rad, 1/rad^2]
-        (the last two are zero for the linear law), all of ``theta``'s shape.
+        (the last two are zero for the linear law), of the broadcast shape.
     """
     theta = np.asarray(theta, dtype=float)
-    n = float(params.spin_ratio)
-    out = [n * theta, np.zeros_like(theta) + n, np.zeros_like(theta), np.zeros_like(theta)]
-    for coeffs, phase in ((params.spin_a, 0.0), (params.spin_b, -0.5 * np.pi)):
+    n = np.asarray(spin_ratio, dtype=float)
+    zero = np.zeros(np.broadcast_shapes(n.shape, theta.shape))
+    out = [n * theta + zero, zero + n, zero.copy(), zero.copy()]
+    for coeffs, phase in ((spin_a, 0.0), (spin_b, -0.5 * np.pi)):
         # a cos(k t + phase): a sin term is a cos term shifted by -pi/2
         for k, amp in enumerate(coeffs, start=1):
             if amp == 0.0:
@@ -235,12 +343,20 @@ def spin_law(params: WobbleCam, theta):
     return tuple(out)
 
 
+def spin_law(params: WobbleCam, theta):
+    """Plate spin ``varphi(theta)`` and its derivatives under the params' spin law.
+
+    :func:`spin_angle` with ``params.spin_ratio``, ``spin_a``, ``spin_b``.
+    """
+    return spin_angle(params.spin_ratio, params.spin_a, params.spin_b, theta)
+
+
 def cam_angle(theta):
     """Cam shell angle ``psi = -theta`` (bevel gearbox, equal and opposite) [rad]."""
     return -np.asarray(theta, dtype=float)
 
 
-def projected_angle(u, plate_tilt):
+def projected_angle(plate_tilt, u):
     """Angle of a plate radius projected on the shaft frame's y1z1 plane, and derivatives.
 
     A plate radius at angle ``u`` in the plate plane (from z2 towards y2) seen
@@ -256,10 +372,10 @@ def projected_angle(u, plate_tilt):
 
     Parameters
     ----------
-    u : array_like
-        Angle in the plate plane [rad].
     plate_tilt : array_like
         phi [rad], ``0 <= phi < pi/2``.
+    u : array_like
+        Angle in the plate plane [rad] (broadcast with ``plate_tilt``).
 
     Returns
     -------
@@ -282,7 +398,7 @@ def projected_angle(u, plate_tilt):
     return e0, e1, e2, e3
 
 
-def rotor_angles_from_spin(theta, spin, plate_tilt, roller_axis_angle, *, threads=None):
+def rotor_angles_from_spin(plate_tilt, roller_axis_angle, spin, theta, *, threads=None):
     """Angles of both rotors and their derivatives, for any spin law (eq. 13-14).
 
     ``Phi_k = theta + E(u_k)``, ``u_k = varphi(theta) + s_k alpha/2``,
@@ -295,13 +411,13 @@ def rotor_angles_from_spin(theta, spin, plate_tilt, roller_axis_angle, *, thread
 
     Parameters
     ----------
-    theta : array_like, shape (...)
-        Shaft angle [rad].
+    plate_tilt, roller_axis_angle : float or array_like
+        phi and alpha [rad] (broadcast with ``theta``).
     spin : sequence of 4 array_like, or float
         ``varphi, varphi', varphi'', varphi'''`` at ``theta`` [rad, -, 1/rad, 1/rad^2];
         a number n stands for the linear law ``varphi = n theta``.
-    plate_tilt, roller_axis_angle : float or array_like
-        phi and alpha [rad] (broadcast with ``theta``).
+    theta : array_like, shape (...)
+        Shaft angle [rad].
     threads : int, optional
         Threads for large arrays (default ``$ROTORKIN_THREADS`` or 1); the
         values do not depend on it.
@@ -314,7 +430,7 @@ def rotor_angles_from_spin(theta, spin, plate_tilt, roller_axis_angle, *, thread
         Angles are measured in the yz plane from +z towards +y; at theta = 0
         and varphi = 0 rotor 1 is at ``-alpha'_max/2``, rotor 2 at ``+alpha'_max/2``.
     """
-    rotor, _ = rotor_kinematics(theta, spin, plate_tilt, roller_axis_angle, threads=threads)
+    rotor, _ = rotor_kinematics(plate_tilt, roller_axis_angle, spin, theta, threads=threads)
     return tuple(rotor)
 
 
@@ -332,7 +448,7 @@ def rotor_angles(params: WobbleCam, theta, *, threads=None):
     """
     theta = np.asarray(theta, dtype=float)
     return rotor_angles_from_spin(
-        theta, _spin(params, theta), params.plate_tilt, params.roller_axis_angle, threads=threads
+        params.plate_tilt, params.roller_axis_angle, _spin(params, theta), theta, threads=threads
     )
 
 
@@ -366,7 +482,7 @@ def kinematics(params: WobbleCam, theta, piston_width, *, threads=None) -> Kinem
     """Rotor angles, derivatives and chamber angles of both kinds, in one fused pass.
 
     The same values as :func:`rotor_angles` followed by
-    ``chamber_angles(q[1] - q[0], piston_width, pistons_per_rotor)``, computed
+    ``chamber_angles(piston_width, q[1] - q[0], pistons=pistons_per_rotor)``, computed
     block by block (:func:`rotorkin.drives.wobble_cam.fast.rotor_kinematics`).
 
     Parameters
@@ -381,11 +497,11 @@ def kinematics(params: WobbleCam, theta, piston_width, *, threads=None) -> Kinem
     """
     theta = np.asarray(theta, dtype=float)
     rotor, cham = rotor_kinematics(
-        theta,
-        _spin(params, theta),
         params.plate_tilt,
         params.roller_axis_angle,
-        (piston_width, params.pistons_per_rotor),
+        _spin(params, theta),
+        theta,
+        chamber=(piston_width, params.pistons_per_rotor),
         threads=threads,
     )
     return Kinematics(*rotor, *cham)
@@ -411,7 +527,7 @@ def period(params: WobbleCam) -> float:
 # --------------------------------------------------------------------------------------------
 # slider angle
 # --------------------------------------------------------------------------------------------
-def slider_angle(spin_angle, plate_tilt, roller_axis_angle):
+def slider_angle(plate_tilt, roller_axis_angle, spin_angle):
     """Angle alpha' between the rails of rotor 1 and rotor 2 (eq. 15) [rad].
 
     ``alpha' = Phi_2 - Phi_1 = E(varphi + alpha/2) - E(varphi - alpha/2)``; it
@@ -420,14 +536,14 @@ def slider_angle(spin_angle, plate_tilt, roller_axis_angle):
 
     Parameters
     ----------
-    spin_angle : array_like
-        Plate spin varphi [rad].
     plate_tilt, roller_axis_angle : array_like
         phi and alpha [rad].
+    spin_angle : array_like
+        Plate spin varphi [rad] (all three broadcast together).
     """
     half = 0.5 * np.asarray(roller_axis_angle, dtype=float)
     v = np.asarray(spin_angle, dtype=float)
-    return projected_angle(v + half, plate_tilt)[0] - projected_angle(v - half, plate_tilt)[0]
+    return projected_angle(plate_tilt, v + half)[0] - projected_angle(plate_tilt, v - half)[0]
 
 
 # --------------------------------------------------------------------------------------------
@@ -443,12 +559,22 @@ def roller_offsets(roller_axis_angle):
     return np.array([-h, np.pi - h, h, np.pi + h])
 
 
-def plate_point(theta, spin_angle, offset, plate_tilt, radius):
+def plate_point(plate_tilt, radius, theta, spin_angle, offset):
     """Plate point at angle ``offset`` and ``radius``, in the fixed frame (eq. 7-8) [m].
 
     ``r|0 = A_theta A_phi A_varphi r [0, sin c, cos c]
     = r [sin(phi) cos u, cos(theta) sin u + sin(theta) cos(phi) cos u,
     -sin(theta) sin u + cos(theta) cos(phi) cos u]``, ``u = varphi + c``.
+
+    Parameters
+    ----------
+    plate_tilt : array_like
+        phi [rad].
+    radius : array_like
+        r [m].
+    theta, spin_angle, offset : array_like
+        Shaft angle theta, plate spin varphi and the point's angle c in the plate
+        plane [rad]; all five arguments broadcast together.
 
     Returns
     -------
@@ -466,22 +592,23 @@ def plate_point(theta, spin_angle, offset, plate_tilt, radius):
     return radius * np.stack(np.broadcast_arrays(x, y, z))
 
 
-def groove_point(theta, cam, spin_angle, offset, plate_tilt, radius):
+def groove_point(plate_tilt, radius, theta, cam, spin_angle, offset):
     """The plate point of :func:`plate_point` seen in the cam frame (eq. 10-11) [m].
 
     ``r|4 = A_psi^T r|0``; the first two rotations combine to ``A_(theta - psi)``.
     With ``psi = -theta`` and ``varphi = -2 theta`` it closes after ``theta = pi``.
+    Arguments as :func:`plate_point`, with the cam angle psi [rad] after theta.
 
     Returns
     -------
     ndarray, shape (3, ...)
     """
     return plate_point(
+        plate_tilt,
+        radius,
         np.asarray(theta, dtype=float) - np.asarray(cam, dtype=float),
         spin_angle,
         offset,
-        plate_tilt,
-        radius,
     )
 
 
@@ -500,7 +627,7 @@ def roller_positions(params: WobbleCam, theta):
         Roller (order of :func:`roller_offsets`), coordinate x y z, ``theta``'s shape.
     """
     theta, v, c = _per_roller(params, theta)
-    p = plate_point(theta, v, c, params.plate_tilt, params.sphere_radius)
+    p = plate_point(params.plate_tilt, params.sphere_radius, theta, v, c)
     return np.moveaxis(p, 0, 1)
 
 
@@ -512,5 +639,144 @@ def groove_points(params: WobbleCam, theta):
     ndarray, shape (4, 3, ...)
     """
     theta, v, c = _per_roller(params, theta)
-    p = groove_point(theta, cam_angle(theta), v, c, params.plate_tilt, params.sphere_radius)
+    p = groove_point(params.plate_tilt, params.sphere_radius, theta, cam_angle(theta), v, c)
     return np.moveaxis(p, 0, 1)
+
+
+# --------------------------------------------------------------------------------------------
+# pistons for a design compression ratio (eq. 21-22), cycle counts
+# --------------------------------------------------------------------------------------------
+def _gaps(params: WobbleCam):
+    """Smallest and largest centre-line gap of chamber kinds A and B [rad] (floats)."""
+    g = chamber_gaps(params.plate_tilt, params.roller_axis_angle, params.pistons_per_rotor)
+    return tuple((float(lo), float(hi)) for lo, hi in g)
+
+
+def min_compression_ratio(params: WobbleCam) -> float:
+    """Compression ratio reached with zero-width pistons; any design ratio must exceed it.
+
+    The piston width beta of :func:`piston_layout` is positive iff
+    ``eps > g_max / g_min``, the ratio of the largest to the smallest
+    centre-line gap of the tighter chamber kind
+    (:func:`rotorkin.drives.wobble_cam.chambers.zero_width_ratio`).
+    """
+    return float(zero_width_ratio(_gaps(params)))
+
+
+@dataclass(frozen=True)
+class PistonLayout:
+    """Piston width and chamber extremes for a design compression ratio.
+
+    Attributes
+    ----------
+    compression_ratio : float
+        Design ratio eps, reached by the tighter chamber kind.
+    piston_width : float
+        beta [rad].
+    chamber_a_min, chamber_a_max, chamber_b_min, chamber_b_max : float
+        Extremes of delta_A and delta_B [rad].
+    compression_ratio_a, compression_ratio_b : float
+        ``delta_max / delta_min`` of each kind.
+    design_kind : str
+        ``"A"`` or ``"B"``: the kind with the smaller minimum (ratio = eps).
+    """
+
+    compression_ratio: float
+    piston_width: float
+    chamber_a_min: float
+    chamber_a_max: float
+    chamber_b_min: float
+    chamber_b_max: float
+    compression_ratio_a: float
+    compression_ratio_b: float
+    design_kind: str
+
+    @property
+    def swing(self) -> float:
+        """``delta_max - delta_min = alpha'_max - alpha'_min`` (eq. 23) [rad]."""
+        return self.chamber_a_max - self.chamber_a_min
+
+
+def piston_layout(params: WobbleCam, compression_ratio: float) -> PistonLayout:
+    """Piston width beta giving the design compression ratio (eq. 21-22, generalised).
+
+    The chamber kind with the smaller minimum angle gets exactly
+    ``eps = delta_max/delta_min`` (volume proportional to angle, no clearance
+    volume): with its centre-line gaps ``g_min, g_max``,
+    ``beta = (eps g_min - g_max) / (eps - 1)``. At ``alpha = 90 deg`` both kinds
+    coincide (``alpha'_max + alpha'_min = pi``) and this is eq. 21 (N = 4),
+    ``beta = (eps+1)/(eps-1) alpha'_min - pi (eps+3) / (4 (eps-1))``; for N pistons
+    ``beta = (eps+1)/(eps-1) alpha'_min - (pi + (eps-1)(pi/2 - pi/N)) / (eps-1)``. For other
+    alpha the paper's eq. 21 does not hold (it assumes
+    ``alpha'_max + alpha'_min = pi``); the other kind then has a lower ratio
+    (Fig. 11).
+
+    Parameters
+    ----------
+    params : WobbleCam
+    compression_ratio : float
+        eps, ``min_compression_ratio(params) < eps < inf``.
+
+    Raises
+    ------
+    ParameterError
+        named ``"compression_ratio"`` when eps is not admissible.
+    """
+    eps = float(compression_ratio)
+    ga, gb = _gaps(params)
+    if compression_ratio_violation((ga, gb), eps):
+        lo_ratio = min_compression_ratio(params)
+        raise ParameterError(
+            "compression_ratio",
+            f"{eps:g}",
+            f"compression_ratio > {lo_ratio:.4g} (the ratio of zero-width pistons at this "
+            "plate tilt and roller axis angle; a smaller one needs a negative piston width, "
+            "eq. 21)",
+        )
+    kind = "A" if design_kind_a((ga, gb)) else "B"
+    beta = float(piston_width((ga, gb), eps))
+    a = (ga[0] - beta, ga[1] - beta)
+    b = (gb[0] - beta, gb[1] - beta)
+    return PistonLayout(
+        compression_ratio=eps,
+        piston_width=beta,
+        chamber_a_min=a[0],
+        chamber_a_max=a[1],
+        chamber_b_min=b[0],
+        chamber_b_max=b[1],
+        compression_ratio_a=a[1] / a[0],
+        compression_ratio_b=b[1] / b[0],
+        design_kind=kind,
+    )
+
+
+# --------------------------------------------------------------------------------------------
+# counts
+# --------------------------------------------------------------------------------------------
+def volume_cycles(spin_ratio):
+    """Volume cycles of each chamber per shaft turn, ``2 |n|`` (alpha' has period pi in varphi).
+
+    Paper section 1.2 and 4.2.3: 4 at n = -2. Broadcasts over ``spin_ratio`` [-];
+    whole numbers (as floats) for the admissible multiples of 0.5.
+    """
+    return np.round(2.0 * np.abs(np.asarray(spin_ratio, dtype=float)))
+
+
+def power_strokes(spin_ratio, pistons=4, strokes_per_cycle=4):
+    """Power strokes per shaft turn: ``2N chambers x 2 |n| / (strokes_per_cycle / 2)``.
+
+    A four-stroke cycle takes two volume cycles: 16 at N = 4, n = -2 (paper
+    section 1.2). Broadcasts over ``spin_ratio`` and ``pistons``.
+    """
+    chambers = 2.0 * np.asarray(pistons, dtype=float)
+    return np.round(chambers * volume_cycles(spin_ratio) * 2 / strokes_per_cycle)
+
+
+def volume_cycles_per_rev(params: WobbleCam) -> int:
+    """:func:`volume_cycles` of the params' spin ratio, an int."""
+    return int(volume_cycles(params.spin_ratio))
+
+
+def power_strokes_per_rev(params: WobbleCam, strokes_per_cycle: int = 4) -> int:
+    """:func:`power_strokes` of the params, an int (16 at N = 4, n = -2)."""
+    return int(power_strokes(params.spin_ratio, params.pistons_per_rotor, strokes_per_cycle))

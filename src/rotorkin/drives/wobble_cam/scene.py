@@ -15,7 +15,7 @@ The scene has two views of the same instant, both from the model's coordinates:
   from +z towards +y): the pistons of rotor 1 at ``Phi_1 + gamma + 2 pi k/N`` and of
   rotor 2 at ``Phi_2 - gamma + 2 pi k/N``, ``piston_width`` wide, and the chambers
   between them coloured by their stroke, labelled with their pressure
-  (:func:`rotorkin.machines.twin_rotor.engine_state`).
+  (:func:`rotorkin.drives.wobble_cam.engine.engine_state`).
 
 The outer rollers sit at 1.3 sphere radii on the roller shafts and the plate is
 drawn with 0.7 sphere radii: the paper gives neither, they are for the picture.
@@ -26,8 +26,9 @@ from __future__ import annotations
 import numpy as np
 
 from rotorkin.analysis import engine_cycle as ec
+from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import kinematics as wc
-from rotorkin.machines import twin_rotor as tr
+from rotorkin.drives.wobble_cam.study import models
 from rotorkin.render.scenes import (
     COLOR_1,
     COLOR_2,
@@ -58,12 +59,6 @@ _PLATE = 0.7  # plate radius, in sphere radii (drawing only)
 _STROKE_COLORS = ("#9ecae1", "#fdd0a2", "#fc9272", "#c7c7c7")  # intake, compr., power, exhaust
 
 
-def _models(cfg):
-    from rotorkin.drives.wobble_cam.study import models
-
-    return models(cfg)
-
-
 def _groove_period(params) -> float:
     """Shaft angle after which a groove centre-line closes (pi for the paper's law)."""
     n = float(params.spin_ratio)
@@ -85,7 +80,7 @@ def _end_view(rho, ang):
 
 def scene(result, cfg, frames: int = 120):
     """The drive (3D) and the rotors (end view) over one shaft turn."""
-    params, machine, cycle = _models(cfg)
+    params, machine, cycle = models(cfg)
     theta = frame_angles(wc.period(params), frames)
     nf = len(theta)
     b = SceneBuilder(theta)
@@ -95,7 +90,7 @@ def scene(result, cfg, frames: int = 120):
     offsets = wc.roller_offsets(params.roller_axis_angle)
 
     def plate(c, radius):  # plate points at angles c, (3, F, len(c)) [mm]
-        return wc.plate_point(theta[:, None], spin[:, None], np.atleast_1d(c), tilt, radius)
+        return wc.plate_point(tilt, radius, theta[:, None], spin[:, None], np.atleast_1d(c))
 
     # the sphere of the groove centre-lines: circles about x (unchanged by the cam's turn)
     t = np.linspace(0.0, 2.0 * np.pi, 73)
@@ -222,11 +217,11 @@ def scene(result, cfg, frames: int = 120):
             z=join(rz[:, 0], rz[:, 1]),
         )
     # the rotors seen from the shaft end
-    state = tr.engine_state(params, machine, cycle, theta)
+    state = eng.engine_state(params, machine, cycle, theta)
     ri, ro = _annulus(machine)
     n = machine.pistons_per_rotor
     gam = float(wc.piston_offset(n))
-    beta = tr.piston_layout(params, machine).piston_width
+    beta = eng.piston_layout(params, machine).piston_width
     t = np.linspace(0.0, 2.0 * np.pi, 121)
     cx, cy = _end_view(np.r_[np.full(121, ro), np.nan, np.full(121, ri)], np.r_[t, np.nan, t])
     b.static(trace("line", "cylinder wall and hub", GREY, 2, x=cx, y=cy, hoverinfo="skip"))
@@ -292,7 +287,7 @@ def scene(result, cfg, frames: int = 120):
     ]
     caption = (
         "Drawn from the model: wobble_cam.plate_point, roller_positions, rotor_angles and "
-        "groove_points (the grooves turned with the cam, psi = -theta), twin_rotor.engine_state "
+        "groove_points (the grooves turned with the cam, psi = -theta), engine.engine_state "
         "(chambers coloured by stroke, labelled with their pressure). The outer rollers and the "
         "plate's size are drawn for the picture (the paper gives neither)."
     )
@@ -302,7 +297,7 @@ def scene(result, cfg, frames: int = 120):
 def plots(result, cfg) -> list[Plot]:
     """SVAJ of the rotors, chambers, pressures, torque, p-V, rollers and grooves (3D)."""
     cols, s = result.columns, result.summary
-    params = _models(cfg)[0]
+    params = models(cfg)[0]
     th, x_lab = cols["theta_deg"], "shaft angle theta [deg]"
     rpm = fmt(s.get("shaft_speed_mean_rpm", float("nan")))
     members = [
@@ -519,7 +514,7 @@ def _sphere_figure(params):
 def checks(result, cfg) -> list[Check]:
     """Interference (eq. 20), closest approach of the pistons, rotor speeds, flywheel."""
     s = result.summary
-    params, machine, _ = _models(cfg)
+    params, machine, _ = models(cfg)
     out = []
     tilt, lim = np.degrees(params.plate_tilt), s["max_plate_tilt_deg"]
     frac = tilt / lim

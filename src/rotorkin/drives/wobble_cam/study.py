@@ -27,6 +27,9 @@ from rotorkin.analysis.torque import (
     torque_ripple,
 )
 from rotorkin.core.errors import ParameterError
+from rotorkin.drives.wobble_cam import engine as eng
+from rotorkin.drives.wobble_cam import figures as figures_wobble_cam
+from rotorkin.drives.wobble_cam import figures_cam as figures_spherical_cam
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.machines import twin_rotor as tr
 from rotorkin.studies import StudyResult
@@ -67,7 +70,7 @@ def _deg(x) -> float:
 
 def _layout(params, machine):
     try:
-        return tr.piston_layout(params, machine)
+        return eng.piston_layout(params, machine)
     except ParameterError as exc:
         raise ParameterError("machine.compression_ratio", exc.value, exc.admissible) from None
 
@@ -154,7 +157,7 @@ def _columns(params, layout, points) -> dict:
     theta = angle_grid(wc.period(params), points)
     q, d1, d2, d3 = wc.rotor_angles(params, theta)
     slider = q[1] - q[0]
-    da, db = wc.chamber_angles(slider, layout.piston_width, params.pistons_per_rotor)
+    da, db = wc.chamber_angles(layout.piston_width, slider, pistons=params.pistons_per_rotor)
     roller = wc.roller_positions(params, theta)[0] * 1e3
     groove = wc.groove_points(params, theta)[0] * 1e3
     cols = {"theta_deg": np.degrees(theta)}
@@ -199,16 +202,16 @@ def _ratio(num, den) -> float:
 
 def _engine_summary(params, machine, cycle, layout, speed) -> dict:
     """Volumes, cycle, torques and flywheel; closed forms where they exist, else a fine grid."""
-    v_min, v_max = tr.volume_limits(machine, layout)
-    eps_a, eps_b = tr.compression_ratio_geometric(machine, layout)
+    v_min, v_max = eng.volume_limits(machine, layout)
+    eps_a, eps_b = eng.compression_ratio_geometric(machine, layout)
     design = 0 if layout.design_kind == "A" else 1
-    swept = tr.swept_volume(machine, layout)
-    disp = tr.displacement_per_rev(params, machine, layout)
+    swept = eng.swept_volume(machine, layout)
+    disp = eng.displacement_per_rev(params, machine, layout)
     work_cycle = ec.indicated_work(cycle, v_max[:2], v_min[:2])  # kinds A, B
-    work_rev = tr.indicated_work_per_rev(params, machine, cycle, layout)
-    heat_rev = cycle.heat_per_cycle * machine.chambers * tr.cycles_per_rev(params)
+    work_rev = eng.indicated_work_per_rev(params, machine, cycle, layout)
+    heat_rev = cycle.heat_per_cycle * machine.chambers * eng.cycles_per_rev(params)
     fine = np.linspace(0.0, wc.period(params), _PEAK_SAMPLES)
-    state = tr.engine_state(params, machine, cycle, fine)
+    state = eng.engine_state(params, machine, cycle, fine)
     omega = shaft_speed(fine, speed, wc.period(params))
     omega_mean = wc.period(params) / np.trapezoid(1.0 / omega[0], fine)  # time average
     _, net, j_eq, _ = _dynamics(machine, state, omega[0], omega[1])
@@ -231,8 +234,8 @@ def _engine_summary(params, machine, cycle, layout, speed) -> dict:
         "chamber_b_volume_max_cm3": float(v_max[1]) * mm3,
         "swept_volume_cm3": swept * mm3,
         "displacement_cm3_per_rev": disp * mm3,
-        "equivalent_capacity_cm3": tr.swept_volume_per_rev(params, machine, layout) * mm3,
-        "intake_strokes_per_rev": int(round(machine.chambers * tr.cycles_per_rev(params))),
+        "equivalent_capacity_cm3": eng.swept_volume_per_rev(params, machine, layout) * mm3,
+        "intake_strokes_per_rev": int(round(machine.chambers * eng.cycles_per_rev(params))),
         "chambers_in_power_stroke": machine.pistons_per_rotor // 2,
         "compression_ratio_geometric": (eps_a, eps_b)[design],
         "compression_ratio_geometric_a": eps_a,
@@ -269,7 +272,7 @@ def _engine_summary(params, machine, cycle, layout, speed) -> dict:
 
 
 def _engine_columns(params, machine, cycle, speed, theta):
-    state = tr.engine_state(params, machine, cycle, theta)
+    state = eng.engine_state(params, machine, cycle, theta)
     ch = state.chambers
     omega = shaft_speed(theta, speed, wc.period(params))
     t_in, net, j_eq, ke = _dynamics(machine, state, omega[0], omega[1])
@@ -402,9 +405,6 @@ def evaluate(cfg: dict) -> StudyResult:
     summary = {k: v.item() if isinstance(v, np.generic) else v for k, v in summary.items()}
 
     def plot(outdir: Path) -> list[Path]:
-        from rotorkin.drives.wobble_cam import figures as figures_wobble_cam
-        from rotorkin.drives.wobble_cam import figures_cam as figures_spherical_cam
-
         paths = figures_wobble_cam.plot_all(
             params, layout, Path(outdir), machine=machine, cycle=cycle, speed=speed
         )
@@ -423,4 +423,5 @@ def evaluate(cfg: dict) -> StudyResult:
         column_docs=docs,
         headline=HEADLINE,
         write_figures=plot,
+        motion=wc.motion(params, theta),
     )

@@ -9,34 +9,34 @@ same names), computed for arrays of designs:
   pressures, work;
 * sampled peaks: the acceleration and jerk coefficients of both rotors are
   evaluated on ``samples`` shaft angles per design (a design x angle array, in
-  blocks) and reduced to their peaks, as the study does on its 20001-point grid.
-  With the paper's linear spin law ``u_k = n theta -+ alpha/2``, so
-  ``cos 2u_k`` and ``sin 2u_k`` follow from tables of ``cos 2n theta``,
-  ``sin 2n theta`` and the design's ``cos alpha``, ``sin alpha`` by the angle-sum
-  formulas: no transcendental function per design and angle.
+  blocks) and reduced to their peaks, as the study does on its 20001-point grid,
+  by the library's own fused kinematics
+  (:func:`rotorkin.drives.wobble_cam.fast.rotor_kinematics`, designs ``(m, 1)``
+  against the angles): the same functions as the study, for either spin law.
 * on request (:data:`SAMPLED_METRICS`, ``--metrics``; the sweep benchmark's
   workload): every kinematic curve per design and sampled angle -- both rotor
-  angles (one ``arctan`` each) and their three derivatives, the slider angle, the
-  chamber angles of both kinds and their volumes -- reduced to extremes and
-  peaks. The closed forms above give the same extremes exactly; the sampled
-  ones agree with them to the sampling error (tested), and equal the extremes
-  of the study's columns when the grids are the same.
+  angles and their three derivatives, the slider angle, the chamber angles of
+  both kinds and their volumes -- reduced to extremes and peaks. The closed
+  forms above give the same extremes exactly; the sampled ones agree with them
+  to the sampling error (tested), and equal the extremes of the study's columns
+  when the grids are the same.
 
-With ``D = (1 + c^2)/2 - (1 - c^2)/2 cos 2u`` (``c = cos phi``), the projected
-angle's derivatives are ``E' = c/D``, ``E'' = -c (1 - c^2) sin 2u / D^2``,
-``E''' = c/D^2 (2 (1 - c^2)^2 sin^2 2u / D - 2 (1 - c^2) cos 2u)``
-(:func:`rotorkin.drives.wobble_cam.kinematics.projected_angle`); the rotors' follow by the
-chain rule through the spin law.
+The closed forms are the drive's and the machine's broadcasting functions
+(:mod:`rotorkin.drives.wobble_cam.kinematics`, :mod:`rotorkin.drives.wobble_cam.chambers`,
+:mod:`rotorkin.machines.twin_rotor`) called with arrays of designs; admissibility is
+their vectorised ``violation`` functions.
 """
 
 from __future__ import annotations
 
-import threading
-
 import numpy as np
 
-from rotorkin.core.batch import flag, full, run_blocks, sample_grid
+from rotorkin.analysis.timing import shaft_speed
+from rotorkin.core.batch import Designs, flag, full, run_blocks, sample_grid
+from rotorkin.drives.wobble_cam import chambers as wch
 from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.drives.wobble_cam.fast import rotor_kinematics
+from rotorkin.machines import twin_rotor as tr
 
 __all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "SAMPLED_METRICS", "OPTIONAL_METRICS",
            "unsupported", "metric_names", "reasons", "metrics", "curves", "period"]  # fmt: skip
@@ -178,47 +178,47 @@ def period(p) -> float:
 # --------------------------------------------------------------------------------------------
 # admissibility: the checks of TwinRotor, WobbleCam, piston_layout and IdealCycle, in order
 # --------------------------------------------------------------------------------------------
+def _machine_args(p) -> dict:
+    """The machine fields of the designs (arrays or base scalars), SI."""
+    args = {
+        f: p.float(f"machine.{f}") for f in tr.CHECKED if f not in ("section", "pistons_per_rotor")
+    }
+    args["pistons_per_rotor"] = np.asarray(p["machine.pistons_per_rotor"])
+    args["section"] = np.asarray(p["machine.section"])
+    return args
+
+
 def reasons(p, code: dict) -> np.ndarray:
-    """Reason code per design: 0 if admissible, else the code of the key the study would name."""
+    """Reason code per design: 0 if admissible, else the code of the key the study would name.
+
+    The machine's and the drive's own vectorised checks
+    (:func:`rotorkin.machines.twin_rotor.violation`,
+    :func:`rotorkin.drives.wobble_cam.kinematics.violation`,
+    :func:`rotorkin.drives.wobble_cam.chambers.compression_ratio_violation`), then the
+    ideal cycle's, in the order the study meets them.
+    """
     r = np.zeros(p.n, dtype=np.int16)
     with np.errstate(all="ignore"):
-        eps = p.float("machine.compression_ratio")
-        flag(r, ~(np.isfinite(eps) & (eps > 1.0)), code["machine.compression_ratio"])
-        npist = np.asarray(p["machine.pistons_per_rotor"])
-        flag(r, ~((npist >= 2) & (npist % 2 == 0)), code["machine.pistons_per_rotor"])
+        m = _machine_args(p)
+        first = tr.violation(**m)
+        for i, name in enumerate(tr.CHECKED, start=1):
+            if f"machine.{name}" in code:
+                flag(r, first == i, code[f"machine.{name}"])
+        tilt, alpha = p.float("drive.plate_tilt"), p.float("drive.roller_axis_angle")
+        d = p.cfg["drive"]
+        first = wc.violation(tilt, alpha, p.float("drive.spin_ratio"),
+                             p.float("drive.sphere_radius"), m["pistons_per_rotor"],
+                             d.get("spin_a") or (), d.get("spin_b") or ())  # fmt: skip
+        for i, name in enumerate(wc.CHECKED, start=1):
+            key = "machine.pistons_per_rotor" if name == "pistons_per_rotor" else f"drive.{name}"
+            flag(r, first == i, code.get(key, code["other"]))
+        npist = m["pistons_per_rotor"]
         n_f = np.where((npist >= 2) & (npist % 2 == 0), npist, 4).astype(float)
-        rect = np.asarray(p["machine.section"]) == "rectangular"
-        ri, ro = p.float("machine.inner_radius"), p.float("machine.outer_radius")
-        w = p.float("machine.axial_width")
-        flag(r, rect & ~(np.isfinite(ro) & (ro > 0.0)), code["machine.outer_radius"])
-        flag(r, rect & ~(np.isfinite(ri) & (ri > 0.0) & (ri < ro)), code["machine.inner_radius"])
-        flag(r, rect & ~(np.isfinite(w) & (w > 0.0)), code["machine.axial_width"])
-        rm, d = p.float("machine.mean_radius"), p.float("machine.section_diameter")
-        flag(r, ~rect & ~(np.isfinite(rm) & (rm > 0.0)), code["machine.mean_radius"])
-        bad_d = ~(np.isfinite(d) & (d > 0.0) & (d < 2.0 * rm))
-        flag(r, ~rect & bad_d, code["machine.section_diameter"])
-        vc = p.float("machine.clearance_volume")
-        flag(r, ~(np.isfinite(vc) & (vc >= 0.0)), code["machine.clearance_volume"])
-        # WobbleCam
-        a = p.float("drive.roller_axis_angle")
-        lo, hi = np.pi / 2.0 - np.pi / n_f, np.pi / 2.0 + np.pi / n_f
-        flag(r, ~(np.isfinite(a) & (lo < a) & (a < hi)), code["drive.roller_axis_angle"])
-        lim = _max_tilt(a, n_f)
-        tilt = p.float("drive.plate_tilt")
-        flag(r, ~(np.isfinite(tilt) & (tilt > 0.0) & (tilt < lim)), code["drive.plate_tilt"])
-        n = p.float("drive.spin_ratio")
-        half_int = np.isfinite(n) & (n != 0) & (np.abs(2.0 * n - np.round(2.0 * n)) < 1e-9)
-        flag(r, ~half_int, code["drive.spin_ratio"])
-        rs = p.float("drive.sphere_radius")
-        flag(r, ~(np.isfinite(rs) & (rs > 0.0)), code["drive.sphere_radius"])
-        # piston_layout: eps above the zero-width-piston ratio
-        g = _gaps(tilt, a, n_f)
-        lo_ratio = _min_ratio(g)
-        flag(r, ~(np.isfinite(eps) & (eps > np.maximum(lo_ratio, 1.0))),
-             code["machine.compression_ratio"])  # fmt: skip
-        if "piston_width" in p.extra:  # tolerance analysis: the pistons as manufactured
-            beta = p.extra["piston_width"]
-            flag(r, ~(np.minimum(g[0][0], g[1][0]) > beta), code["machine.compression_ratio"])
+        gaps = wc.chamber_gaps(tilt, alpha, n_f)
+        bad = wc.compression_ratio_violation(
+            gaps, m["compression_ratio"], p.extra.get("piston_width")
+        )
+        flag(r, bad, code["machine.compression_ratio"])
         # IdealCycle
         pa = p.float("loads.ambient_pressure")
         flag(r, ~(np.isfinite(pa) & (pa > 0.0)), code["loads.ambient_pressure"])
@@ -227,30 +227,6 @@ def reasons(p, code: dict) -> np.ndarray:
         q = p.float("loads.heat_per_cycle")
         flag(r, ~(np.isfinite(q) & (q >= 0.0)), code["loads.heat_per_cycle"])
     return r
-
-
-def _max_tilt(alpha, n_f):
-    """:func:`~.kinematics.max_plate_tilt` for arrays of piston counts [rad]."""
-    t = np.tan(np.asarray(alpha, dtype=float) / 2.0)
-    tn = np.tan(np.pi / 4.0 - np.pi / (2.0 * np.asarray(n_f, dtype=float)))
-    cos_lim = np.maximum(t * tn, tn / t)
-    with np.errstate(invalid="ignore"):
-        return np.where(cos_lim < 1.0, np.arccos(np.minimum(cos_lim, 1.0)), np.nan)
-
-
-def _gaps(tilt, alpha, n_f):
-    """Centre-line gaps ``((A_min, A_max), (B_min, B_max))`` of the two chamber kinds [rad]."""
-    amax, amin = wc.slider_angle_extremes(tilt, alpha)
-    g2 = 2.0 * wc.piston_offset(n_f)
-    lo, hi = g2, 2.0 * np.pi / n_f + g2
-    return (amin - lo, amax - lo), (hi - amax, hi - amin)
-
-
-def _min_ratio(g):
-    """``g_max / g_min`` of the tighter kind (A on a tie, as ``min`` picks the first)."""
-    (a0, a1), (b0, b1) = g
-    first = a0 <= b0
-    return np.where(first, a1 / a0, b1 / b0)
 
 
 # --------------------------------------------------------------------------------------------
@@ -268,14 +244,13 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
     spin = p.float("drive.spin_ratio")
     eps = p.float("machine.compression_ratio")
     amax, amin = wc.slider_angle_extremes(tilt, alpha)
-    ga, gb = _gaps(tilt, alpha, n_f)
-    kind_a = ga[0] <= gb[0]
-    gmin, gmax = np.where(kind_a, ga[0], gb[0]), np.where(kind_a, ga[1], gb[1])
+    ga, gb = wc.chamber_gaps(tilt, alpha, n_f)
+    kind_a = wc.design_kind_a((ga, gb))
     fixed = "piston_width" in p.extra  # tolerance analysis: pistons as manufactured
-    beta = p.extra["piston_width"] if fixed else (eps * gmin - gmax) / (eps - 1.0)
+    beta = p.extra["piston_width"] if fixed else wch.piston_width((ga, gb), eps)
     a_lo, a_hi, b_lo, b_hi = ga[0] - beta, ga[1] - beta, gb[0] - beta, gb[1] - beta
     d_lo, d_hi = np.where(kind_a, a_lo, b_lo), np.where(kind_a, a_hi, b_hi)
-    cycles = np.round(2.0 * np.abs(spin))  # volume cycles per rev, an integer
+    cycles = wc.volume_cycles(spin)  # volume cycles per rev, an integer
     chambers = 2.0 * n_f
     c = np.cos(tilt)
     val = {
@@ -286,12 +261,12 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
         "chamber_swing_deg": deg(amax - amin),
         "piston_width_deg": deg(beta),
         "volume_cycles_per_rev": cycles,
-        "power_strokes_per_rev": np.round(chambers * cycles * 2 / 4),
-        "max_plate_tilt_deg": deg(_max_tilt(alpha, n_f)),
+        "power_strokes_per_rev": wc.power_strokes(spin, n_f),
+        "max_plate_tilt_deg": deg(wc.max_plate_tilt(alpha, n_f)),
         "piston_offset_gamma_deg": deg(wc.piston_offset(n_f)),
         "chambers": chambers,
         "compression_ratio": d_hi / d_lo if fixed else eps,
-        "min_compression_ratio": _min_ratio((ga, gb)),
+        "min_compression_ratio": wc.zero_width_ratio((ga, gb)),
         "chamber_a_angle_min_deg": deg(a_lo),
         "chamber_a_angle_max_deg": deg(a_hi),
         "chamber_b_angle_min_deg": deg(b_lo),
@@ -322,12 +297,12 @@ def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> di
     """Volumes and the ideal cycle (:mod:`rotorkin.machines.twin_rotor`, closed forms)."""
     k = _section(p)
     vc = p.float("machine.clearance_volume")
-    va_min, va_max, vb_min, vb_max = k * a_lo + vc, k * a_hi + vc, k * b_lo + vc, k * b_hi + vc
+    va_min, va_max, vb_min, vb_max = (tr.chamber_volume(k, d, vc) for d in (a_lo, a_hi, b_lo, b_hi))
     eps_a, eps_b = va_max / va_min, vb_max / vb_min
     chambers = 2.0 * n_f
     per_rev = cycles / 2.0  # four-stroke cycles per rev
-    swept = k * ((ga[1] - beta) - (ga[0] - beta))
-    disp = swept * chambers * per_rev
+    swept = tr.chamber_volume(k, a_hi - a_lo)  # K swing (eq. 23)
+    disp = tr.displacement(swept, chambers, per_rev)
     pa, kk = p.float("loads.ambient_pressure"), p.float("loads.polytropic_exponent")
     q = p.float("loads.heat_per_cycle")
     end_a, end_b = pa * eps_a**kk, pa * eps_b**kk
@@ -375,10 +350,10 @@ def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> di
 
 def _section(p):
     """Chamber volume per radian of chamber angle, ``V = K delta + V_c`` [m^3/rad]."""
-    rect = np.asarray(p["machine.section"]) == "rectangular"
-    ro, ri, w = (p.float(f"machine.{k}") for k in ("outer_radius", "inner_radius", "axial_width"))
-    rm, dd = p.float("machine.mean_radius"), p.float("machine.section_diameter")
-    return np.where(rect, 0.5 * (ro * ro - ri * ri) * w, rm * np.pi * dd**2 / 4.0)
+    keys = ("inner_radius", "outer_radius", "axial_width", "mean_radius", "section_diameter")
+    return tr.section_volume_per_radian(
+        p["machine.section"], *(p.float(f"machine.{k}") for k in keys)
+    )
 
 
 def _cycle_work(q, k, eps):
@@ -388,8 +363,6 @@ def _cycle_work(q, k, eps):
 
 def _omega_mean(p) -> float:
     """Time-averaged shaft speed over a turn, as the study computes it [rad/s]."""
-    from rotorkin.analysis.timing import shaft_speed
-
     fine = np.linspace(0.0, 2.0 * np.pi, 20_001)
     speed = p.cfg.get("run", {}).get("speed", 3000.0 * np.pi / 30.0)
     omega = shaft_speed(fine, speed, 2.0 * np.pi)
@@ -400,11 +373,9 @@ def _omega_mean(p) -> float:
 # sampled peaks of the rotor coefficients
 # --------------------------------------------------------------------------------------------
 def _spin_tables(p, n_spin: float, theta):
-    """``2 varphi(theta)`` and ``varphi', varphi'', varphi'''`` on the grid (the spin law)."""
+    """The spin law and its three derivatives on the grid (:func:`~.kinematics.spin_angle`)."""
     d = p.cfg["drive"]
-    params = wc.WobbleCam(np.radians(30.0), np.pi / 2.0, n_spin, 0.05, 4,
-                          tuple(d.get("spin_a") or ()), tuple(d.get("spin_b") or ()))  # fmt: skip
-    return wc.spin_law(params, theta)
+    return wc.spin_angle(n_spin, d.get("spin_a") or (), d.get("spin_b") or (), theta)
 
 
 def _sampled(p, tilt, alpha, spin, samples: int, threads) -> dict:
@@ -416,14 +387,8 @@ def _sampled(p, tilt, alpha, spin, samples: int, threads) -> dict:
     out = {k: np.empty(n) for k in ("acc", "jerk", "r_min", "r_max")}
     for n_spin in np.unique(spin):  # one table per spin ratio (usually one)
         rows = np.flatnonzero(spin == n_spin)
-        tables = _spin_tables(p, float(n_spin), theta)
-        two_u = 2.0 * tables[0]
-        C, S = np.cos(two_u), np.sin(two_u)
-        t_, a_ = tilt[rows], alpha[rows]
-        if linear:
-            fn = _linear_block(C, S, t_, a_, float(n_spin))
-        else:
-            fn = _general_block(C, S, tables, t_, a_)
+        law = float(n_spin) if linear else _spin_tables(p, float(n_spin), theta)
+        fn = _general_block(theta, law, tilt[rows], alpha[rows])
         res = run_blocks(fn, rows.size, samples, threads)
         for key, values in res.items():
             out[key][rows] = values
@@ -434,82 +399,33 @@ def _sampled(p, tilt, alpha, spin, samples: int, threads) -> dict:
     return val
 
 
-def _linear_block(C, S, tilt, alpha, n_spin):
-    """Block evaluator for the linear spin law: peaks of ``n^2 |E''|`` and ``|n^3 E'''|``."""
+def _general_block(theta, law, tilt, alpha):
+    """Block evaluator of the rotor peaks: the library's fused path, reduced per design.
 
-    local = threading.local()  # scratch arrays of each thread, reused from block to block
+    ``law``: the spin ratio n (linear law) or the spin law's 4 tables on ``theta``.
+    """
 
     def fn(lo, hi):
-        c = np.cos(tilt[lo:hi])[:, None]
-        ca, sa = np.cos(alpha[lo:hi])[:, None], np.sin(alpha[lo:hi])[:, None]
-        a, b = 0.5 * (1.0 + c * c), 0.5 * (1.0 - c * c)
-        b8, b4 = 8.0 * b * b, 4.0 * b
-        m = hi - lo
-        scratch = getattr(local, "scratch", None)
-        if scratch is None or scratch.shape[1] < m:
-            scratch = local.scratch = np.empty((5, m, C.size))
-        c2, s2, t1, t2, t3 = scratch[:, :m]
-        acc = np.zeros(m)
-        jerk = np.zeros(m)
-        for sign in (-1.0, 1.0):  # rotor 1 (u = n theta - alpha/2), rotor 2 (+)
-            np.multiply(C, ca, out=c2)
-            np.multiply(S, sa, out=t1)
-            np.subtract(c2, t1, out=c2) if sign > 0 else np.add(c2, t1, out=c2)
-            np.multiply(S, ca, out=s2)
-            np.multiply(C, sa, out=t1)
-            np.add(s2, t1, out=s2) if sign > 0 else np.subtract(s2, t1, out=s2)
-            np.multiply(c2, b, out=t1)
-            np.subtract(a, t1, out=t1)
-            np.divide(1.0, t1, out=t1)  # 1/D
-            np.multiply(t1, t1, out=t2)  # 1/D^2
-            np.multiply(s2, t2, out=t3)  # sin 2u / D^2
-            acc = np.maximum(acc, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
-            np.multiply(s2, s2, out=t3)
-            np.multiply(t3, t1, out=t3)
-            np.multiply(t3, b8, out=t3)
-            np.multiply(c2, b4, out=c2)
-            np.subtract(t3, c2, out=t3)
-            np.multiply(t3, t2, out=t3)  # (8 b^2 sin^2 2u / D - 4 b cos 2u) / D^2
-            jerk = np.maximum(jerk, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
-        cc = c[:, 0]
-        return {
-            "acc": 2.0 * b[:, 0] * cc * n_spin * n_spin * acc,
-            "jerk": np.abs(cc * n_spin**3) * jerk,
-            "r_min": np.full(m, np.nan),
-            "r_max": np.full(m, np.nan),
-        }
+        return _rotor_peaks(theta, law, tilt[lo:hi, None], alpha[lo:hi, None])[0]
 
     return fn
 
 
-def _general_block(C, S, tables, tilt, alpha):
-    """Block evaluator for a corrected spin law (chain rule through varphi)."""
-    _, g1, g2, g3 = tables
+def _rotor_peaks(theta, law, tilt, alpha):
+    """Peaks of the rotors' second and third derivatives, extremes of the first, and Phi.
 
-    def fn(lo, hi):
-        c = np.cos(tilt[lo:hi])[:, None]
-        ca, sa = np.cos(alpha[lo:hi])[:, None], np.sin(alpha[lo:hi])[:, None]
-        a, b = 0.5 * (1.0 + c * c), 0.5 * (1.0 - c * c)
-        m = hi - lo
-        res = {"acc": np.zeros(m), "jerk": np.zeros(m), "r_min": np.full(m, np.inf),
-               "r_max": np.full(m, -np.inf)}  # fmt: skip
-        for sign in (-1.0, 1.0):
-            c2 = C * ca - sign * S * sa
-            s2 = S * ca + sign * C * sa
-            inv = 1.0 / (a - b * c2)
-            e1 = c * inv
-            e2 = -2.0 * b * c * s2 * inv * inv
-            e3 = c * inv * inv * (8.0 * b * b * s2 * s2 * inv - 4.0 * b * c2)
-            h1 = e1 * g1
-            h2 = e2 * g1**2 + e1 * g2
-            h3 = e3 * g1**3 + 3.0 * e2 * g1 * g2 + e1 * g3
-            res["acc"] = np.maximum(res["acc"], np.abs(h2).max(axis=1))
-            res["jerk"] = np.maximum(res["jerk"], np.abs(h3).max(axis=1))
-            res["r_min"] = np.minimum(res["r_min"], (1.0 + h1).min(axis=1))
-            res["r_max"] = np.maximum(res["r_max"], (1.0 + h1).max(axis=1))
-        return res
-
-    return fn
+    :func:`rotorkin.drives.wobble_cam.fast.rotor_kinematics` on designs ``(m, 1)``
+    against the grid; returns the reductions and the rotor angles ``(2, m, samples)``.
+    """
+    rot, _ = rotor_kinematics(tilt, alpha, law, theta, threads=1)
+    q, d1, d2, d3 = rot
+    res = {
+        "acc": np.abs(d2).max(axis=(0, 2)),
+        "jerk": np.abs(d3).max(axis=(0, 2)),
+        "r_min": d1.min(axis=(0, 2)),
+        "r_max": d1.max(axis=(0, 2)),
+    }
+    return res, q
 
 
 # --------------------------------------------------------------------------------------------
@@ -525,28 +441,22 @@ def _sampled_full(p, tilt, alpha, spin, n_f, beta, samples: int, threads) -> dic
     Per design and angle: both rotor angles ``Phi_k`` and ``Phi_k'``, ``Phi_k''``,
     ``Phi_k'''``, the slider angle ``Phi_2 - Phi_1``, the chamber angles of both kinds
     (eq. 18-19) and their volumes ``K delta + V_c``. Returns the peaks of
-    :func:`_sampled` (bit for bit the same numbers) and :data:`SAMPLED_METRICS`.
+    :func:`_sampled` (the same evaluation) and :data:`SAMPLED_METRICS`.
     """
     n = p.n
     tilt, alpha, spin, n_f, beta = (full(v, n) for v in (tilt, alpha, spin, n_f, beta))
     kvol = full(_section(p), n)
     vc = full(p.float("machine.clearance_volume"), n)
-    g2 = 2.0 * wc.piston_offset(n_f)
-    lo_a, hi_b = g2 + beta, 2.0 * np.pi / n_f + g2 - beta  # delta_A = s - lo_a, delta_B = hi_b - s
+    lo, hi = wc.slider_angle_limits(n_f)
+    lo_a, hi_b = lo + beta, hi - beta  # delta_A = s - lo_a, delta_B = hi_b - s (eq. 18-19)
     theta = sample_grid(2.0 * np.pi, samples)
     linear = not (p.cfg["drive"].get("spin_a") or p.cfg["drive"].get("spin_b"))
     out = {k: np.empty(n) for k in _FULL_KEYS}
     per = (tilt, alpha, lo_a, hi_b, kvol, vc)
     for n_spin in np.unique(spin):
         rows = np.flatnonzero(spin == n_spin)
-        tables = _spin_tables(p, float(n_spin), theta)
-        args = tuple(v[rows] for v in per)
-        if linear:
-            two_u = 2.0 * tables[0]
-            ring = (1.0 + float(n_spin)) * theta  # theta + varphi
-            fn = _full_linear_block(np.cos(two_u), np.sin(two_u), ring, float(n_spin), *args)
-        else:
-            fn = _full_general_block(theta, tables, *args)
+        law = float(n_spin) if linear else _spin_tables(p, float(n_spin), theta)
+        fn = _full_general_block(theta, law, *(v[rows] for v in per))
         res = run_blocks(fn, rows.size, samples, threads)
         for key, values in res.items():
             out[key][rows] = values
@@ -588,90 +498,11 @@ def _reduce_chambers(res, q1, q2, w, lo_a, hi_b, kvol, vc) -> None:
         res[f"v{kind}_min"], res[f"v{kind}_max"] = w.min(axis=1), w.max(axis=1)
 
 
-def _full_linear_block(C, S, ring, n_spin, tilt, alpha, lo_a, hi_b, kvol, vc):
-    """Block evaluator of every curve for the linear spin law (in place, per-thread scratch).
-
-    ``C``, ``S``: ``cos 2 varphi``, ``sin 2 varphi`` on the grid; ``ring``:
-    ``theta + varphi``. With ``u_k = varphi -+ alpha/2``, ``c = cos phi``:
-    ``Phi_k = theta + u_k + atan(S_k/(g - C_k))``, ``g = (1 + c)/(1 - c)``, and
-    ``D``, ``Phi'``, ``Phi''``, ``Phi'''`` as in the module doc. The operations on
-    ``Phi''`` and ``Phi'''`` are those of :func:`_linear_block`, so the peaks are
-    bit for bit the same; their positive per-design factors (``2 b c n^2``,
-    ``|c n^3|``) are applied to the peaks, after the reduction.
-    """
-    local = threading.local()
+def _full_general_block(theta, law, tilt, alpha, lo_a, hi_b, kvol, vc):
+    """Block evaluator of every curve (the library's fused path), reduced per design."""
 
     def fn(lo, hi):
-        c = np.cos(tilt[lo:hi])[:, None]
-        ca, sa = np.cos(alpha[lo:hi])[:, None], np.sin(alpha[lo:hi])[:, None]
-        half = 0.5 * alpha[lo:hi][:, None]
-        a, b = 0.5 * (1.0 + c * c), 0.5 * (1.0 - c * c)
-        b8, b4 = 8.0 * b * b, 4.0 * b
-        g = (1.0 + c) / (1.0 - c)
-        nc = n_spin * c
-        m = hi - lo
-        scratch = getattr(local, "scratch", None)
-        if scratch is None or scratch.shape[1] < m:
-            scratch = local.scratch = np.empty((8, m, C.size))
-        c2, s2, t1, t2, t3, w, q1, q2 = scratch[:, :m]
-        acc, jerk = np.zeros(m), np.zeros(m)
-        r_min, r_max = np.full(m, np.inf), np.full(m, -np.inf)
-        for sign, q in ((-1.0, q1), (1.0, q2)):  # rotor 1 (u = n theta - alpha/2), rotor 2 (+)
-            np.multiply(C, ca, out=c2)
-            np.multiply(S, sa, out=t1)
-            np.subtract(c2, t1, out=c2) if sign > 0 else np.add(c2, t1, out=c2)  # cos 2u
-            np.multiply(S, ca, out=s2)
-            np.multiply(C, sa, out=t1)
-            np.add(s2, t1, out=s2) if sign > 0 else np.subtract(s2, t1, out=s2)  # sin 2u
-            np.multiply(c2, b, out=t1)
-            np.subtract(a, t1, out=t1)
-            np.divide(1.0, t1, out=t1)  # 1/D
-            np.multiply(t1, t1, out=t2)  # 1/D^2
-            np.multiply(s2, t2, out=t3)  # sin 2u / D^2, Phi'' / (-2 b c n^2)
-            acc = np.maximum(acc, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
-            np.multiply(t1, nc, out=w)
-            np.add(w, 1.0, out=w)  # Phi' = 1 + n c / D
-            r_min, r_max = np.minimum(r_min, w.min(axis=1)), np.maximum(r_max, w.max(axis=1))
-            np.subtract(g, c2, out=w)
-            np.divide(s2, w, out=w)
-            np.arctan(w, out=w)
-            np.add(w, ring, out=q)
-            np.add(q, sign * half, out=q)  # Phi = theta + varphi -+ alpha/2 + atan(...)
-            np.multiply(s2, s2, out=t3)
-            np.multiply(t3, t1, out=t3)
-            np.multiply(t3, b8, out=t3)
-            np.multiply(c2, b4, out=c2)
-            np.subtract(t3, c2, out=t3)
-            np.multiply(t3, t2, out=t3)  # (8 b^2 sin^2 2u / D - 4 b cos 2u) / D^2, Phi''' / c n^3
-            jerk = np.maximum(jerk, np.maximum(t3.max(axis=1), -t3.min(axis=1)))
-        cc = c[:, 0]
-        res = {
-            "acc": 2.0 * b[:, 0] * cc * n_spin * n_spin * acc,
-            "jerk": np.abs(cc * n_spin**3) * jerk,
-            "r_min": r_min,
-            "r_max": r_max,
-        }
-        _reduce_chambers(res, q1, q2, w, lo_a[lo:hi, None], hi_b[lo:hi, None],
-                         kvol[lo:hi, None], vc[lo:hi, None])  # fmt: skip
-        return res
-
-    return fn
-
-
-def _full_general_block(theta, tables, tilt, alpha, lo_a, hi_b, kvol, vc):
-    """Block evaluator of every curve for a corrected spin law (the library's fused path)."""
-    from rotorkin.drives.wobble_cam.fast import rotor_kinematics
-
-    def fn(lo, hi):
-        rot, _ = rotor_kinematics(theta, tables, tilt[lo:hi, None], alpha[lo:hi, None],
-                                  threads=1)  # fmt: skip
-        q, d1, d2, d3 = rot
-        res = {
-            "acc": np.abs(d2).max(axis=(0, 2)),
-            "jerk": np.abs(d3).max(axis=(0, 2)),
-            "r_min": d1.min(axis=(0, 2)),
-            "r_max": d1.max(axis=(0, 2)),
-        }
+        res, q = _rotor_peaks(theta, law, tilt[lo:hi, None], alpha[lo:hi, None])
         _reduce_chambers(res, q[0], q[1].copy(), np.empty_like(q[0]), lo_a[lo:hi, None],
                          hi_b[lo:hi, None], kvol[lo:hi, None], vc[lo:hi, None])  # fmt: skip
         return res
@@ -698,19 +529,16 @@ def curves(p, points: int):
         rows = np.flatnonzero(n_spin == ns)
         spin = _spin_tables(p, float(ns), theta)
         t_, a_, nf = tilt[rows, None], alpha[rows, None], npist[rows, None]
-        q, d1, d2, d3 = wc.rotor_angles_from_spin(theta, spin, t_, a_)
-        ga, gb = _gaps(t_, a_, nf)
-        kind_a = ga[0] <= gb[0]
-        gmin, gmax = np.where(kind_a, ga[0], gb[0]), np.where(kind_a, ga[1], gb[1])
+        q, d1, d2, d3 = wc.rotor_angles_from_spin(t_, a_, spin, theta)
         beta = p.extra.get("piston_width")
         if beta is None:
-            beta = (eps[rows, None] * gmin - gmax) / (eps[rows, None] - 1.0)
+            beta = wch.piston_width(wc.chamber_gaps(t_, a_, nf), eps[rows, None])
         slider = q[1] - q[0]
-        g2 = 2.0 * wc.piston_offset(nf)
+        delta_a, delta_b = wc.chamber_angles(beta, slider, pistons=nf)
         values = {
             "slider_angle_deg": np.degrees(slider),
-            "chamber_a_angle_deg": np.degrees(slider - g2 - beta),
-            "chamber_b_angle_deg": np.degrees(2.0 * np.pi / nf + g2 - slider - beta),
+            "chamber_a_angle_deg": np.degrees(delta_a),
+            "chamber_b_angle_deg": np.degrees(delta_b),
         }
         for k in (0, 1):
             values[f"rotor{k + 1}_angle_deg"] = np.degrees(q[k])
@@ -729,7 +557,5 @@ def tolerance_hold(cfg: dict) -> tuple[dict, dict]:
     compression ratio; a deviation of the plate tilt then changes the compression
     ratio instead of the piston width.
     """
-    from rotorkin.core.batch import Designs
-
     beta = metrics(Designs(cfg, {}, 1), ["piston_width_deg"], 3)["piston_width_deg"][0]
     return cfg, {"piston_width": float(np.radians(beta))}

@@ -53,9 +53,20 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
+from scipy.optimize import brentq
 
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import validate_model
+from rotorkin.drives.wobble_cam import cam as cs
+from rotorkin.drives.wobble_cam import figures_synthesis, schema, study
 from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.synthesis import (
+    DWELL_TOLERANCE,
+    SynthesisResult,
+    dwell_fraction,
+    parse_fraction,
+    synthesized_raw_config,
+)
 
 __all__ = [
     "TARGETS",
@@ -81,7 +92,7 @@ _DROP = 1e-14
 _FINE = 20_000
 
 
-def chamber_phase(theta, spin_ratio, slow=1.0):
+def chamber_phase(spin_ratio, slow, theta):
     """Chamber phase ``P(theta)`` of the target laws and ``dP/dtheta``.
 
     ``P = x - (1 - r)(2/3) sin 2x + (1 - r)/12 sin 4x``, ``x = 2|n| theta``
@@ -89,12 +100,12 @@ def chamber_phase(theta, spin_ratio, slow=1.0):
 
     Parameters
     ----------
-    theta : array_like
-        Shaft angle [rad].
     spin_ratio : float
         n of the base law ``varphi = n theta``.
-    slow : float, optional
-        Rate ratio r at the extremes, ``0 < r <= 1``.
+    slow : float
+        Rate ratio r at the extremes, ``0 < r <= 1`` (1: the uniform phase).
+    theta : array_like
+        Shaft angle [rad].
 
     Returns
     -------
@@ -109,8 +120,19 @@ def chamber_phase(theta, spin_ratio, slow=1.0):
     return P, dP
 
 
-def target_slider_angle(theta, spin_ratio, plate_tilt, roller_axis_angle, slow=1.0):
+def target_slider_angle(spin_ratio, plate_tilt, roller_axis_angle, slow, theta):
     """Target slider angle ``alpha'_min + swing cos^2(P/2)`` and its distances to the extremes.
+
+    Parameters
+    ----------
+    spin_ratio : float
+        n of the base law.
+    plate_tilt, roller_axis_angle : float
+        phi and alpha [rad].
+    slow : float
+        Rate ratio r of :func:`chamber_phase`.
+    theta : array_like
+        Shaft angle [rad].
 
     Returns
     -------
@@ -120,7 +142,7 @@ def target_slider_angle(theta, spin_ratio, plate_tilt, roller_axis_angle, slow=1
     """
     amax, amin = (float(v) for v in wc.slider_angle_extremes(plate_tilt, roller_axis_angle))
     swing = amax - amin
-    P = chamber_phase(theta, spin_ratio, slow)[0]
+    P = chamber_phase(spin_ratio, slow, theta)[0]
     above = swing * np.cos(0.5 * P) ** 2
     below = swing * np.sin(0.5 * P) ** 2
     return amin + above, above, below, P
@@ -220,7 +242,7 @@ def spin_law_for_target(params: wc.WobbleCam, slow=1.0, max_harmonic=None) -> wc
     """
     theta = 2.0 * np.pi * np.arange(_FFT_SAMPLES) / _FFT_SAMPLES
     n, phi, alpha = params.spin_ratio, params.plate_tilt, params.roller_axis_angle
-    _, above, below, P = target_slider_angle(theta, n, phi, alpha, slow)
+    _, above, below, P = target_slider_angle(n, phi, alpha, slow, theta)
     varphi = spin_for_slider_angle(above, below, P, n, phi, alpha)
     a, b, mean = fit_spin_correction(varphi, n, max_harmonic)
     if abs(mean) > 1e-9:  # pragma: no cover - the target laws are odd in theta
@@ -228,15 +250,15 @@ def spin_law_for_target(params: wc.WobbleCam, slow=1.0, max_harmonic=None) -> wc
     return dataclasses.replace(params, spin_a=a, spin_b=b)
 
 
-def dwell_fractions(slider, params: wc.WobbleCam, tolerance=None):
+def dwell_fractions(params: wc.WobbleCam, slider, tolerance=None):
     """Share of a chamber cycle spent near the smallest and the largest slider angle.
 
     Parameters
     ----------
-    slider : array_like, shape (..., M)
-        ``alpha'`` over one shaft turn, end point excluded [rad].
     params : WobbleCam
         For the extremes.
+    slider : array_like, shape (..., M)
+        ``alpha'`` over one shaft turn, end point excluded [rad].
     tolerance : float, optional
         Band as a fraction of the swing (default :data:`rotorkin.synthesis.DWELL_TOLERANCE`).
 
@@ -246,7 +268,6 @@ def dwell_fractions(slider, params: wc.WobbleCam, tolerance=None):
         Fractions in [0, 1]; near the minimum of ``alpha'`` is the minimum volume
         of chamber kind A, near the maximum that of kind B.
     """
-    from rotorkin.synthesis import DWELL_TOLERANCE, dwell_fraction
 
     tol = DWELL_TOLERANCE if tolerance is None else float(tolerance)
     amax, amin = (
@@ -259,15 +280,15 @@ def dwell_fractions(slider, params: wc.WobbleCam, tolerance=None):
 def _target_dwell(params, slow):
     theta = 2.0 * np.pi * np.arange(_FINE) / _FINE
     T = target_slider_angle(
-        theta, params.spin_ratio, params.plate_tilt, params.roller_axis_angle, slow
+        params.spin_ratio, params.plate_tilt, params.roller_axis_angle, slow, theta
     )
-    return float(dwell_fractions(T[0], params)[0])
+    return float(dwell_fractions(params, T[0])[0])
 
 
 def _law_dwell(params):
     theta = 2.0 * np.pi * np.arange(_FINE) / _FINE
     v = wc.spin_law(params, theta)[0]
-    return dwell_fractions(wc.slider_angle(v, params.plate_tilt, params.roller_axis_angle), params)
+    return dwell_fractions(params, wc.slider_angle(params.plate_tilt, params.roller_axis_angle, v))
 
 
 def slow_for_dwell(params: wc.WobbleCam, fraction: float, admissible=None) -> float:
@@ -288,9 +309,8 @@ def slow_for_dwell(params: wc.WobbleCam, fraction: float, admissible=None) -> fl
     Raises
     ------
     ParameterError
-        Named ``--target`` with the admissible range (and why it ends there).
+        Named ``target`` with the admissible range (and why it ends there).
     """
-    from scipy.optimize import brentq
 
     if admissible is None:
         s_lo, s_hi, why = SLOW_MIN, 1.0, ""
@@ -302,7 +322,7 @@ def slow_for_dwell(params: wc.WobbleCam, fraction: float, admissible=None) -> fl
         paper = float(_law_dwell(dataclasses.replace(params, spin_a=(), spin_b=()))[0])
         sign = "<" if s_hi == 1.0 else "<="
         raise ParameterError(
-            "--target",
+            "target",
             f"{fraction:.4g}",
             f"a dwell fraction {_round4(lo, up=sign == '<=')} {sign} target <= "
             f"{_round4(hi, up=False)} ({why}the sine law dwells "
@@ -358,7 +378,6 @@ def groove_limits(params: wc.WobbleCam, cam) -> tuple[float, float]:
     (limit, pressure_angle) : tuple of float
         [m], [rad].
     """
-    from rotorkin.drives.wobble_cam import cam as cs
 
     kmax = cs.sharpest_bend(params)[0]
     limit = cam.inner_radius / np.sqrt(1.0 + (params.sphere_radius * kmax) ** 2)
@@ -435,7 +454,7 @@ def feasible_dwell(params: wc.WobbleCam, cam, pa_limit: float, harmonics=None) -
             )
         least = min(v[1] for v, (a, _) in zip(scanned, checks, strict=True) if a)
         raise ParameterError(
-            "--max-pressure-angle",
+            "max_pressure_angle",
             f"{np.degrees(pa_limit):.4g} deg",
             f">= {np.degrees(least):.4g} deg: every dwell law the roller can follow has a larger "
             "peak pressure angle of its best-placed roller",
@@ -484,9 +503,9 @@ def forward_error(params: wc.WobbleCam, slow, theta):
     The forward analysis: the drive's spin law and slider angle (eq. 15) against the target.
     """
     v = wc.spin_law(params, theta)[0]
-    got = wc.slider_angle(v, params.plate_tilt, params.roller_axis_angle)
+    got = wc.slider_angle(params.plate_tilt, params.roller_axis_angle, v)
     want = target_slider_angle(
-        theta, params.spin_ratio, params.plate_tilt, params.roller_axis_angle, slow
+        params.spin_ratio, params.plate_tilt, params.roller_axis_angle, slow, theta
     )[0]
     return float(np.max(np.abs(got - want)))
 
@@ -531,7 +550,6 @@ def _groove_checks(cfg, params) -> dict:
 
     Keys of :data:`_GROOVE_ROWS`; one the cams module does not report is ``"n/a"``.
     """
-    from rotorkin.drives.wobble_cam import cam as cs
 
     cam = cs.from_config(cfg)[1]
     summary = cs.summary(params, cam)
@@ -542,7 +560,7 @@ def _run_error(res, params, slow):
     """Largest |delta_A(run) - delta_A(target)| over the run's samples [deg]."""
     theta = np.radians(res.columns["theta_deg"])
     target = target_slider_angle(
-        theta, params.spin_ratio, params.plate_tilt, params.roller_axis_angle, slow
+        params.spin_ratio, params.plate_tilt, params.roller_axis_angle, slow, theta
     )[0]
     offset = 2.0 * res.summary["piston_offset_gamma_deg"] + res.summary["piston_width_deg"]
     return float(np.max(np.abs(res.columns["chamber_a_angle_deg"] - (np.degrees(target) - offset))))
@@ -571,7 +589,6 @@ def _check_final(synth, cam, pa_limit, harmonics):
     Uses :func:`rotorkin.drives.wobble_cam.cam.check_roller_radius` itself (``rotorkin export``'s
     check) besides :func:`groove_limits`.
     """
-    from rotorkin.drives.wobble_cam import cam as cs
 
     limits = groove_limits(synth, cam)
     roller_ok, pa_ok = _meets(limits, cam.roller_radius, pa_limit)
@@ -581,7 +598,7 @@ def _check_final(synth, cam, pa_limit, harmonics):
         roller_ok = False
     if roller_ok and pa_ok:
         return limits
-    name, value = ("--harmonics", str(harmonics)) if harmonics is not None else ("--target", "")
+    name, value = ("--harmonics", str(harmonics)) if harmonics is not None else ("target", "")
     what = (
         f"the groove roller radius limit {limits[0] * 1e3:.4g} mm < {UNDERCUT_FACTOR} x "
         f"cam.roller_radius = {cam.roller_radius * 1e3:.4g} mm"
@@ -609,17 +626,8 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     and its chamber angle compared with the target at every sample; the drive's own
     functions are compared on 20001 angles.
     """
-    from rotorkin.drives import evaluate
-    from rotorkin.drives.wobble_cam import cam as cs
-    from rotorkin.io.config import validate_config
-    from rotorkin.synthesis import (
-        DWELL_TOLERANCE,
-        SynthesisResult,
-        parse_fraction,
-        synthesized_raw_config,
-    )
 
-    res0 = evaluate(cfg)  # validates the baseline, with config key names in its errors
+    res0 = study.evaluate(cfg)  # validates the baseline, with config key names in its errors
     base = _drive(cfg)
     cam = cs.from_config(cfg)[1]
     limits0 = groove_limits(base, cam)
@@ -628,7 +636,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     if objective == "sine_chamber":
         if target is not None:
             raise ParameterError(
-                "--target",
+                "target",
                 repr(target),
                 "no target for sine_chamber (the law is fixed: a pure sine between the "
                 "extremes of the paper's law)",
@@ -646,7 +654,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
             )
         if not pa_ok:
             raise ParameterError(
-                "--max-pressure-angle",
+                "max_pressure_angle",
                 f"{np.degrees(pa_limit):.4g} deg",
                 f">= {np.degrees(limits[1]):.4g} deg for sine_chamber (the peak pressure angle "
                 "of the sine law's best-placed roller)",
@@ -661,7 +669,9 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     synth = spin_law_for_target(base, slow, harmonics)
     limits1 = _check_final(synth, cam, pa_limit, harmonics)
     updates = {"drive": {"spin_a": list(synth.spin_a), "spin_b": list(synth.spin_b)}}
-    res1 = evaluate(validate_config(synthesized_raw_config(raw, updates, objective)))
+    res1 = study.evaluate(
+        validate_model(schema.WobbleConfig, synthesized_raw_config(raw, updates, objective))
+    )
     fine = np.linspace(0.0, 2.0 * np.pi, 20_001)
     err_drive = forward_error(synth, slow, fine)
     err_run = _run_error(res1, synth, slow)
@@ -840,21 +850,26 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
             table[f"groove{i + 1}_{ax}_mm"] = grooves[i, j]
     theta_c = np.linspace(0.0, 2.0 * np.pi, 1441)
     target_c = target_slider_angle(
-        theta_c, base.spin_ratio, base.plate_tilt, base.roller_axis_angle, slow
+        base.spin_ratio, base.plate_tilt, base.roller_axis_angle, slow, theta_c
     )[0]
     laws = {"theta_deg": np.degrees(theta_c), "chamber_a_target_deg": np.degrees(target_c - offset)}
     for tag, p in (("baseline", base), ("synthesized", synth)):
         sp = wc.spin_law(p, theta_c)
         laws[f"chamber_a_{tag}_deg"] = np.degrees(
-            wc.slider_angle(sp[0], p.plate_tilt, p.roller_axis_angle) - offset
+            wc.slider_angle(p.plate_tilt, p.roller_axis_angle, sp[0]) - offset
         )
         laws[f"spin_{tag}_deg"] = np.degrees(sp[0])
         laws[f"spin_rate_{tag}"] = sp[1]
 
-    def plot(outdir):
-        from rotorkin.drives.wobble_cam import figures_synthesis
+    target_fig = target_slider_angle(
+        base.spin_ratio, base.plate_tilt, base.roller_axis_angle, slow, figures_synthesis.LAW_THETA
+    )[0]
+    closing = groove_closing_angle(base)
 
-        return figures_synthesis.plot_wobble(outdir, base, synth, slow, offset, objective)
+    def plot(outdir):
+        return figures_synthesis.plot_wobble(
+            outdir, base, synth, target_fig, closing, offset, objective
+        )
 
     title = {
         "sine_chamber": "every chamber angle a pure sine of the shaft angle",
