@@ -165,7 +165,7 @@ def test_wobble_files(tmp_path):
         ),
         (
             ["-e", "wobble-cam-engine", "--objective", "dwell_min_volume", "--target", "15 %"],
-            ["target = 0.15", "< target <= 0.12", "pressure angle exceeds 45 deg"],
+            ["--target = 0.15", "< --target <= 0.12", "pressure angle exceeds 45 deg"],
         ),
         (
             ["-e", "rhomboid-engine", "--objective", "min_accel", "--max-pressure-angle", "40"],

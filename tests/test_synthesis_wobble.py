@@ -162,7 +162,7 @@ def test_synthesize_sine_runs_forward_through_the_study():
         ("dwell_min_volume", "0.05", ["target = ", "the sine law dwells"]),
         ("dwell_min_volume", "80 %", ["target = ", "< target <="]),
         ("dwell_min_volume", "15 %", ["target = 0.15", "longer dwells"]),
-        ("dwell_min_volume", "long", ["--target", "'long'"]),
+        ("dwell_min_volume", "long", ["target = 'long'", "a number or a percentage"]),
     ],
 )
 def test_errors(objective, target, words):

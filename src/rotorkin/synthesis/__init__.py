@@ -148,7 +148,7 @@ def dwell_fraction(values, extreme, tolerance, axis=-1):
     return np.mean(np.where(both, 1.0, share), axis=-1)
 
 
-def parse_fraction(text, name: str = "--target") -> float:
+def parse_fraction(text, name: str = "target") -> float:
     """A fraction written ``"25 %"``, ``"25%"`` or ``"0.25"`` -> 0.25.
 
     Raises
@@ -171,7 +171,7 @@ def parse_fraction(text, name: str = "--target") -> float:
     return value
 
 
-def parse_quantity_arg(text, kind: str, name: str = "--target") -> float:
+def parse_quantity_arg(text, kind: str, name: str = "target") -> float:
     """A value with a unit (``"60 deg"``, ``"5 mm"``) -> SI float; ParameterError if not."""
 
     value, reason = parse_quantity(str(text), kind)
