@@ -72,7 +72,7 @@ class IdealCycle:
 
     ambient_pressure: float = 1.0e5
     polytropic_exponent: float = 1.35
-    heat_per_cycle: float = 0.0
+    heat_per_cycle: float = 90.0
 
     def __post_init__(self):
         p = float(self.ambient_pressure)

@@ -290,9 +290,9 @@ class TwinRotor:
     mean_radius: float = 0.06
     section_diameter: float = 0.04
     clearance_volume: float = 0.0
-    inertia_shaft: float = 0.0
-    inertia_rotor_1: float = 0.01
-    inertia_rotor_2: float = 0.01
+    inertia_shaft: float = 0.004
+    inertia_rotor_1: float = 0.008
+    inertia_rotor_2: float = 0.008
     speed_fluctuation: float = 0.02
 
     def __post_init__(self):

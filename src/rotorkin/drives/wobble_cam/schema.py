@@ -68,8 +68,11 @@ class WobbleMachine(InertialSection):
     mean_radius: Length = Field("60 mm", description="mean radius of a circular torus")
     section_diameter: Length = Field("40 mm", description="section diameter of a circular torus")
     clearance_volume: Volume = Field("0 cm^3", description="clearance volume of each chamber")
-    inertia_rotor_1: Inertia = Field("0.01 kg*m^2", description="inertia of rotor 1")
-    inertia_rotor_2: Inertia = Field("0.01 kg*m^2", description="inertia of rotor 2")
+    inertia_shaft: Inertia = Field(
+        "0.004 kg*m^2", description="inertia of the input shaft with the plate and rollers"
+    )
+    inertia_rotor_1: Inertia = Field("0.008 kg*m^2", description="inertia of rotor 1")
+    inertia_rotor_2: Inertia = Field("0.008 kg*m^2", description="inertia of rotor 2")
 
 
 class EngineLoads(Section):
@@ -78,7 +81,7 @@ class EngineLoads(Section):
         1.35, description="exponent n of compression and expansion, p V^n = const"
     )
     heat_per_cycle: Energy = Field(
-        "0 J", description="heat added at minimum volume, per chamber and four-stroke cycle"
+        "90 J", description="heat added at minimum volume, per chamber and four-stroke cycle"
     )
 
 
@@ -89,4 +92,4 @@ class WobbleConfig(Section):
     loads: EngineLoads = Field(default_factory=EngineLoads)
     cam: WobbleCamSection = Field(default_factory=WobbleCamSection)
     export: ExportSection = Field(default_factory=ExportSection)
-    run: RunSection = Field(default_factory=RunSection)
+    run: RunSection = Field(default_factory=RunSection)  # 3000 rpm

@@ -33,7 +33,7 @@ from rotorkin.drives.wobble_cam import figures_cam as figures_spherical_cam
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.machines import twin_rotor as tr
 from rotorkin.studies import StudyResult
-from rotorkin.studies.helpers import angle_grid, build_params, time_domain
+from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 
 __all__ = ["evaluate", "models", "HEADLINE"]
 
@@ -424,4 +424,17 @@ def evaluate(cfg: dict) -> StudyResult:
         headline=HEADLINE,
         write_figures=plot,
         motion=wc.motion(params, theta),
+        warnings=_warnings(cycle, summary),
     )
+
+
+def _warnings(cycle, summary: dict) -> tuple[str, ...]:
+    """Inputs that leave summary numbers without meaning, one line each."""
+    out = []
+    if cycle.heat_per_cycle == 0.0:
+        out.append(
+            "loads.heat_per_cycle = 0: no heat is added, so the indicated work, mean torque "
+            "and power are those of a motored engine (about 0)"
+        )
+    because = {"indicated_efficiency": "no heat is added (loads.heat_per_cycle = 0)"}
+    return (*out, *undefined_warnings(summary, because))
