@@ -187,3 +187,14 @@ def test_a_meaningless_input_is_warned_about_in_one_line(sine_drive, tmp_path, c
         main(["report", str(sine_drive), "--set", "drive.amplitude=0 deg", "--out", str(out)]) == 0
     )
     assert "nothing breathes" in (out / "report.html").read_text()
+
+
+def test_every_drive_ships_its_examples_in_its_package():
+    from rotorkin.io.config import read_toml
+
+    for name, spec in drives.REGISTRY.items():
+        assert spec.examples, name
+        for example in spec.examples:
+            path = spec.example_dir / f"{example}.toml"
+            assert path.is_file() and path.parent.parent.name == name
+            assert read_toml(path)["drive"]["type"] == name

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from types import ModuleType
 
 __all__ = ["DriveSpec"]
@@ -41,7 +42,10 @@ class DriveSpec:
     published : tuple of Published
         The paper's numbers per summary key (:mod:`rotorkin.studies.published`).
     examples : tuple of str
-        Built-in examples on this drive (``rotorkin run --example NAME``).
+        Built-in examples on this drive (``rotorkin run --example NAME``), each a
+        file ``NAME.toml`` in ``example_dir``.
+    example_dir : Path, optional
+        The folder of the examples, in the drive's package (``examples/``).
     batch : module, optional
         Vectorised evaluation of many designs for ``sweep`` and ``tolerance``:
         ``KEYS``, ``CURVES``, ``ANGLE``, ``unsupported(cfg)``, ``metric_names(cfg)``,
@@ -85,6 +89,7 @@ class DriveSpec:
     paper: str = ""
     published: tuple = ()
     examples: tuple[str, ...] = ()
+    example_dir: Path | None = None
     batch: ModuleType | None = None
     sweep_recipes: Callable | None = None
     tolerance_hold: Callable | None = None

@@ -24,7 +24,6 @@ from rotorkin.core.errors import ConfigError
 from rotorkin.core.schema import validate_model
 
 __all__ = [
-    "EXAMPLES_DIR",
     "apply_sets",
     "example_names",
     "example_path",
@@ -35,13 +34,21 @@ __all__ = [
     "validate_config",
 ]
 
-EXAMPLES_DIR = Path(__file__).resolve().parent.parent / "examples"
-
 
 # --- reading --------------------------------------------------------------------------------
 def example_names() -> list[str]:
     """Names of the built-in examples (``rotorkin run --example NAME``)."""
-    return sorted(p.stem for p in EXAMPLES_DIR.glob("*.toml"))
+    return sorted(_example_files())
+
+
+def _example_files() -> dict[str, Path]:
+    """Example name -> its TOML file, from every registered drive's ``examples`` folder."""
+    return {
+        name: spec.example_dir / f"{name}.toml"
+        for spec in drives.REGISTRY.values()
+        if spec.example_dir is not None
+        for name in spec.examples
+    }
 
 
 def example_path(name: str) -> Path:
@@ -54,7 +61,7 @@ def example_path(name: str) -> Path:
         raise ConfigError(
             f"--example = {name!r} is not admissible: choose one of {', '.join(names)}"
         )
-    return EXAMPLES_DIR / f"{name}.toml"
+    return _example_files()[name]
 
 
 #: Largest config file read [bytes]; a config is a few hundred bytes.

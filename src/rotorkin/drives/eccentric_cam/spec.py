@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from rotorkin.drives._spec import DriveSpec
 from rotorkin.drives.eccentric_cam import cad, published, scene, schema, study, synthesis
 from rotorkin.drives.eccentric_cam import sweep as batch
@@ -16,6 +18,7 @@ SPEC = DriveSpec(
     paper="Zhu & Zhu 2012",
     published=published.PUBLISHED,
     examples=("eccentric-reactor",),
+    example_dir=Path(__file__).resolve().parent / "examples",
     batch=batch,
     sweep_recipes=sweep_recipes,
     synthesize=synthesis.synthesize,

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from rotorkin.drives._spec import DriveSpec
 from rotorkin.drives.guide_bar import cad, published, scene, schema, study, synthesis
 from rotorkin.drives.guide_bar import sweep as batch
@@ -16,6 +18,7 @@ SPEC = DriveSpec(
     paper="JHIT 44(9) 2012",
     published=published.PUBLISHED,
     examples=("guide-bar-pump",),
+    example_dir=Path(__file__).resolve().parent / "examples",
     batch=batch,
     sweep_recipes=sweep_recipes,
     tolerance_hold=batch.tolerance_hold,

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from rotorkin.drives._spec import DriveSpec
 from rotorkin.drives.rhomboid_cam import cad, published, scene, schema, study, synthesis
 from rotorkin.drives.rhomboid_cam import sweep as batch
@@ -15,6 +17,7 @@ SPEC = DriveSpec(
     paper="Zhuravlev et al. 2012",
     published=published.PUBLISHED,
     examples=("rhomboid-engine",),
+    example_dir=Path(__file__).resolve().parent / "examples",
     batch=batch,
     synthesize=synthesis.synthesize,
     objectives={

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from rotorkin.drives._spec import DriveSpec
 from rotorkin.drives.wobble_cam import cad, published, scene, schema, study, synthesis
 from rotorkin.drives.wobble_cam import sweep as batch
@@ -16,6 +18,7 @@ SPEC = DriveSpec(
     paper="Chen Hu et al. 2015",
     published=published.PUBLISHED,
     examples=("wobble-cam-engine",),
+    example_dir=Path(__file__).resolve().parent / "examples",
     batch=batch,
     sweep_recipes=sweep_recipes,
     tolerance_hold=batch.tolerance_hold,

@@ -349,7 +349,7 @@ def _round4(x: float, up: bool) -> str:
 # groove constraints: the configured roller must follow the grooves of the law
 # --------------------------------------------------------------------------------------------
 #: Safety factor on the roller radius: the grooves' roller radius limit must be at least
-#: 1.01 x ``cam.roller_radius`` (as the rhomboid cam's undercut constraint).
+#: 1.01 x ``cam.roller_radius`` (an undercut margin, as for the planar cams).
 UNDERCUT_FACTOR = 1.01
 #: Default bound on the peak pressure angle of the best-placed roller [rad]; raised to the
 #: baseline law's peak where that is higher (the paper's law: 30.4 deg).
