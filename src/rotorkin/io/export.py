@@ -19,7 +19,7 @@ from rotorkin import drives
 from rotorkin.core.errors import ConfigError, ParameterError
 from rotorkin.io.output import staged_output
 from rotorkin.render import cad as cp
-from rotorkin.render.cad import DEFAULT_TOLERANCE, _bd
+from rotorkin.render.cad import DEFAULT_TOLERANCE
 
 __all__ = ["FORMATS", "DEFAULT_TOLERANCE", "export", "planar_parts", "profile_checks"]
 
@@ -111,7 +111,7 @@ def export(cfg: dict, fmt: str, outdir, name: str) -> list[Path]:
     if spec.cad_parts is None and spec.cad_write is None:
         raise ConfigError(f"drive.type = {spec.name!r} has no parts to export")
     if "step" in fmts:
-        _bd()
+        cp.build123d_module()
     parts = planar_parts(cfg)[0] if spec.cad_parts is not None else None
     with staged_output(outdir, "export-" + "-".join(fmts)) as (stage, written):
         for f in fmts:

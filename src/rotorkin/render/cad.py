@@ -33,6 +33,7 @@ __all__ = [
     "write_csv",
     "part_mesh",
     "part_solid",
+    "build123d_module",
     "positive_key",
     "check_tolerance",
     "check_thickness",
@@ -118,7 +119,8 @@ def write_stl(part, path) -> Path:
     return path
 
 
-def _bd():
+def build123d_module():
+    """build123d (the optional ``[cad]`` extra), or one clear error naming the install."""
     try:
         import build123d
     except ImportError:
@@ -133,7 +135,7 @@ def part_solid(part):
 
     A circular outline gives an exact cylinder, any other a prism on its polygon.
     """
-    bd = _bd()
+    bd = build123d_module()
     t = float(part.thickness) * _MM
     o = part.outline
     if o.circle is not None:
@@ -149,7 +151,7 @@ def part_solid(part):
 
 def write_step(part, path) -> Path:
     """Write the extruded part as STEP (AP214, mm); returns the path."""
-    bd = _bd()
+    bd = build123d_module()
     solid = part_solid(part)
     if not solid.is_valid:  # pragma: no cover
         raise RotorkinError(f"the solid of {part.name} is not valid; please report this")

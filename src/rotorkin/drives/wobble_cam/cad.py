@@ -45,6 +45,7 @@ import trimesh
 from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError, RotorkinError
 from rotorkin.drives.wobble_cam import cam as sph
+from rotorkin.render.cad import build123d_module
 
 __all__ = [
     "export_wobble",
@@ -348,16 +349,6 @@ def cam_mesh(drive, cam, tol: float):
 # --------------------------------------------------------------------------------------------
 # STEP
 # --------------------------------------------------------------------------------------------
-def _bd():
-    try:
-        import build123d
-    except ImportError:
-        raise RotorkinError(
-            'STEP export needs build123d, an optional extra: pip install "rotorkin[cad]"'
-        ) from None
-    return build123d
-
-
 def cam_step_solid(drive, cam, tol: float):
     """The cam shell with its grooves cut, as one build123d Solid in mm.
 
@@ -376,7 +367,7 @@ def cam_step_solid(drive, cam, tol: float):
     -------
     build123d.Solid
     """
-    bd = _bd()
+    bd = build123d_module()
     s = _MM
     pieces = groove_pieces(drive)
     low = _tool_floor(drive, cam)
@@ -464,7 +455,7 @@ def export_wobble(cfg: dict, fmt: str, stage_dir, name: str) -> list[Path]:
         raise ParameterError("fmt", repr(fmt), " | ".join(FORMATS))
     stage = Path(stage_dir)
     if fmt == "step":
-        _bd()
+        build123d_module()
     drive, cam, tol = setup(cfg)
     if fmt == "csv":
         written = []
@@ -489,7 +480,7 @@ def export_wobble(cfg: dict, fmt: str, stage_dir, name: str) -> list[Path]:
     solid = cam_step_solid(drive, cam, tol)
     if not solid.is_valid:  # pragma: no cover
         raise RotorkinError("the cam solid is not valid; report this config as a bug")
-    bd = _bd()
+    bd = build123d_module()
     path = stage / f"{name}.step"
     bd.export_step(solid, str(path))
     return [path]
