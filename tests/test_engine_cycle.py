@@ -189,3 +189,25 @@ def test_parameter_errors(kwargs, name):
     with pytest.raises(ParameterError, match=name) as info:
         ec.IdealCycle(**kwargs)
     assert info.value.name == name
+
+
+def test_cycles_broadcast_and_their_admissibility_is_the_constructors():
+    rng = np.random.default_rng(7)
+    pa = rng.choice([-1.0, 0.0, 1e5, 2e5], size=50)
+    k = rng.choice([0.9, 1.0, 1.3, 1.4], size=50)
+    q = rng.choice([-5.0, 0.0, 90.0], size=50)
+    codes = ec.cycle_violation(pa, k, q)
+    for i in range(50):
+        try:
+            ec.IdealCycle(pa[i], k[i], q[i])
+            named = 0
+        except ParameterError as exc:
+            named = 1 + ec.CYCLE_CHECKS.index(exc.name)
+        assert codes[i] == named
+    ok = codes == 0
+    many = ec.IdealCycle(pa[ok], k[ok], q[ok])
+    peaks = ec.peak_pressure(many, 6e-5, 6e-6)
+    one_by_one = [
+        ec.peak_pressure(ec.IdealCycle(*v), 6e-5, 6e-6) for v in zip(pa[ok], k[ok], q[ok])
+    ]
+    np.testing.assert_allclose(peaks, one_by_one, rtol=1e-15)

@@ -47,6 +47,8 @@ __all__ = [
     "indicated_work",
     "otto_efficiency",
     "mean_effective_pressure",
+    "cycle_violation",
+    "CYCLE_CHECKS",
 ]
 
 INTAKE, COMPRESSION, POWER, EXHAUST = 0, 1, 2, 3
@@ -75,20 +77,49 @@ class IdealCycle:
     heat_per_cycle: float = 90.0
 
     def __post_init__(self):
-        p = float(self.ambient_pressure)
-        if not (np.isfinite(p) and p > 0.0):
-            raise ParameterError("ambient_pressure", f"{p / 1e5:.4g} bar", "ambient_pressure > 0")
-        k = float(self.polytropic_exponent)
-        if not (np.isfinite(k) and k > 1.0):
-            raise ParameterError(
-                "polytropic_exponent",
-                f"{k:g}",
-                "polytropic_exponent > 1 (it is also the ratio of specific heats of the "
-                "constant-volume heat addition, Delta p = (k - 1) Q / V_min)",
-            )
-        q = float(self.heat_per_cycle)
-        if not (np.isfinite(q) and q >= 0.0):
-            raise ParameterError("heat_per_cycle", f"{q:g} J", "heat_per_cycle >= 0 J")
+        code = cycle_violation(self.ambient_pressure, self.polytropic_exponent, self.heat_per_cycle)
+        if np.any(code):
+            first = int(np.ravel(code)[np.flatnonzero(np.ravel(code))[0]])
+            name = CYCLE_CHECKS[first - 1]
+            value = np.ravel(np.broadcast_to(np.asarray(getattr(self, name), float), code.shape))[
+                np.flatnonzero(np.ravel(code) == first)[0]
+            ]
+            raise ParameterError(name, *_CYCLE_TEXT[name](float(value)))
+
+
+#: The parameters :func:`cycle_violation` checks, in order (its codes 1, 2, 3).
+CYCLE_CHECKS = ("ambient_pressure", "polytropic_exponent", "heat_per_cycle")
+_CYCLE_TEXT = {
+    "ambient_pressure": lambda v: (f"{v / 1e5:.4g} bar", "ambient_pressure > 0"),
+    "polytropic_exponent": lambda v: (
+        f"{v:g}",
+        "polytropic_exponent > 1 (it is also the ratio of specific heats of the "
+        "constant-volume heat addition, Delta p = (k - 1) Q / V_min)",
+    ),
+    "heat_per_cycle": lambda v: (f"{v:g} J", "heat_per_cycle >= 0 J"),
+}
+
+
+def cycle_violation(ambient_pressure, polytropic_exponent, heat_per_cycle):
+    """Admissibility of ideal cycles, broadcast over arrays of them.
+
+    Returns
+    -------
+    ndarray of int8
+        0 where admissible, else ``1 + i`` for the first violated parameter
+        ``CYCLE_CHECKS[i]``: ``p_a > 0``, ``k > 1``, ``Q >= 0``, each finite.
+    """
+    pa, k, q = (np.asarray(v, dtype=float) for v in (ambient_pressure, polytropic_exponent,
+                                                       heat_per_cycle))  # fmt: skip
+    bad = (
+        ~(np.isfinite(pa) & (pa > 0.0)),
+        ~(np.isfinite(k) & (k > 1.0)),
+        ~(np.isfinite(q) & (q >= 0.0)),
+    )
+    code = np.zeros(np.broadcast(pa, k, q).shape, dtype=np.int8)
+    for i, b in enumerate(bad, start=1):
+        code = np.where((code == 0) & b, np.int8(i), code)
+    return code
 
 
 def stroke_from_count(count):

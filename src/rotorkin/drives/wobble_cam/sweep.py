@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.analysis import engine_cycle as ec
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.batch import Designs, flag, full, run_blocks, sample_grid
 from rotorkin.drives.wobble_cam import chambers as wch
@@ -220,12 +221,9 @@ def reasons(p, code: dict) -> np.ndarray:
         )
         flag(r, bad, code["machine.compression_ratio"])
         # IdealCycle
-        pa = p.float("loads.ambient_pressure")
-        flag(r, ~(np.isfinite(pa) & (pa > 0.0)), code["loads.ambient_pressure"])
-        k = p.float("loads.polytropic_exponent")
-        flag(r, ~(np.isfinite(k) & (k > 1.0)), code["loads.polytropic_exponent"])
-        q = p.float("loads.heat_per_cycle")
-        flag(r, ~(np.isfinite(q) & (q >= 0.0)), code["loads.heat_per_cycle"])
+        bad = ec.cycle_violation(*(p.float(f"loads.{key}") for key in ec.CYCLE_CHECKS))
+        for i, key in enumerate(ec.CYCLE_CHECKS, start=1):
+            flag(r, bad == i, code[f"loads.{key}"])
     return r
 
 
@@ -303,11 +301,18 @@ def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> di
     per_rev = cycles / 2.0  # four-stroke cycles per rev
     swept = tr.chamber_volume(k, a_hi - a_lo)  # K swing (eq. 23)
     disp = tr.displacement(swept, chambers, per_rev)
-    pa, kk = p.float("loads.ambient_pressure"), p.float("loads.polytropic_exponent")
-    q = p.float("loads.heat_per_cycle")
-    end_a, end_b = pa * eps_a**kk, pa * eps_b**kk
-    peak_a, peak_b = end_a + (kk - 1.0) * q / va_min, end_b + (kk - 1.0) * q / vb_min
-    work_a, work_b = _cycle_work(q, kk, eps_a), _cycle_work(q, kk, eps_b)
+    cycle = ec.IdealCycle(*(p.float(f"loads.{key}") for key in ec.CYCLE_CHECKS))
+    q = cycle.heat_per_cycle
+    end_a, end_b = (ec.compression_end_pressure(cycle, va_max, va_min),
+                    ec.compression_end_pressure(cycle, vb_max, vb_min))  # fmt: skip
+    peak_a, peak_b = (
+        ec.peak_pressure(cycle, va_max, va_min),
+        ec.peak_pressure(cycle, vb_max, vb_min),
+    )
+    work_a, work_b = (
+        ec.indicated_work(cycle, va_max, va_min),
+        ec.indicated_work(cycle, vb_max, vb_min),
+    )
     work = (work_a + work_b) * (chambers / 2.0) * per_rev
     heat = q * chambers * per_rev
     eps_design = np.where(kind_a, eps_a, eps_b)
@@ -341,7 +346,7 @@ def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> di
         "indicated_work_J": work,
         "heat_added_J_per_rev": heat,
         "indicated_efficiency": eff,
-        "otto_efficiency": 1.0 - eps_design ** (1.0 - kk),
+        "otto_efficiency": ec.otto_efficiency(eps_design, cycle.polytropic_exponent),
         "imep_bar": imep,
         "mean_torque_Nm": work / (2.0 * np.pi),
         "indicated_power_kW": work * omega_mean / (2.0 * np.pi) / 1e3,
@@ -354,11 +359,6 @@ def _section(p):
     return tr.section_volume_per_radian(
         p["machine.section"], *(p.float(f"machine.{k}") for k in keys)
     )
-
-
-def _cycle_work(q, k, eps):
-    """Indicated work of one ideal cycle, ``Q (1 - r^(1-k))`` [J] (engine_cycle.indicated_work)."""
-    return q * (1.0 - eps ** (1.0 - k))
 
 
 def _omega_mean(p) -> float:
