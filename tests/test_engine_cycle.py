@@ -207,7 +207,6 @@ def test_cycles_broadcast_and_their_admissibility_is_the_constructors():
     ok = codes == 0
     many = ec.IdealCycle(pa[ok], k[ok], q[ok])
     peaks = ec.peak_pressure(many, 6e-5, 6e-6)
-    one_by_one = [
-        ec.peak_pressure(ec.IdealCycle(*v), 6e-5, 6e-6) for v in zip(pa[ok], k[ok], q[ok])
-    ]
+    cycles = zip(pa[ok], k[ok], q[ok], strict=True)
+    one_by_one = [ec.peak_pressure(ec.IdealCycle(*v), 6e-5, 6e-6) for v in cycles]
     np.testing.assert_allclose(peaks, one_by_one, rtol=1e-15)
