@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorkin.render.figures import DPI, Recipe
+from rotorkin.render.figures import Recipe
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save as _save
 
@@ -71,10 +71,7 @@ def _wobble_fig11(ds, outdir, recipe, cfg):
         f"(plate tilt {base['tilt']:.4g} deg; half a shaft turn shown)",
         fontsize=11,
     )
-    fig.tight_layout(rect=(0.0, 0.07, 1.0, 1.0))
-    fig.savefig(outdir / recipe.figures[0], dpi=DPI)
-    plt.close(fig)
-    return [outdir / recipe.figures[0]]
+    return [_save(fig, outdir / recipe.figures[0], rect=(0.0, 0.07, 1.0, 1.0))]
 
 
 def _wobble_base(cfg) -> dict:
