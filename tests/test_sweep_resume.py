@@ -50,7 +50,7 @@ def test_a_killed_sweep_restarts_where_it_stopped_and_equals_an_uninterrupted_ru
                              "-q"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)  # fmt: skip
     deadline = time.monotonic() + 120.0
     try:
-        while not list(chunks.glob("chunk_*.nc")):
+        while not list(chunks.glob("*/chunk_*.nc")):
             assert proc.poll() is None, proc.stderr.read().decode()
             assert time.monotonic() < deadline, "no chunk committed in 120 s"
             time.sleep(0.005)
@@ -60,7 +60,7 @@ def test_a_killed_sweep_restarts_where_it_stopped_and_equals_an_uninterrupted_ru
         proc.stderr.close()
     assert proc.returncode == -signal.SIGKILL
     assert not (out / "sweep.nc").exists(), "the sweep finished before it could be killed"
-    done = sorted(chunks.glob("chunk_*.nc"))
+    done = sorted(chunks.glob("*/chunk_*.nc"))
     assert 1 <= len(done) < 30
 
     # restart (same command): only the missing chunks are computed
@@ -86,13 +86,13 @@ def _spec(chunk_size=4, **kw):
 
 def test_store_keeps_committed_chunks_and_drops_temporaries_and_stale_specs(tmp_path):
     spec = _spec()
-    store = ChunkStore(tmp_path / ".chunks", spec.manifest())
+    store = ChunkStore.of_spec(tmp_path / ".chunks", spec.manifest())
     assert store.open() == set()
     for i in (0, 2):
         store.commit(i, compute_chunk(spec, *chunk_bounds(spec, i)))
-    (tmp_path / ".chunks" / ".chunk_000001.nc.tmp-99999").write_bytes(b"half a file")
-    assert ChunkStore(tmp_path / ".chunks", spec.manifest()).open() == {0, 2}
-    assert not list((tmp_path / ".chunks").glob(".*tmp*"))
+    (store.folder / ".chunk_000001.nc.tmp-99999").write_bytes(b"half a file")
+    assert ChunkStore.of_spec(tmp_path / ".chunks", spec.manifest()).open() == {0, 2}
+    assert not list(store.folder.glob(".*tmp*"))
     back = store.read(2)
     direct = compute_chunk(spec, *chunk_bounds(spec, 2))
     assert np.array_equal(back["design"], direct["design"])
@@ -103,8 +103,15 @@ def test_store_keeps_committed_chunks_and_drops_temporaries_and_stale_specs(tmp_
     plain = run_spec(spec, progress=False)
     xr.testing.assert_identical(resumed, plain)
     xr.testing.assert_identical(_open(tmp_path / "sweep.nc"), plain)
-    # another spec in the same folder starts afresh
+    # another spec in the same store keeps its own chunks: neither deletes the other's
     other = _spec(chunk_size=5)
+    mine = ChunkStore.of_spec(tmp_path / ".chunks", spec.manifest())
+    mine.open()
+    mine.commit(0, compute_chunk(spec, *chunk_bounds(spec, 0)))
+    theirs = ChunkStore.of_spec(tmp_path / ".chunks", other.manifest())
+    assert theirs.open() == set() and theirs.folder != mine.folder
+    assert ChunkStore.of_spec(tmp_path / ".chunks", spec.manifest()).open() == {0}
+    # the same folder, given explicitly, holds one spec: another one there starts afresh
     s2 = ChunkStore(tmp_path / ".chunks", spec.manifest())
     s2.open()
     s2.commit(0, compute_chunk(spec, *chunk_bounds(spec, 0)))

@@ -12,7 +12,9 @@ import contextlib
 import errno
 import math
 import os
+import signal
 import sys
+import threading
 from pathlib import Path
 from typing import Annotated
 
@@ -147,6 +149,21 @@ for _module in (cli_export, cli_synthesize, cli_report, cli_sweep):
     _module.register(app)
 
 
+class Terminated(BaseException):
+    """SIGTERM, raised where the program stands so that every ``finally`` cleans up."""
+
+
+def _raise_terminated(signum, frame):
+    raise Terminated
+
+
+def _on_sigterm():
+    """Turn SIGTERM into :class:`Terminated` (main thread only); the previous handler."""
+    if threading.current_thread() is not threading.main_thread():
+        return None
+    return signal.signal(signal.SIGTERM, _raise_terminated)
+
+
 #: Exit code of a failure of the machine rather than the input (disk full, no permission).
 ENVIRONMENT_ERROR = 3
 
@@ -171,6 +188,7 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit code."""
     # figures are files here: matplotlib draws off screen unless the user chose a backend
     os.environ.setdefault("MPLBACKEND", "Agg")
+    previous = _on_sigterm()
     args = sys.argv[1:] if argv is None else list(argv)
     if not args:
         args = ["--help"]
@@ -184,8 +202,15 @@ def main(argv: list[str] | None = None) -> int:
     except typer.Abort:
         print("rotorkin: aborted", file=sys.stderr)
         return 130
+    except Terminated:
+        print(
+            "rotorkin: terminated; no output was finished (a sweep keeps its committed "
+            "chunks and resumes from them)",
+            file=sys.stderr,
+        )
+        return 143
     except KeyboardInterrupt:
-        print("rotorkin: interrupted", file=sys.stderr)
+        print("rotorkin: interrupted; no output was finished", file=sys.stderr)
         return 130
     except BrokenPipeError:  # the reader of our output went away (e.g. "| head"): say nothing
         with contextlib.suppress(OSError):
@@ -207,4 +232,7 @@ def main(argv: list[str] | None = None) -> int:
             file=sys.stderr,
         )
         return 1
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
     return 0

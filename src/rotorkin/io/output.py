@@ -19,7 +19,7 @@ import numpy as np
 
 from rotorkin.core.errors import ConfigError
 
-__all__ = ["write_outputs", "staged_output", "to_toml"]
+__all__ = ["write_outputs", "staged_output", "output_lock", "to_toml"]
 
 
 def write_outputs(result, outdir: Path, raw_config: dict, meta: dict) -> list[Path]:
@@ -51,13 +51,73 @@ def write_outputs(result, outdir: Path, raw_config: dict, meta: dict) -> list[Pa
 
 
 @contextlib.contextmanager
+def output_lock(outdir):
+    """Hold the lock of an output folder for the block: one writer at a time.
+
+    The lock is ``.<name>.lock`` beside ``outdir`` (``fcntl.flock``, released by the
+    system when the process dies). A second writer of the same folder is refused in
+    one line naming the first one's process id.
+    """
+    import fcntl
+
+    outdir = Path(outdir)
+    parent = outdir.parent if str(outdir.parent) else Path(".")
+    path = parent / f".{outdir.name}.lock"
+    try:
+        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+    except OSError as exc:
+        raise ConfigError(f"--out = {str(outdir)!r} cannot be written: {exc.strerror}") from None
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            holder = os.pread(fd, 32, 0).decode(errors="replace").strip() or "?"
+            raise ConfigError(
+                f"--out = {str(outdir)!r} is being written by another rotorkin (process "
+                f"{holder}): wait until it ends, or choose another --out"
+            ) from None
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, str(os.getpid()).encode(), 0)
+        try:
+            yield path
+        finally:
+            with contextlib.suppress(OSError):
+                path.unlink()
+    finally:
+        os.close(fd)
+
+
+def _make_parents(parent: Path) -> list[Path]:
+    """Create ``parent`` and its missing ancestors; return the ones created (deepest last)."""
+    missing = []
+    p = parent
+    while not p.exists() and p != p.parent:
+        missing.append(p)
+        p = p.parent
+    for d in reversed(missing):
+        d.mkdir()
+    return list(reversed(missing))
+
+
+def _remove_empty(folders: list[Path]) -> None:
+    """Remove the folders a failed output created, deepest first, if still empty."""
+    for d in reversed(folders):
+        with contextlib.suppress(OSError):
+            d.rmdir()
+
+
+@contextlib.contextmanager
 def staged_output(outdir, kind: str = "run"):
     """A staging folder beside ``outdir`` whose files move into ``outdir`` at the end.
 
     Yields ``(stage, written)``: write every output file into ``stage``; when the
     block ends without an error they are moved into ``outdir`` (created if missing)
     with ``os.replace``, in name order, and ``written`` receives their final paths.
-    On an error nothing reaches ``outdir``. The staging folder is always removed.
+    On an error (or SIGTERM, which the command line turns into an exception)
+    nothing reaches ``outdir``, and folders created for it are removed again. The
+    staging folder is always removed; one left by a killed run (SIGKILL) is removed
+    by the next output into the same folder. One writer at a time
+    (:func:`output_lock`).
 
     Files that an earlier output of the same ``kind`` (``"run"``, ``"export"``, ...)
     wrote into ``outdir`` and this one does not write again are removed, so that a
@@ -68,40 +128,60 @@ def staged_output(outdir, kind: str = "run"):
     Raises
     ------
     ConfigError
-        ``outdir`` is a file, or it or its parent cannot be created.
+        ``outdir`` is a file, it or its parent cannot be created, or another
+        rotorkin is writing it.
     """
     outdir = Path(outdir)
     if outdir.exists() and not outdir.is_dir():
         raise ConfigError(f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder")
     parent = outdir.parent if outdir.parent != Path("") else Path(".")
     try:
-        parent.mkdir(parents=True, exist_ok=True)
-        stage = Path(tempfile.mkdtemp(prefix=f".{outdir.name}.tmp-", dir=parent))
+        created = _make_parents(parent)
     except OSError as exc:
         raise ConfigError(f"--out = {str(outdir)!r} cannot be written: {exc.strerror}") from None
-    written: list[Path] = []
+    ok = False
     try:
-        yield stage, written
-        try:
-            outdir.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise ConfigError(
-                f"--out = {str(outdir)!r} cannot be written: {exc.strerror}"
-            ) from None
-        manifest = outdir / f".rotorkin-{kind}.files"
-        earlier = _read_manifest(manifest)
-        for item in sorted(stage.iterdir()):
-            os.replace(item, outdir / item.name)
-            written.append(outdir / item.name)
-        names = [p.name for p in written]
-        for name in sorted(set(earlier) - set(names)):
-            with contextlib.suppress(OSError):
-                (outdir / name).unlink()
-        tmp = stage / manifest.name
-        tmp.write_text("\n".join(names) + "\n")
-        os.replace(tmp, manifest)
+        with output_lock(outdir):
+            for stale in parent.glob(f".{glob_escape(outdir.name)}.tmp-*"):
+                shutil.rmtree(stale, ignore_errors=True)  # a killed run's staging folder
+            try:
+                stage = Path(tempfile.mkdtemp(prefix=f".{outdir.name}.tmp-", dir=parent))
+            except OSError as exc:
+                raise ConfigError(
+                    f"--out = {str(outdir)!r} cannot be written: {exc.strerror}"
+                ) from None
+            written: list[Path] = []
+            try:
+                yield stage, written
+                try:
+                    outdir.mkdir(parents=True, exist_ok=True)
+                except OSError as exc:
+                    raise ConfigError(
+                        f"--out = {str(outdir)!r} cannot be written: {exc.strerror}"
+                    ) from None
+                manifest = outdir / f".rotorkin-{kind}.files"
+                earlier = _read_manifest(manifest)
+                for item in sorted(stage.iterdir()):
+                    os.replace(item, outdir / item.name)
+                    written.append(outdir / item.name)
+                names = [p.name for p in written]
+                for name in sorted(set(earlier) - set(names)):
+                    with contextlib.suppress(OSError):
+                        (outdir / name).unlink()
+                tmp = stage / manifest.name
+                tmp.write_text("\n".join(names) + "\n")
+                os.replace(tmp, manifest)
+                ok = True
+            finally:
+                shutil.rmtree(stage, ignore_errors=True)
     finally:
-        shutil.rmtree(stage, ignore_errors=True)
+        if not ok and not outdir.exists():
+            _remove_empty(created)
+
+
+def glob_escape(name: str) -> str:
+    """``name`` with the glob characters ``*?[`` taken literally."""
+    return "".join(f"[{c}]" if c in "*?[" else c for c in name)
 
 
 def _read_manifest(path: Path) -> list[str]:

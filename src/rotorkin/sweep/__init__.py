@@ -269,7 +269,10 @@ def execute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
     """Run a validated spec (locally or on ``client``), optionally through a chunk store."""
     from pathlib import Path
 
-    chunks = ChunkStore(Path(store) / ".chunks", spec.manifest()) if store is not None else None
+    chunks = ChunkStore.of_spec(Path(store) / ".chunks", spec.manifest()) if store else None
+    if store is not None:
+        for stale in Path(store).glob(".sweep.nc.tmp-*"):  # a killed run's half-written result
+            stale.unlink(missing_ok=True)
     done = chunks.open() if chunks else set()
     if chunks and done and on_status:
         on_status(f"resuming: {len(done)} of {spec.n_chunks} chunks already committed, "

@@ -2,16 +2,17 @@
 
 Layout of a sweep folder ``DIR``::
 
-    DIR/sweep.nc                      the assembled result (written last, atomically)
-    DIR/.chunks/manifest.json         the sweep's spec and its hash
-    DIR/.chunks/chunk_000017.nc       chunk 17: its designs' metrics and reasons
+    DIR/sweep.nc                          the assembled result (written last, atomically)
+    DIR/.chunks/HASH/manifest.json        the sweep's spec and its hash (HASH: its first 16)
+    DIR/.chunks/HASH/chunk_000017.nc      chunk 17: its designs' metrics and reasons
 
 A chunk file is written under a temporary name and renamed (``os.replace``)
 when complete, so a chunk file that exists is complete: a sweep killed at any
 moment (even by SIGKILL) and started again with the same spec finds the chunks
 already committed, computes only the missing ones, and assembles the result,
 checking that every design appears exactly once. A different spec in the same
-folder (other keys, values, metrics, samples or chunk size) starts afresh.
+folder (other keys, values, metrics, samples or chunk size) has its own chunk
+folder: it neither reuses nor deletes another spec's chunks.
 The chunk files go once ``sweep.nc`` is written.
 
 Files are netCDF-3 (64-bit offsets) written with :mod:`scipy.io` (no netCDF4 or
@@ -20,6 +21,7 @@ zarr library is needed), read back by :mod:`xarray` or any netCDF reader.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
@@ -60,6 +62,15 @@ class ChunkStore:
         self.folder = Path(folder)
         self.manifest = manifest
         self.key = spec_hash(manifest)
+
+    @classmethod
+    def of_spec(cls, root, manifest: dict) -> ChunkStore:
+        """The store of one spec in its own folder under ``root`` (named by the spec's hash).
+
+        Sweeps of different specs into the same output folder keep their chunks apart,
+        so one never deletes the other's; each resumes from its own.
+        """
+        return cls(Path(root) / spec_hash(manifest)[:16], manifest)
 
     def open(self) -> set[int]:
         """Prepare the folder; return the indices of the chunks already committed.
@@ -148,8 +159,10 @@ class ChunkStore:
         return res
 
     def remove(self) -> None:
-        """Delete the working folder (after the result is written)."""
+        """Delete the working folder (after the result is written), and its parent if empty."""
         shutil.rmtree(self.folder, ignore_errors=True)
+        with contextlib.suppress(OSError):
+            self.folder.parent.rmdir()
 
 
 def write_dataset(ds, path) -> Path:
