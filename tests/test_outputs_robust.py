@@ -74,3 +74,37 @@ def test_sigterm_leaves_nothing_half_written(tmp_path):
     assert left in ([], ["sweep"])  # no staging folder, no lock
     if left:  # only the committed chunks of the sweep, kept to resume
         assert {p.name for p in out.iterdir()} <= {".chunks"}
+
+
+def test_a_sweep_without_one_admissible_design_is_refused(tmp_path, capsys):
+    out = tmp_path / "sweep"
+    args = ["sweep", "--set", "drive.plate_tilt=70 deg", "--vary",
+            "machine.compression_ratio=8:12:3", "--out", str(out)]  # fmt: skip
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no design of the sweep is admissible" in err[0]
+    assert "drive.plate_tilt" in err[0] and not out.exists()
+
+
+def test_a_tolerance_analysis_without_one_admissible_sample_is_refused(
+    tmp_path, capsys, monkeypatch
+):
+    import numpy as np
+
+    import rotorkin.tolerance as tol
+
+    real = tol.evaluate_designs
+
+    def none_admissible(p, *args, **kwargs):
+        res = real(p, *args, **kwargs)
+        if p.n > 1:
+            res["reason"] = np.full(p.n, 3, dtype=np.int16)
+        return res
+
+    monkeypatch.setattr(tol, "evaluate_designs", none_admissible)
+    out = tmp_path / "tol"
+    args = ["tolerance", "--tol", "drive.plate_tilt=0.1deg", "--samples", "50", "--out", str(out)]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "every one of the 50 samples is inadmissible" in err[0]
+    assert not out.exists()

@@ -196,6 +196,13 @@ def run_tolerance(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int 
             reason[lo:hi] = res["reason"]
             for m in names:
                 values[m][lo:hi] = res["metrics"][m]
+    if np.all(reason != 0):
+        codes = reason_keys(cfg["drive"]["type"])
+        worst = codes[int(np.bincount(reason).argmax())]
+        raise RotorkinError(
+            f"every one of the {n} samples is inadmissible (most often by {worst}): the "
+            "tolerances reach past an admissible limit from the nominal design; narrow them"
+        )
     data = {}
     for t in tols:
         unit, factor = DISPLAY_UNITS.get(t.field.kind, ("1", 1.0))

@@ -411,8 +411,14 @@ def check_spec_values(spec: SweepSpec) -> None:
     keys = [v.key for v in spec.varies]
     if kern.unsupported(spec.base_cfg) is None and set(keys) <= kern.KEYS:
         admissible = _check_grid(spec, kern, code)
+        if admissible is None:
+            admissible = _first_admissible(spec, kern, code)
+        if admissible is None:
+            _refuse_all(spec)
     else:
-        admissible = _check_scalar(spec)
+        if _check_scalar(spec) is False:
+            _refuse_all(spec)
+        admissible = None
     if admissible is not None:
         try:
             drives.evaluate(designs_at(spec, [admissible]).config(0))
@@ -473,12 +479,34 @@ def _check_grid(spec: SweepSpec, kern, code: dict) -> int | None:
     return admissible
 
 
-def _check_scalar(spec: SweepSpec) -> None:
+def _first_admissible(spec: SweepSpec, kern, code: dict) -> int | None:
+    """The first admissible design of the whole grid (block by block), or None."""
+    for lo in range(0, spec.size, _CHECK_BLOCK):
+        index = np.arange(lo, min(lo + _CHECK_BLOCK, spec.size), dtype=np.int64)
+        ok = np.flatnonzero(kern.reasons(designs_at(spec, index), code) == 0)
+        if ok.size:
+            return int(index[ok[0]])
+    return None
+
+
+def _refuse_all(spec: SweepSpec):
+    """No design of the grid is admissible: one line with the first design's reason."""
+    try:
+        drives.evaluate(designs_at(spec, [0]).config(0))
+    except ParameterError as exc:
+        raise RotorkinError(f"no design of the sweep is admissible: {exc}") from None
+    raise RotorkinError("no design of the sweep is admissible")
+
+
+def _check_scalar(spec: SweepSpec) -> bool | None:
     """The same rule through the scalar study (keys the kernel does not vary).
 
-    The designs tried went through the whole study, so there is no separate
-    base check afterwards (returns None).
+    The designs tried went through the whole study, so there is no separate base
+    check afterwards. Returns False when every design of the grid was tried and
+    none is admissible, True when one is, None when the tries did not cover the
+    grid and found none.
     """
+    found, tried = False, set()
 
     shape = spec.shape
     for k, v in enumerate(spec.varies):
@@ -488,8 +516,10 @@ def _check_scalar(spec: SweepSpec) -> None:
             flats = _slice_indices(shape, k, j, 0, tries)
             own_only = True
             for flat in flats:
+                tried.add(int(flat))
                 try:
                     drives.evaluate(designs_at(spec, [flat]).config(0))
+                    found = True
                 except ParameterError as exc:
                     if exc.name == v.key:
                         continue
@@ -497,4 +527,6 @@ def _check_scalar(spec: SweepSpec) -> None:
                 break
             if own_only and tries == per:
                 _refuse(spec, k, j, int(flats[0]))
-    return None
+    if found:
+        return True
+    return False if len(tried) == spec.size else None
