@@ -15,9 +15,11 @@ import os
 import signal
 import sys
 import threading
+import warnings
 from pathlib import Path
 from typing import Annotated
 
+import numpy as np
 import typer
 
 from rotorkin import __version__
@@ -193,7 +195,11 @@ def main(argv: list[str] | None = None) -> int:
     if not args:
         args = ["--help"]
     try:
-        app(args=args, prog_name="rotorkin", standalone_mode=False)
+        # numpy's floating-point warnings are not for the user: every number that could be
+        # non-finite is checked before it is written or printed
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            warnings.simplefilter("ignore", RuntimeWarning)
+            app(args=args, prog_name="rotorkin", standalone_mode=False)
     except RotorkinError as exc:
         print(f"rotorkin: error: {exc}", file=sys.stderr)
         return 2
