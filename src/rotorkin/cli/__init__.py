@@ -81,7 +81,7 @@ def run(
     outdir = out if out is not None else Path("rotorkin-out") / name
     meta = {"name": name, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
     for line in result.warnings:
-        print(f"rotorkin: warning: {line}", file=sys.stderr)
+        print(f"rotorkin: warning: {_one_line(line)}", file=sys.stderr)
     written = write_outputs(result, outdir, raw, meta)
     if report:
         written = [*written, write_report(result, cfg, raw, meta, outdir / "report.html")]
@@ -179,11 +179,16 @@ _WHAT_TO_DO = {
 }
 
 
+def _one_line(text: str) -> str:
+    """A message on one line: line breaks a user typed are shown escaped."""
+    return text.replace("\r", "\\r").replace("\n", "\\n")
+
+
 def _environment_message(exc: OSError) -> str:
     """One line: what failed and what to do; nothing was left behind."""
     what = _WHAT_TO_DO.get(exc.errno, "the system refused; check the output folder and retry")
     where = f" ({exc.filename})" if getattr(exc, "filename", None) else ""
-    return f"cannot finish: {exc.strerror or exc}{where}; {what}; no output was written"
+    return _one_line(f"cannot finish: {exc.strerror or exc}{where}; {what}; no output was written")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -201,7 +206,7 @@ def main(argv: list[str] | None = None) -> int:
             warnings.simplefilter("ignore", RuntimeWarning)
             app(args=args, prog_name="rotorkin", standalone_mode=False)
     except RotorkinError as exc:
-        print(f"rotorkin: error: {exc}", file=sys.stderr)
+        print(f"rotorkin: error: {_one_line(str(exc))}", file=sys.stderr)
         return 2
     except typer.Exit as exc:
         return exc.exit_code
@@ -227,7 +232,7 @@ def main(argv: list[str] | None = None) -> int:
         return ENVIRONMENT_ERROR
     except Exception as exc:
         if hasattr(exc, "format_message") and hasattr(exc, "exit_code"):  # a usage error
-            print(f"rotorkin: error: {exc.format_message()}", file=sys.stderr)
+            print(f"rotorkin: error: {_one_line(exc.format_message())}", file=sys.stderr)
             return 2
         # an internal error: one line, the traceback on request
         if os.environ.get("ROTORKIN_DEBUG"):

@@ -33,6 +33,8 @@ def out_folder(text: str) -> Path:
     """``--out``: a folder name; an empty one (which would mean the current folder) is refused."""
     if not str(text).strip():
         raise typer.BadParameter("an empty folder name is not admissible", param_hint="--out")
+    if "\0" in str(text):
+        raise typer.BadParameter("a folder name cannot hold a NUL character", param_hint="--out")
     return Path(text)
 
 

@@ -24,7 +24,7 @@ from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_n
 from rotorkin.core.errors import ConfigError
 from rotorkin.drives import REGISTRY, get
 from rotorkin.io.config import apply_sets, load_config
-from rotorkin.io.output import staged_output
+from rotorkin.io.output import check_out, staged_output
 from rotorkin.report import figures_sweep as fs
 from rotorkin.sweep import build_spec, execute
 from rotorkin.sweep.engine import SweepFallbackWarning, coverage
@@ -120,8 +120,7 @@ def register(app) -> None:
         if not vary and not paper_figures:
             raise ConfigError("give at least one --vary KEY=START:STOP:N (or --paper-figures)")
         outdir = out if out is not None else Path("rotorkin-out") / f"{name}-sweep"
-        if outdir.exists() and not outdir.is_dir():
-            raise ConfigError(f"--out = {str(outdir)!r} is not admissible: it is a file")
+        check_out(outdir)
         specs = []  # (recipe or None, spec), all validated before anything runs
         if vary:
             specs.append(
@@ -228,6 +227,7 @@ def register(app) -> None:
 
         cfg, raw, name = load_config(config, example, set_ or [])
         outdir = out if out is not None else Path("rotorkin-out") / f"{name}-tolerance"
+        check_out(outdir)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", SweepFallbackWarning)
             ds = run_tolerance(raw, tol or [], samples=samples, seed=seed, metrics=metrics,

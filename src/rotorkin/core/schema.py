@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator
 from pydantic_core import PydanticCustomError
 
 from rotorkin.core.errors import ConfigError
@@ -116,8 +116,18 @@ class EmptySection(Section):
 class ExportSection(Section):
     tolerance: Length = Field(
         "0.01 mm",
-        description="chordal tolerance of exported curves and meshes (DXF, STL, STEP)",
+        description="chordal tolerance of exported curves and meshes (DXF, STL, STEP), "
+        "0.00001 mm ... 1 mm (and at most 1 % of the part's size, checked by export)",
     )
+
+    @field_validator("tolerance")
+    @classmethod
+    def _tolerance_range(cls, value: float) -> float:
+        if not 1e-8 <= value <= 1e-3:
+            raise PydanticCustomError(
+                "rotorkin_range", "0.00001 mm <= tolerance <= 1 mm (a chordal tolerance)"
+            )
+        return value
 
 
 class InertialSection(Section):
@@ -156,6 +166,8 @@ def _one_line(exc: ValidationError, model: type[BaseModel]) -> str:
         return f"unknown key {loc}; known keys at {where}: {known}"
     if kind == "rotorkin_unit":
         return f"{loc} = {value!r} {err['msg']}"
+    if kind == "rotorkin_range":
+        return f"{loc} = {value!r} is not admissible: {err['msg']}"
     msg = err["msg"]
     if isinstance(value, dict):
         value = "{...}"

@@ -32,6 +32,9 @@ __all__ = [
 #: drive.type -> its spec, in the order of the command-line help.
 REGISTRY: dict[str, DriveSpec] = {}
 
+#: Most harmonics a synthesized law may have (``rotorkin synthesize --harmonics``).
+MAX_HARMONICS = 1000
+
 #: The example ``rotorkin run`` evaluates without a config.
 DEFAULT_EXAMPLE = "wobble-cam-engine"
 
@@ -129,8 +132,10 @@ def synthesize(
             repr(objective),
             f"one of {', '.join(names)} for drive.type = {kind}",
         )
-    if harmonics is not None and (isinstance(harmonics, bool) or int(harmonics) < 1):
-        raise ParameterError("harmonics", repr(harmonics), "an integer >= 1")
+    if harmonics is not None and (
+        isinstance(harmonics, bool) or not 1 <= int(harmonics) <= MAX_HARMONICS
+    ):
+        raise ParameterError("harmonics", repr(harmonics), f"1 <= harmonics <= {MAX_HARMONICS}")
     if max_pressure_angle is not None:
         if "max_pressure_angle" not in spec.synthesis_options:
             takers = [k for k, s in REGISTRY.items() if "max_pressure_angle" in s.synthesis_options]

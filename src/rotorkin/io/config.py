@@ -80,6 +80,8 @@ def read_toml(path: str | Path) -> dict:
     most :data:`MAX_CONFIG_DEPTH` deep with at most :data:`MAX_CONFIG_ITEMS` entries.
     """
     path = Path(path)
+    if "\0" in str(path):
+        raise ConfigError("config file is not admissible: a file name cannot hold a NUL character")
     try:
         if path.exists() and not path.is_dir() and not path.is_file():
             raise ConfigError(f"config file {str(path)!r} is not a regular file")

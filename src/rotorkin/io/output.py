@@ -8,6 +8,7 @@ output behind.
 from __future__ import annotations
 
 import contextlib
+import errno
 import json
 import math
 import os
@@ -19,7 +20,14 @@ import numpy as np
 
 from rotorkin.core.errors import ConfigError
 
-__all__ = ["write_outputs", "staged_output", "output_lock", "to_toml"]
+__all__ = [
+    "write_outputs",
+    "staged_output",
+    "output_lock",
+    "check_out",
+    "out_error",
+    "to_toml",
+]
 
 
 def write_outputs(result, outdir: Path, raw_config: dict, meta: dict) -> list[Path]:
@@ -66,7 +74,7 @@ def output_lock(outdir):
     try:
         fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
     except OSError as exc:
-        raise ConfigError(f"--out = {str(outdir)!r} cannot be written: {exc.strerror}") from None
+        out_error(outdir, exc)
     try:
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -85,6 +93,38 @@ def output_lock(outdir):
                 path.unlink()
     finally:
         os.close(fd)
+
+
+#: errno values that say the --out path itself is wrong (bad input), not the machine.
+_PATH_ERRORS = {errno.ENOTDIR, errno.EEXIST, errno.ENAMETOOLONG, errno.EINVAL, errno.EISDIR}
+
+
+def out_error(outdir, exc: OSError):
+    """Raise for a folder that cannot be written: bad input (exit 2) or the machine (exit 3).
+
+    A path through a file, or too long, is the user's: one :class:`ConfigError`
+    line. No permission, a read-only or full disk is the machine's: the
+    :class:`OSError` goes on (the command line says what to do, exit 3).
+    """
+    if exc.errno in _PATH_ERRORS:
+        raise ConfigError(f"--out = {str(outdir)!r} cannot be written: {exc.strerror}") from None
+    raise exc
+
+
+def check_out(outdir) -> None:
+    """Refuse an output folder that is a file or lies under one, before any work is done."""
+    outdir = Path(outdir)
+    if "\0" in str(outdir):
+        raise ConfigError("--out is not admissible: a folder name cannot hold a NUL character")
+    if outdir.exists() and not outdir.is_dir():
+        raise ConfigError(f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder")
+    for up in outdir.parents:
+        if up.exists():
+            if not up.is_dir():
+                raise ConfigError(
+                    f"--out = {str(outdir)!r} is not admissible: {str(up)!r} is a file"
+                )
+            break
 
 
 def _make_parents(parent: Path) -> list[Path]:
@@ -132,13 +172,12 @@ def staged_output(outdir, kind: str = "run"):
         rotorkin is writing it.
     """
     outdir = Path(outdir)
-    if outdir.exists() and not outdir.is_dir():
-        raise ConfigError(f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder")
+    check_out(outdir)
     parent = outdir.parent if outdir.parent != Path("") else Path(".")
     try:
         created = _make_parents(parent)
     except OSError as exc:
-        raise ConfigError(f"--out = {str(outdir)!r} cannot be written: {exc.strerror}") from None
+        out_error(outdir, exc)
     ok = False
     try:
         with output_lock(outdir):
@@ -147,18 +186,14 @@ def staged_output(outdir, kind: str = "run"):
             try:
                 stage = Path(tempfile.mkdtemp(prefix=f".{outdir.name}.tmp-", dir=parent))
             except OSError as exc:
-                raise ConfigError(
-                    f"--out = {str(outdir)!r} cannot be written: {exc.strerror}"
-                ) from None
+                out_error(outdir, exc)
             written: list[Path] = []
             try:
                 yield stage, written
                 try:
                     outdir.mkdir(parents=True, exist_ok=True)
                 except OSError as exc:
-                    raise ConfigError(
-                        f"--out = {str(outdir)!r} cannot be written: {exc.strerror}"
-                    ) from None
+                    out_error(outdir, exc)
                 manifest = outdir / f".rotorkin-{kind}.files"
                 earlier = _read_manifest(manifest)
                 for item in sorted(stage.iterdir()):

@@ -27,7 +27,7 @@ import numpy as np
 
 from rotorkin.core.errors import ConfigError
 from rotorkin.drives import get
-from rotorkin.io.output import to_toml
+from rotorkin.io.output import out_error, to_toml
 from rotorkin.render import member_scene
 from rotorkin.render.scenes import Check, fmt
 from rotorkin.studies.published import paper_rows
@@ -71,7 +71,7 @@ def write_report(result, cfg, raw, meta, path) -> Path:
         parent.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=parent)
     except OSError as exc:
-        raise ConfigError(f"--out = {str(parent)!r} cannot be written: {exc.strerror}") from None
+        out_error(parent, exc)
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
             fh.write(text)

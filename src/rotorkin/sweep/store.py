@@ -22,6 +22,7 @@ zarr library is needed), read back by :mod:`xarray` or any netCDF reader.
 from __future__ import annotations
 
 import contextlib
+import errno
 import hashlib
 import json
 import os
@@ -81,8 +82,10 @@ class ChunkStore:
         try:
             self.folder.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
-            raise ConfigError(f"--out = {str(self.folder.parent)!r} cannot be written: "
-                              f"{exc.strerror}") from None  # fmt: skip
+            if exc.errno in (errno.ENOTDIR, errno.EEXIST, errno.ENAMETOOLONG):
+                raise ConfigError(f"--out = {str(self.folder.parent)!r} cannot be written: "
+                                  f"{exc.strerror}") from None  # fmt: skip
+            raise
         for tmp in self.folder.glob(".*.tmp-*"):
             tmp.unlink(missing_ok=True)
         path = self.folder / _MANIFEST
