@@ -49,8 +49,6 @@ def _client(workers, scheduler):
     if workers is not None:
         from rotorkin.sweep.dask import local_client
 
-        if workers < 1:
-            raise ConfigError(f"--workers = {workers} is not admissible: --workers >= 1")
         return local_client(workers)
     if scheduler is not None:
         from rotorkin.sweep.dask import connect

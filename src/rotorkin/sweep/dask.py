@@ -20,6 +20,9 @@ from rotorkin.sweep.engine import compute_chunk
 
 __all__ = ["LOOPBACK", "local_client", "connect", "run_chunks"]
 
+#: Most worker processes of a local cluster (a cluster beyond a machine: --scheduler).
+MAX_WORKERS = 64
+
 #: The only address a local cluster listens on: its dashboard has no authentication.
 LOOPBACK = "127.0.0.1"
 
@@ -37,8 +40,8 @@ def _distributed():
 @contextlib.contextmanager
 def local_client(workers: int, processes: bool = True):
     """A :class:`distributed.Client` on a new LocalCluster of ``workers`` single-thread workers."""
-    if int(workers) < 1:
-        raise ParameterError("workers", workers, "workers >= 1")
+    if not 1 <= int(workers) <= MAX_WORKERS:
+        raise ParameterError("workers", workers, f"1 <= workers <= {MAX_WORKERS} (processes here)")
     distributed = _distributed()
     cluster = distributed.LocalCluster(
         n_workers=int(workers),
