@@ -45,6 +45,7 @@ REFUSED = [
     ("wobble-cam-engine", "drive.sphere_radius=1 km", "drive.sphere_radius"),
     ("wobble-cam-engine", "drive.spin_a=[0, 10.5]", "drive.spin_a.1"),
     ("wobble-cam-engine", "machine.compression_ratio=1e308", "machine.compression_ratio"),
+    ("wobble-cam-engine", "drive.roller_axis_angle=0.5 deg", "drive.roller_axis_angle"),
     ("wobble-cam-engine", "machine.compression_ratio=1", "machine.compression_ratio"),
     ("wobble-cam-engine", "machine.pistons_per_rotor=26", "machine.pistons_per_rotor"),
     ("wobble-cam-engine", "machine.pistons_per_rotor=0", "machine.pistons_per_rotor"),
@@ -109,6 +110,10 @@ INSIDE = [
     ("eccentric-reactor", "cam.thickness=160 mm"),
     ("guide-bar-pump", "drive.lambda=0.99"),
     ("guide-bar-pump", "drive.lambda=0.01"),
+    ("guide-bar-pump", ("drive.lambda=0.99", "drive.driver=guide")),
+    ("guide-bar-pump", ("drive.lambda=0.99", "drive.gear_ratio=10", "drive.input_gear_ratio=0.1")),
+    ("wobble-cam-engine", ("machine.pistons_per_rotor=2", "drive.roller_axis_angle=1 deg")),
+    ("eccentric-reactor", ("machine.device_length=80 mm", "machine.fluid=liquid")),
     ("guide-bar-pump", "drive.gear_ratio=10"),
     ("rhomboid-engine", "loads.torque_high=1e6 N*m"),
 ]  # fmt: skip
@@ -144,7 +149,8 @@ def test_out_of_range_is_refused_in_one_line(capsys, tmp_path, example, setting,
 
 @pytest.mark.parametrize(("example", "setting"), INSIDE)
 def test_just_inside_runs_with_finite_summary(capsys, tmp_path, example, setting):
-    code, err, out = _run(capsys, tmp_path, example, [setting])
+    sets = [setting] if isinstance(setting, str) else list(setting)
+    code, err, out = _run(capsys, tmp_path, example, sets)
     assert code == 0, err
     summary = json.loads((out / "summary.json").read_text())
     warned = [line for line in err.splitlines() if line.startswith("rotorkin: warning")]

@@ -26,6 +26,9 @@ from rotorkin.drives.wobble_cam.kinematics import PLATE_TILT_MIN, SPIN_RATIO_MAX
 #: evaluated on every sampled angle); synthesised laws use a few dozen.
 MAX_SPIN_HARMONICS = 256
 HALF_PI = 1.5707963267948966
+#: Smallest angle between the roller groups (and 180 deg less the largest) [rad], 1 deg: with
+#: 2-piston rotors eq. 20 admits alpha down to 0, where the plate tilt limit degenerates.
+ROLLER_AXIS_ANGLE_MIN = 0.017453292519943295
 #: Largest compression ratio [-]: 1e6 stands for pistons of zero width (the drive alone).
 COMPRESSION_RATIO_MAX = 1e6
 #: One coefficient of the spin-law correction [rad].
@@ -67,10 +70,11 @@ class WobbleDrive(Section):
     )
     roller_axis_angle: Angle = Field(
         "90 deg",
-        gt=0.0,
-        lt=2.0 * HALF_PI,
+        ge=ROLLER_AXIS_ANGLE_MIN,
+        le=2.0 * HALF_PI - ROLLER_AXIS_ANGLE_MIN,
         description="angle alpha between the two roller groups in the plate plane "
-        "(90 deg - 180 deg / pistons_per_rotor < alpha < 90 deg + 180 deg / pistons_per_rotor)",
+        "(90 deg - 180 deg / pistons_per_rotor < alpha < 90 deg + 180 deg / pistons_per_rotor, "
+        "and 1 deg <= alpha <= 179 deg)",
     )
     spin_ratio: float = Field(
         -2.0,
