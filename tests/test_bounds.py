@@ -93,6 +93,12 @@ REFUSED = [
     ("rhomboid-engine", "machine.outer_radius=20 m", "machine.outer_radius"),
     ("rhomboid-engine", "loads.hot_temperature=0 K", "loads.hot_temperature"),
     ("rhomboid-engine", "loads.torque_high=2e6 N*m", "loads.torque_high"),
+    # every drive: the shaft speed (rotorkin.analysis.timing)
+    ("guide-bar-pump", "run.speed=1e300 rpm", "run.speed"),
+    ("guide-bar-pump", "run.speed=1e-300 rpm", "run.speed"),
+    ("wobble-cam-engine", "run.speed=100001 rpm", "run.speed"),
+    ("eccentric-reactor", "run.speed=0.009 rpm", "run.speed"),
+    ("rhomboid-engine", 'run.speed=["1000 rpm", "1e6 rpm", "1000 rpm"]', "run.speed"),
 ]  # fmt: skip
 
 # (example, --set): the boundary value, or just inside it
@@ -116,6 +122,10 @@ INSIDE = [
     ("eccentric-reactor", ("machine.device_length=80 mm", "machine.fluid=liquid")),
     ("guide-bar-pump", "drive.gear_ratio=10"),
     ("rhomboid-engine", "loads.torque_high=1e6 N*m"),
+    ("guide-bar-pump", "run.speed=100000 rpm"),
+    ("wobble-cam-engine", "run.speed=0.01 rpm"),
+    ("eccentric-reactor", "run.speed=0.01 rpm"),
+    ("rhomboid-engine", "run.speed=100000 rpm"),
 ]  # fmt: skip
 
 
@@ -185,8 +195,9 @@ def numeric_keys(model: type[BaseModel]):
     out = []
     for section, sfield in model.model_fields.items():
         sub = sfield.annotation
-        if section in _SKIPPED_SECTIONS or not (isinstance(sub, type) and issubclass(sub,
-                                                                                  BaseModel)):
+        if section in _SKIPPED_SECTIONS or not (
+            isinstance(sub, type) and issubclass(sub, BaseModel)
+        ):
             continue  # fmt: skip
         for name, field in sub.model_fields.items():
             key = field.alias or name

@@ -8,8 +8,17 @@ from __future__ import annotations
 
 from pydantic import Field
 
-__all__ = ["INERTIA_MAX", "LENGTH_MAX", "PRESSURE_MIN", "PRESSURE_MAX", "TORQUE_MAX", "TEMPERATURE_MIN", "TEMPERATURE_MAX",
-           "speed_fluctuation"]  # fmt: skip
+__all__ = [
+    "INERTIA_MAX",
+    "LENGTH_MAX",
+    "PRESSURE_MIN",
+    "PRESSURE_MAX",
+    "TORQUE_MAX",
+    "TEMPERATURE_MIN",
+    "TEMPERATURE_MAX",
+    "SPEED_FLUCTUATION_MIN",
+    "speed_fluctuation",
+]
 
 #: Largest inertia of any member [kg*m^2] (a ship engine's flywheel is about 1e4).
 INERTIA_MAX = 1e5
@@ -33,6 +42,5 @@ def speed_fluctuation():
         0.02,
         ge=SPEED_FLUCTUATION_MIN,
         lt=1.0,
-        description="wanted coefficient of speed fluctuation, for the flywheel "
-        "(0.0001 <= C_s < 1)",
+        description="wanted coefficient of speed fluctuation, for the flywheel (0.0001 <= C_s < 1)",
     )

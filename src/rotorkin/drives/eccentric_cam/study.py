@@ -33,7 +33,15 @@ from rotorkin.machines import opposed_piston as op
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 
-__all__ = ["evaluate", "check_cam", "drive_params", "machine_params", "sections", "reactor_state", "HEADLINE"]
+__all__ = [
+    "evaluate",
+    "check_cam",
+    "drive_params",
+    "machine_params",
+    "sections",
+    "reactor_state",
+    "HEADLINE",
+]
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {

@@ -46,8 +46,7 @@ class PlanarCamSection(Section):
     )
     thickness: Length = Field(
         "20 mm",
-        description="axial thickness of the cam plate (0 < thickness <= the cam's outer "
-        "diameter)",
+        description="axial thickness of the cam plate (0 < thickness <= the cam's outer diameter)",
     )
 
 

@@ -170,10 +170,10 @@ def violation(
     ndarray of int16
         0 where admissible, else ``1 + CHECKED.index(name)`` of the first
         parameter (in the order of :data:`CHECKED`) out of range: N even and >= 2;
-        alpha in :func:`roller_axis_angle_limits`; ``0 < phi <
-        max_plate_tilt(alpha, N)`` (eq. 20) and ``phi >= PLATE_TILT_MIN`` (0.5 deg); n a finite nonzero multiple of 0.5
-        (the motion repeats every shaft turn) with ``|n| <= SPIN_RATIO_MAX``; r > 0; the correction ``spin_a``,
-        ``spin_b`` (shared by all designs) keeps the spin monotone,
+        alpha in :func:`roller_axis_angle_limits`; ``PLATE_TILT_MIN <= phi <
+        max_plate_tilt(alpha, N)`` (0.5 deg, eq. 20); n a nonzero multiple of 0.5
+        (the motion repeats every shaft turn) with ``|n| <= SPIN_RATIO_MAX``; r > 0;
+        the correction ``spin_a``, ``spin_b`` (shared by all designs) keeps the spin monotone,
         ``sign(n) dvarphi/dtheta > 0`` on 4097 angles of a turn (:func:`slowest_spin`).
     """
     with np.errstate(invalid="ignore", divide="ignore"):

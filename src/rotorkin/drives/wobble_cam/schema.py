@@ -19,7 +19,6 @@ from rotorkin.core.schema import (
     Volume,
 )
 from rotorkin.drives.bounds import INERTIA_MAX, speed_fluctuation
-
 from rotorkin.drives.wobble_cam.kinematics import PLATE_TILT_MIN, SPIN_RATIO_MAX
 
 #: Most harmonics of the spin-law correction (spin_a, spin_b): a work cap (each harmonic is
@@ -160,8 +159,7 @@ class WobbleMachine(InertialSection):
         "0.004 kg*m^2",
         ge=0.0,
         le=INERTIA_MAX,
-        description="inertia of the input shaft with the plate and rollers "
-        "(0 <= J <= 1e5 kg*m^2)",
+        description="inertia of the input shaft with the plate and rollers (0 <= J <= 1e5 kg*m^2)",
     )
     inertia_rotor_1: Inertia = Field(
         "0.008 kg*m^2",
