@@ -417,7 +417,7 @@ def _schema_defaults() -> dict:
 
 
 #: Dataclass fields that are not config keys (derived from the drive by the reactor module).
-_NOT_IN_SCHEMA = {"gap_change_min"}
+_NOT_IN_SCHEMA = {"gap_change_min", "piston_stroke"}
 
 
 def _default_mismatches(classes, want) -> list:

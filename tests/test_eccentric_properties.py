@@ -138,7 +138,9 @@ def test_reactor_of_parameter_arrays_equals_scalar_reactors(designs, fluids, see
     n = len(designs)
     beta = rng.uniform(0.0, 2 * np.pi, 7)
     machine = {
-        "device_length": rng.uniform(0.1, 2.0, n),
+        # at least the piston stroke 2 e (the reactor's admissible lengths)
+        "device_length": 2.0 * np.array([d.eccentricity for d in designs])
+        + rng.uniform(0.0, 2.0, n),
         "bore": rng.uniform(0.01, 0.1, n),
         "fluid": np.array(fluids[:n]),
         "initial_pressure": rng.uniform(1e5, 1e6, n),

@@ -15,7 +15,10 @@ import numpy as np
 
 from rotorkin.core.errors import ParameterError
 
-__all__ = ["shaft_speed"]
+__all__ = ["shaft_speed", "SPEED_MIN", "SPEED_MAX"]
+
+#: Admissible shaft speeds [rad/s]: 0.01 rpm to 100 000 rpm.
+SPEED_MIN, SPEED_MAX = 0.01 * np.pi / 30.0, 1e5 * np.pi / 30.0
 
 
 def shaft_speed(theta, speed, period: float):
@@ -28,7 +31,8 @@ def shaft_speed(theta, speed, period: float):
     speed : float or sequence of float
         A constant speed [rad/s], or samples of the speed at
         ``theta_k = k period / n``, ``k = 0 .. n-1`` (periodic, so the sample at
-        ``period`` is the first one again) [rad/s].
+        ``period`` is the first one again) [rad/s]; each ``SPEED_MIN <= omega <=
+        SPEED_MAX`` (0.01 rpm to 100 000 rpm).
     period : float
         Period of the profile in the input angle [rad].
 
@@ -45,6 +49,14 @@ def shaft_speed(theta, speed, period: float):
         )
     if np.any(samples <= 0):
         raise ParameterError("run.speed", _in_rpm(samples), "speeds > 0 (the shaft turns one way)")
+    slack = 1e-12  # the bounds as written in rpm, converted
+    if np.any((samples < SPEED_MIN * (1 - slack)) | (samples > SPEED_MAX * (1 + slack))):
+        raise ParameterError(
+            "run.speed",
+            _in_rpm(samples),
+            "0.01 rpm <= speed <= 100000 rpm (beyond, times and accelerations of the period "
+            "leave the floating-point range)",
+        )
     if samples.size == 1:
         omega = np.full(theta.shape, samples[0])
         return omega, np.zeros(theta.shape), np.zeros(theta.shape)

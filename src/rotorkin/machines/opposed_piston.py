@@ -96,14 +96,16 @@ def _shown(name: str, value) -> str:
 
 def invalid_parameter(
     device_length, bore, fluid, initial_pressure, polytropic_exponent, bulk_modulus,
-    gap_change_min,
+    gap_change_min, piston_stroke=0.0,
 ):  # fmt: skip
     """The first violated parameter of each design, ``""`` where all are admissible.
 
     Checked in the order of :class:`OpposedPiston`'s fields: ``device_length``,
     ``bore``, ``initial_pressure``, ``polytropic_exponent``, ``bulk_modulus``
     finite and ``> 0``; ``fluid`` one of :data:`FLUIDS`; ``gap_change_min``
-    finite and ``<= 0``. Broadcasts.
+    finite and ``<= 0``; ``device_length >= piston_stroke`` [m] (each piston
+    travels up to half its stroke inwards: a shorter reactor lets it reach the
+    middle, where the other piston stands). Broadcasts.
 
     Returns
     -------
@@ -119,7 +121,9 @@ def invalid_parameter(
     dmin = np.asarray(gap_change_min, dtype=float)
     with np.errstate(invalid="ignore"):
         checks = (
-            ("device_length", positive(device_length)),
+            ("device_length", positive(device_length) | (
+                np.asarray(device_length, dtype=float) < np.asarray(piston_stroke, dtype=float)
+            )),
             ("bore", positive(bore)),
             ("fluid", ~np.isin(np.asarray(fluid), FLUIDS)),
             ("initial_pressure", positive(initial_pressure)),
@@ -158,6 +162,9 @@ class OpposedPiston:
         Smallest (most negative) gap change ``Delta = z + z'`` of the drive over
         a period [m], ``<= 0`` (default 0: travels that keep the gap). Only
         :func:`volume_extremes` uses it.
+    piston_stroke : float, optional
+        Stroke of each piston [m] (``2 e``), ``device_length >= piston_stroke``
+        (default 0: no bound).
 
     Raises
     ------
@@ -172,10 +179,11 @@ class OpposedPiston:
     polytropic_exponent: float = 1.0
     bulk_modulus: float = 1.5e9
     gap_change_min: float = 0.0
+    piston_stroke: float = 0.0
 
     def __post_init__(self):
         names = ("device_length", "bore", "fluid", "initial_pressure", "polytropic_exponent",
-                 "bulk_modulus", "gap_change_min")  # fmt: skip
+                 "bulk_modulus", "gap_change_min", "piston_stroke")  # fmt: skip
         bad = invalid_parameter(*(getattr(self, n) for n in names))
         if not bad.any():
             return
@@ -184,7 +192,14 @@ class OpposedPiston:
         mask = bad == name
         value, m = np.broadcast_arrays(np.asarray(getattr(self, name)), mask)
         shown = value[m].flat[0] if value.ndim else value[()]
-        raise ParameterError(name, _shown(name, shown), _ADMISSIBLE[name])
+        admissible = _ADMISSIBLE[name]
+        stroke = float(np.max(self.piston_stroke))
+        if name == "device_length" and np.isfinite(shown) and shown > 0.0:
+            admissible = (
+                f"device_length >= {fmt_mm(stroke)}, the piston stroke 2 e (each piston moves "
+                "up to e inwards: a shorter reactor lets it reach the other piston's place)"
+            )
+        raise ParameterError(name, _shown(name, shown), admissible)
 
     @property
     def area(self):

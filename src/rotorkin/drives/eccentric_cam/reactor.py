@@ -21,7 +21,8 @@ __all__ = ["opposed_piston", "closed_forms", "reactor_state"]
 
 def opposed_piston(params: ec.EccentricCam, **machine) -> op.OpposedPiston:
     """The reactor on the drive ``params``: the machine's fields ``machine`` (SI) and the
-    drive's smallest gap change ``Delta_min = 2 (sqrt(Rc^2 - e^2) - Rc)`` (eq. 5).
+    drive's smallest gap change ``Delta_min = 2 (sqrt(Rc^2 - e^2) - Rc)`` (eq. 5) and
+    piston stroke ``2 e`` (the reactor is at least that long).
 
     Parameters
     ----------
@@ -35,7 +36,11 @@ def opposed_piston(params: ec.EccentricCam, **machine) -> op.OpposedPiston:
     -------
     OpposedPiston
     """
-    return op.OpposedPiston(**machine, gap_change_min=ec.gap_change_extreme(params)[0])
+    return op.OpposedPiston(
+        **machine,
+        gap_change_min=ec.gap_change_extreme(params)[0],
+        piston_stroke=ec.piston_stroke(params),
+    )
 
 
 def reactor_state(params: ec.EccentricCam, reactor: op.OpposedPiston, inertia, speed,

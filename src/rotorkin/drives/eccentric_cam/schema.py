@@ -19,34 +19,91 @@ from rotorkin.core.schema import (
     Section,
     Speed,
 )
+from rotorkin.drives.bounds import (
+    INERTIA_MAX,
+    LENGTH_MAX,
+    PRESSURE_MAX,
+    PRESSURE_MIN,
+    speed_fluctuation,
+)
 
 
 class DiscCamSection(Section):
-    thickness: Length = Field("20 mm", description="axial thickness of each eccentric disc")
+    thickness: Length = Field(
+        "20 mm",
+        description="axial thickness of each eccentric disc (0 < thickness <= 2 disc_radius, "
+        "the disc's diameter)",
+    )
 
 
 # --- double eccentric cams ------------------------------------------------------------------
 class EccentricDrive(Section):
     type: Literal["eccentric_cam"]
-    disc_radius: Length = Field(description="radius R of each eccentric disc")
-    eccentricity: Length = Field(description="eccentricity e of the disc centre from the shaft")
+    disc_radius: Length = Field(
+        ge=0.001, le=LENGTH_MAX, description="radius R of each eccentric disc (1 mm <= R <= 10 m)"
+    )
+    eccentricity: Length = Field(
+        gt=0.0,
+        le=LENGTH_MAX,
+        description="eccentricity e of the disc centre from the shaft (0 < e < disc_radius)",
+    )
     follower: Literal["knife_edge", "flat", "roller"] = Field(
         "knife_edge", description="piston follower: knife_edge, flat or roller"
     )
-    roller_radius: Length = Field("0 mm", description="roller radius r (follower = roller)")
+    roller_radius: Length = Field(
+        "0 mm",
+        ge=0.0,
+        le=LENGTH_MAX,
+        description="roller radius r (follower = roller) (0 <= r <= 10 m; > 0 for a roller)",
+    )
 
 
 class EccentricMachine(InertialSection):
-    inertia_shaft: Inertia = Field("0.032 kg*m^2", description="inertia of the input shaft")
-    device_length: Length = Field(
-        "1000 mm", description="length L of the reactor between the pistons"
+    inertia_shaft: Inertia = Field(
+        "0.032 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="inertia of the input shaft (0 <= J <= 1e5 kg*m^2)",
     )
-    bore: Length = Field("50 mm", description="piston and tube bore diameter")
+    speed_fluctuation: float = speed_fluctuation()
+    device_length: Length = Field(
+        "1000 mm",
+        ge=0.001,
+        le=100.0,
+        description="length L of the reactor between the pistons (1 mm <= L <= 100 m; the "
+        "pistons keep a gap: L > the gap change of the drive)",
+    )
+    bore: Length = Field(
+        "50 mm",
+        ge=0.001,
+        le=LENGTH_MAX,
+        description="piston and tube bore diameter (1 mm <= bore <= 10 m)",
+    )
     fluid: Literal["gas", "liquid"] = Field("gas", description="working fluid: gas or liquid")
-    initial_pressure: Pressure = Field("1 bar", description="pressure at the starting gap")
-    polytropic_exponent: float = Field(1.0, description="exponent n of the gas, p V^n = const")
-    bulk_modulus: Modulus = Field("1.5 GPa", description="bulk modulus K of the liquid")
-    piston_mass: Mass = Field("0.5 kg", description="mass of each piston with its rod")
+    initial_pressure: Pressure = Field(
+        "1 bar",
+        ge=PRESSURE_MIN,
+        le=PRESSURE_MAX,
+        description="pressure at the starting gap (0.01 bar <= p <= 1000 bar, absolute)",
+    )
+    polytropic_exponent: float = Field(
+        1.0,
+        ge=1.0,
+        le=5.0 / 3.0,
+        description="exponent n of the gas, p V^n = const (1 <= n <= 5/3)",
+    )
+    bulk_modulus: Modulus = Field(
+        "1.5 GPa",
+        ge=1e6,
+        le=1e12,
+        description="bulk modulus K of the liquid (1 MPa <= K <= 1000 GPa)",
+    )
+    piston_mass: Mass = Field(
+        "0.5 kg",
+        ge=0.0,
+        le=1e4,
+        description="mass of each piston with its rod (0 <= m <= 10 t)",
+    )
 
 
 class Run(RunSection):

@@ -33,7 +33,15 @@ from rotorkin.machines import opposed_piston as op
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 
-__all__ = ["evaluate", "drive_params", "machine_params", "sections", "reactor_state", "HEADLINE"]
+__all__ = [
+    "evaluate",
+    "check_cam",
+    "drive_params",
+    "machine_params",
+    "sections",
+    "reactor_state",
+    "HEADLINE",
+]
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {
@@ -210,6 +218,22 @@ def machine_params(params: ec.EccentricCam, machine: dict) -> op.OpposedPiston:
     )
 
 
+def check_cam(cfg: dict) -> None:
+    """The profile and export checks of ``rotorkin export``, without building the parts.
+
+    Calls :func:`rotorkin.drives.eccentric_cam.cad.cad_parts` with ``with_parts=False``.
+
+    Raises
+    ------
+    ParameterError
+        Named by config key (``cam.roller_radius``, ``cam.thickness``,
+        ``export.tolerance``, drive and machine keys).
+    """
+    from rotorkin.drives.eccentric_cam import cad  # cad builds on this module
+
+    cad.cad_parts(cfg, with_parts=False)
+
+
 def evaluate(cfg: dict) -> StudyResult:
     """Run the eccentric-cam reactor study on a validated config (SI values).
 
@@ -231,6 +255,7 @@ def evaluate(cfg: dict) -> StudyResult:
     """
     params = drive_params(cfg)
     machine, run = sections(cfg)
+    check_cam(cfg)
     reactor = machine_params(params, machine)
     inertia = _inertias(machine)
     speed = run["speed"]

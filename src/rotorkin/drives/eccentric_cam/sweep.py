@@ -143,7 +143,11 @@ def reasons(p, code: dict) -> np.ndarray:
         p["drive.follower"],
         p.float("drive.roller_radius"),
     )
-    machine = op.invalid_parameter(**_machine_values(p), gap_change_min=0.0)
+    machine = op.invalid_parameter(
+        **_machine_values(p),
+        gap_change_min=0.0,
+        piston_stroke=2.0 * p.float("drive.eccentricity"),
+    )
     for section, bad in (("drive", drive), ("machine", machine)):
         for name in np.unique(bad[bad != ""]):
             flag(r, bad == name, code.get(f"{section}.{name}", code["other"]))

@@ -18,40 +18,131 @@ from rotorkin.core.schema import (
     Speed,
     Torque,
 )
+from rotorkin.drives.bounds import (
+    INERTIA_MAX,
+    LENGTH_MAX,
+    PRESSURE_MAX,
+    PRESSURE_MIN,
+    TORQUE_MAX,
+    speed_fluctuation,
+)
+
+#: Admissible mechanism coefficient lambda [-]: near 1 the guide bar's speed ratio
+#: (1 + lambda) / (1 - lambda) grows without bound.
+LAMBDA_MIN, LAMBDA_MAX = 0.01, 0.99
+#: Admissible gear ratios u and i12 [-].
+GEAR_RATIO_MIN, GEAR_RATIO_MAX = 0.1, 10.0
+TWO_PI = 6.283185307179586
 
 
 # --- rotating guide bars + gears ------------------------------------------------------------
 class GuideBarDrive(Section):
     type: Literal["guide_bar"]
     lam: float = Field(
-        alias="lambda", description="mechanism coefficient lambda = d/a (frame over crank length)"
+        alias="lambda",
+        ge=LAMBDA_MIN,
+        le=LAMBDA_MAX,
+        description="mechanism coefficient lambda = d/a (frame over crank length) "
+        "(0.01 <= lambda <= 0.99: at 1 the guide bar stops turning fully round)",
     )
-    gear_ratio: float = Field(description="ratio u from the guide-bar gear to the impeller gear")
-    input_gear_ratio: float = Field(2.0, description="ratio i12 = z2/z1 from input gear 1")
-    phase: Angle = Field("180 deg", description="installation phase Sigma = sigma_2 - sigma_1")
+    gear_ratio: float = Field(
+        ge=GEAR_RATIO_MIN,
+        le=GEAR_RATIO_MAX,
+        description="ratio u from the guide-bar gear to the impeller gear (0.1 <= u <= 10)",
+    )
+    input_gear_ratio: float = Field(
+        2.0,
+        ge=GEAR_RATIO_MIN,
+        le=GEAR_RATIO_MAX,
+        description="ratio i12 = z2/z1 from input gear 1 (0.1 <= i12 <= 10)",
+    )
+    phase: Angle = Field(
+        "180 deg",
+        ge=-TWO_PI,
+        le=TWO_PI,
+        description="installation phase Sigma = sigma_2 - sigma_1 (-360 deg <= Sigma <= 360 deg, "
+        "not a multiple of 360 deg)",
+    )
     driver: Literal["crank", "guide"] = Field(
         "crank", description="driving member: crank (paper Fig. 2) or guide (Fig. 4)"
     )
 
 
 class GuideBarLoads(Section):
-    impeller_torque_1: Torque = Field("10 N*m", description="resisting torque M7 on impeller 1")
-    impeller_torque_2: Torque = Field("10 N*m", description="resisting torque M8 on impeller 2")
-    suction_pressure: Pressure = Field("1 bar", description="pressure at the inlet port")
-    discharge_pressure: Pressure = Field("6 bar", description="pressure at the outlet port")
+    impeller_torque_1: Torque = Field(
+        "10 N*m",
+        ge=0.0,
+        le=TORQUE_MAX,
+        description="resisting torque M7 on impeller 1 (0 <= M7 <= 1e6 N*m)",
+    )
+    impeller_torque_2: Torque = Field(
+        "10 N*m",
+        ge=0.0,
+        le=TORQUE_MAX,
+        description="resisting torque M8 on impeller 2 (0 <= M8 <= 1e6 N*m)",
+    )
+    suction_pressure: Pressure = Field(
+        "1 bar",
+        ge=PRESSURE_MIN,
+        le=PRESSURE_MAX,
+        description="pressure at the inlet port (0.01 bar <= p <= 1000 bar, absolute)",
+    )
+    discharge_pressure: Pressure = Field(
+        "6 bar",
+        ge=PRESSURE_MIN,
+        le=PRESSURE_MAX,
+        description="pressure at the outlet port (0.01 bar <= p <= 1000 bar, absolute)",
+    )
 
 
 class VanePumpMachine(InertialSection):
-    inertia_shaft: Inertia = Field("0.001 kg*m^2", description="inertia of the input shaft")
-    vanes_per_impeller: int = Field(2, description="vanes on each impeller")
-    vane_angle: Angle | None = Field(
-        None, description="angular width of a vane; default: the drive's gamma_0"
+    inertia_shaft: Inertia = Field(
+        "0.001 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="inertia of the input shaft (0 <= J <= 1e5 kg*m^2)",
     )
-    hub_radius: Length = Field("30 mm", description="impeller hub radius")
-    casing_radius: Length = Field("80 mm", description="casing (vane tip) radius")
-    axial_width: Length = Field("40 mm", description="axial width of the working space")
-    inertia_impeller_1: Inertia = Field("0.005 kg*m^2", description="inertia of impeller 1")
-    inertia_impeller_2: Inertia = Field("0.005 kg*m^2", description="inertia of impeller 2")
+    speed_fluctuation: float = speed_fluctuation()
+    vanes_per_impeller: int = Field(
+        2, ge=1, le=24, description="vanes on each impeller (1 <= Z <= 24, room for the swing)"
+    )
+    vane_angle: Angle | None = Field(
+        None,
+        gt=0.0,
+        lt=3.141592653589793,
+        description="angular width of a vane; default: the drive's gamma_0 "
+        "(0 deg < vane_angle < 180 deg, and Z (2 vane_angle + swing) <= 360 deg)",
+    )
+    hub_radius: Length = Field(
+        "30 mm",
+        ge=0.001,
+        le=LENGTH_MAX,
+        description="impeller hub radius (1 mm <= hub_radius < casing_radius)",
+    )
+    casing_radius: Length = Field(
+        "80 mm",
+        ge=0.001,
+        le=LENGTH_MAX,
+        description="casing (vane tip) radius (hub_radius < casing_radius <= 10 m)",
+    )
+    axial_width: Length = Field(
+        "40 mm",
+        ge=0.001,
+        le=LENGTH_MAX,
+        description="axial width of the working space (1 mm <= axial_width <= 10 m)",
+    )
+    inertia_impeller_1: Inertia = Field(
+        "0.005 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="inertia of impeller 1 (0 <= J <= 1e5 kg*m^2)",
+    )
+    inertia_impeller_2: Inertia = Field(
+        "0.005 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="inertia of impeller 2 (0 <= J <= 1e5 kg*m^2)",
+    )
 
 
 class Run(RunSection):

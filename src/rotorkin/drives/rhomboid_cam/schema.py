@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import Field
 
@@ -19,48 +19,146 @@ from rotorkin.core.schema import (
     Temperature,
     Torque,
 )
+from rotorkin.drives.bounds import (
+    INERTIA_MAX,
+    LENGTH_MAX,
+    PRESSURE_MAX,
+    PRESSURE_MIN,
+    TEMPERATURE_MAX,
+    TEMPERATURE_MIN,
+    TORQUE_MAX,
+    speed_fluctuation,
+)
+
+#: Most harmonics a3.. (b3..) of the law psi(alpha).
+MAX_HARMONICS = 20  # as rotorkin.drives.rhomboid_cam.kinematics.MAX_HARMONICS
+#: One coefficient of psi(alpha) [rad].
+Coefficient = Annotated[float, Field(ge=-3.141592653589793, le=3.141592653589793)]
 
 
 class PlanarCamSection(Section):
-    roller_radius: Length = Field("10 mm", description="radius of the rollers on the cam")
-    thickness: Length = Field("20 mm", description="axial thickness of the cam plate")
+    roller_radius: Length = Field(
+        "10 mm",
+        ge=0.0,
+        le=1.0,
+        description="radius of the rollers on the cam (0 <= roller_radius <= 1 m, no undercut "
+        "of the cam, checked as by `rotorkin export`)",
+    )
+    thickness: Length = Field(
+        "20 mm",
+        description="axial thickness of the cam plate (0 < thickness <= the cam's outer diameter)",
+    )
 
 
 # --- rhomboid linkage on a cam --------------------------------------------------------------
 class RhomboidDrive(Section):
     type: Literal["rhomboid_cam"]
-    link_length: Length = Field(description="side 2l of the rhomboid")
-    psi_min: Angle = Field(description="smallest angle psi_min between the blade axes")
-    a: list[float] = Field(
-        default_factory=list, description="cosine coefficients a3, a5, ... of psi(alpha) [rad]"
+    link_length: Length = Field(
+        ge=0.001, le=LENGTH_MAX, description="side 2l of the rhomboid (1 mm <= 2l <= 10 m)"
     )
-    b: list[float] = Field(
-        default_factory=list, description="sine coefficients b3, b5, ... of psi(alpha) [rad]"
+    psi_min: Angle = Field(
+        gt=0.0,
+        lt=1.5707963267948966,
+        description="smallest angle psi_min between the blade axes (0 deg < psi_min < 90 deg)",
+    )
+    a: list[Coefficient] = Field(
+        default_factory=list,
+        max_length=MAX_HARMONICS,
+        description="cosine coefficients a3, a5, ... of psi(alpha) [rad] (at most 20, each "
+        "-pi <= a <= pi rad, psi kept within its range)",
+    )
+    b: list[Coefficient] = Field(
+        default_factory=list,
+        max_length=MAX_HARMONICS,
+        description="sine coefficients b3, b5, ... of psi(alpha) [rad] (at most 20, each "
+        "-pi <= b <= pi rad, psi kept within its range)",
     )
 
 
 class RhomboidLoads(Section):
-    torque_high: Torque = Field("100 N*m", description="torque level M1 of the linear blade model")
-    torque_low: Torque = Field("40 N*m", description="torque level M2 of the linear blade model")
+    torque_high: Torque = Field(
+        "100 N*m",
+        ge=-TORQUE_MAX,
+        le=TORQUE_MAX,
+        description="torque level M1 of the linear blade model (|M1| <= 1e6 N*m)",
+    )
+    torque_low: Torque = Field(
+        "40 N*m",
+        ge=-TORQUE_MAX,
+        le=TORQUE_MAX,
+        description="torque level M2 of the linear blade model (|M2| <= 1e6 N*m)",
+    )
     pressure_model: Literal["linear", "isothermal"] = Field(
         "linear", description="blade loads: the paper's linear torque model or isothermal gas"
     )
     charge_pressure: Pressure = Field(
-        "2 bar", description="isothermal model: pressure at the largest volume, cold"
+        "2 bar",
+        ge=PRESSURE_MIN,
+        le=PRESSURE_MAX,
+        description="isothermal model: pressure at the largest volume, cold "
+        "(0.01 bar <= p <= 1000 bar, absolute)",
     )
-    hot_temperature: Temperature = Field("900 K", description="isothermal model: expansion")
-    cold_temperature: Temperature = Field("330 K", description="isothermal model: compression")
+    hot_temperature: Temperature = Field(
+        "900 K",
+        ge=TEMPERATURE_MIN,
+        le=TEMPERATURE_MAX,
+        description="isothermal model: expansion (1 K <= T_hot <= 5000 K)",
+    )
+    cold_temperature: Temperature = Field(
+        "330 K",
+        ge=TEMPERATURE_MIN,
+        le=TEMPERATURE_MAX,
+        description="isothermal model: compression (1 K <= T_cold <= 5000 K)",
+    )
 
 
 class RotaryBladeMachine(InertialSection):
-    inertia_shaft: Inertia = Field("0.01 kg*m^2", description="inertia of the input shaft")
-    blades_per_pair: int = Field(2, description="blades on each of the two blade pairs")
-    blade_thickness: Angle = Field("10 deg", description="angular thickness of one blade")
-    inner_radius: Length = Field("30 mm", description="hub radius of the working space")
-    outer_radius: Length = Field("90 mm", description="casing radius of the working space")
-    axial_width: Length = Field("50 mm", description="axial width of the working space")
-    inertia_blade_pair_1: Inertia = Field("0.005 kg*m^2", description="inertia of blade pair 1")
-    inertia_blade_pair_2: Inertia = Field("0.005 kg*m^2", description="inertia of blade pair 2")
+    inertia_shaft: Inertia = Field(
+        "0.01 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="inertia of the input shaft (0 <= J <= 1e5 kg*m^2)",
+    )
+    speed_fluctuation: float = speed_fluctuation()
+    blades_per_pair: int = Field(
+        2, ge=1, le=12, description="blades on each of the two blade pairs (1 <= B <= 12)"
+    )
+    blade_thickness: Angle = Field(
+        "10 deg",
+        gt=0.0,
+        lt=1.5707963267948966,
+        description="angular thickness of one blade (0 deg < blade_thickness < psi_min)",
+    )
+    inner_radius: Length = Field(
+        "30 mm",
+        ge=0.001,
+        le=LENGTH_MAX,
+        description="hub radius of the working space (1 mm <= inner_radius < outer_radius)",
+    )
+    outer_radius: Length = Field(
+        "90 mm",
+        ge=0.001,
+        le=LENGTH_MAX,
+        description="casing radius of the working space (inner_radius < outer_radius <= 10 m)",
+    )
+    axial_width: Length = Field(
+        "50 mm",
+        ge=0.001,
+        le=LENGTH_MAX,
+        description="axial width of the working space (1 mm <= axial_width <= 10 m)",
+    )
+    inertia_blade_pair_1: Inertia = Field(
+        "0.005 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="inertia of blade pair 1 (0 <= J <= 1e5 kg*m^2)",
+    )
+    inertia_blade_pair_2: Inertia = Field(
+        "0.005 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="inertia of blade pair 2 (0 <= J <= 1e5 kg*m^2)",
+    )
 
 
 class Run(RunSection):

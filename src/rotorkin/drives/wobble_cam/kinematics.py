@@ -132,6 +132,11 @@ CHECKED = (
     "sphere_radius",
     "spin_a",
 )
+#: Largest |spin_ratio| [-]: the plate turns at most 20 times per shaft turn.
+SPIN_RATIO_MAX = 20.0
+#: Smallest plate tilt phi [rad] (0.5 deg, where the paper's Fig. 13 starts): towards 0 the
+#: chamber angles stop changing and the pistons' layout needs an unbounded compression ratio.
+PLATE_TILT_MIN = float(np.radians(0.5))
 #: Shaft angles on which a spin-law correction is checked for a monotone spin.
 _SPIN_CHECK = np.linspace(0.0, 2.0 * np.pi, 4097)
 
@@ -165,10 +170,10 @@ def violation(
     ndarray of int16
         0 where admissible, else ``1 + CHECKED.index(name)`` of the first
         parameter (in the order of :data:`CHECKED`) out of range: N even and >= 2;
-        alpha in :func:`roller_axis_angle_limits`; ``0 < phi <
-        max_plate_tilt(alpha, N)`` (eq. 20); n a finite nonzero multiple of 0.5
-        (the motion repeats every shaft turn); r > 0; the correction ``spin_a``,
-        ``spin_b`` (shared by all designs) keeps the spin monotone,
+        alpha in :func:`roller_axis_angle_limits`; ``PLATE_TILT_MIN <= phi <
+        max_plate_tilt(alpha, N)`` (0.5 deg, eq. 20); n a nonzero multiple of 0.5
+        (the motion repeats every shaft turn) with ``|n| <= SPIN_RATIO_MAX``; r > 0;
+        the correction ``spin_a``, ``spin_b`` (shared by all designs) keeps the spin monotone,
         ``sign(n) dvarphi/dtheta > 0`` on 4097 angles of a turn (:func:`slowest_spin`).
     """
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -180,13 +185,16 @@ def violation(
         p = np.asarray(plate_tilt, dtype=float)
         lim = max_plate_tilt(a, n_f)
         n = np.asarray(spin_ratio, dtype=float)
-        half_int = np.isfinite(n) & (n != 0) & (np.abs(2.0 * n - np.round(2.0 * n)) < 1e-9)
+        twice = np.round(2.0 * n)
+        half_int = (
+            (np.abs(n) <= SPIN_RATIO_MAX) & (twice != 0.0) & (np.abs(2.0 * n - twice) < 1e-9)
+        )
         r = np.asarray(sphere_radius, dtype=float)
         return first_violation(
             [
                 ~ok_n,
                 ~(np.isfinite(a) & (lo < a) & (a < hi)),
-                ~(np.isfinite(p) & (p > 0.0) & (p < lim)),
+                ~(np.isfinite(p) & (p >= PLATE_TILT_MIN) & (p < lim)),
                 ~half_int,
                 ~(np.isfinite(r) & (r > 0.0)),
                 ~(slowest_spin(n, spin_a, spin_b) > 0.0),
@@ -224,15 +232,15 @@ def _raise_violation(params, name):
         raise ParameterError(
             name,
             fmt_deg(float(params.plate_tilt)),
-            f"0 deg < plate_tilt < {np.degrees(lim):.2f} deg (eq. 20 limit at "
+            f"0.5 deg <= plate_tilt < {np.degrees(lim):.2f} deg (eq. 20 limit at "
             f"roller_axis_angle = {fmt_deg(a)}, {n_p} pistons per rotor)",
         )
     if name == "spin_ratio":
         raise ParameterError(
             name,
             f"{float(params.spin_ratio):g}",
-            "a finite nonzero multiple of 0.5 (e.g. -2, the paper's law), so that "
-            "the motion repeats every shaft turn",
+            f"a nonzero multiple of 0.5 with |spin_ratio| <= {SPIN_RATIO_MAX:g} (e.g. -2, the "
+            "paper's law), so that the motion repeats every shaft turn",
         )
     if name == "sphere_radius":
         raise ParameterError(name, fmt_mm(float(params.sphere_radius)), "sphere_radius > 0 mm")

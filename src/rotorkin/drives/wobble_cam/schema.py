@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import Field
 
@@ -18,70 +18,183 @@ from rotorkin.core.schema import (
     Section,
     Volume,
 )
+from rotorkin.drives.bounds import INERTIA_MAX, speed_fluctuation
+from rotorkin.drives.wobble_cam.kinematics import PLATE_TILT_MIN, SPIN_RATIO_MAX
+
+#: Most harmonics of the spin-law correction (spin_a, spin_b): a work cap (each harmonic is
+#: evaluated on every sampled angle); synthesised laws use a few dozen.
+MAX_SPIN_HARMONICS = 256
+HALF_PI = 1.5707963267948966
+#: Smallest angle between the roller groups (and 180 deg less the largest) [rad], 1 deg: with
+#: 2-piston rotors eq. 20 admits alpha down to 0, where the plate tilt limit degenerates.
+ROLLER_AXIS_ANGLE_MIN = 0.017453292519943295
+#: Largest compression ratio [-]: 1e6 stands for pistons of zero width (the drive alone).
+COMPRESSION_RATIO_MAX = 1e6
+#: One coefficient of the spin-law correction [rad].
+Coefficient = Annotated[float, Field(ge=-10.0, le=10.0)]
 
 
 class WobbleCamSection(Section):
-    roller_radius: Length = Field("4 mm", description="radius of the rollers in the grooves")
+    roller_radius: Length = Field(
+        "4 mm",
+        gt=0.0,
+        le=0.1,
+        description="radius of the rollers in the grooves (0 < roller_radius <= 100 mm; "
+        "below the groove curvature radius, checked as by `rotorkin export`)",
+    )
     shell_thickness: Length = Field(
-        "12 mm", description="radial thickness of the spherical cam shell, centred on r"
+        "12 mm",
+        gt=0.0,
+        le=1.0,
+        description="radial thickness of the spherical cam shell, centred on r "
+        "(0 < shell_thickness <= 1 m, below sphere_radius)",
     )
     groove_depth: Length = Field(
-        "8 mm", description="radial depth of the grooves, from the shell's inner surface"
+        "8 mm",
+        gt=0.0,
+        le=1.0,
+        description="radial depth of the grooves, from the shell's inner surface "
+        "(0 < groove_depth <= 1 m, below shell_thickness)",
     )
 
 
 # --- wobble plate + spherical cam -----------------------------------------------------------
 class WobbleDrive(Section):
     type: Literal["wobble_cam"]
-    plate_tilt: Angle = Field(description="wobble plate tilt phi on the Z-shaft (paper Table 1)")
+    plate_tilt: Angle = Field(
+        ge=PLATE_TILT_MIN,
+        lt=HALF_PI,
+        description="wobble plate tilt phi on the Z-shaft (paper Table 1) (0.5 deg <= plate_tilt "
+        "< the eq. 20 limit of roller_axis_angle, 65.53 deg at 90 deg)",
+    )
     roller_axis_angle: Angle = Field(
-        "90 deg", description="angle alpha between the two roller groups in the plate plane"
+        "90 deg",
+        ge=ROLLER_AXIS_ANGLE_MIN,
+        le=2.0 * HALF_PI - ROLLER_AXIS_ANGLE_MIN,
+        description="angle alpha between the two roller groups in the plate plane "
+        "(90 deg - 180 deg / pistons_per_rotor < alpha < 90 deg + 180 deg / pistons_per_rotor, "
+        "and 1 deg <= alpha <= 179 deg)",
     )
-    spin_ratio: float = Field(-2.0, description="plate spin law varphi = spin_ratio * theta")
+    spin_ratio: float = Field(
+        -2.0,
+        ge=-SPIN_RATIO_MAX,
+        le=SPIN_RATIO_MAX,
+        description="plate spin law varphi = spin_ratio * theta (a nonzero multiple of 0.5, "
+        "-20 <= spin_ratio <= 20)",
+    )
     sphere_radius: Length = Field(
-        "60 mm", description="radius r of the roller centres on the spherical cam"
+        "60 mm",
+        ge=0.001,
+        le=10.0,
+        description="radius r of the roller centres on the spherical cam (1 mm <= r <= 10 m)",
     )
-    spin_a: list[float] = Field(
+    spin_a: list[Coefficient] = Field(
         default_factory=list,
+        max_length=MAX_SPIN_HARMONICS,
         description="cosine coefficients of harmonics 1, 2, ... of a periodic correction "
-        "added to the spin law [rad]",
+        "added to the spin law [rad] (at most 256, each -10 <= c <= 10 rad, spin kept monotone)",
     )
-    spin_b: list[float] = Field(
+    spin_b: list[Coefficient] = Field(
         default_factory=list,
-        description="sine coefficients of harmonics 1, 2, ... of the spin-law correction [rad]",
+        max_length=MAX_SPIN_HARMONICS,
+        description="sine coefficients of harmonics 1, 2, ... of the spin-law correction [rad] "
+        "(at most 256, each -10 <= c <= 10 rad, spin kept monotone)",
     )
 
 
 class WobbleMachine(InertialSection):
     compression_ratio: float = Field(
         10.0,
+        gt=1.0,
+        le=COMPRESSION_RATIO_MAX,
         description="compression ratio eps = delta_max / delta_min of the chamber angles "
-        "(Table 1); the geometric volume ratio when there is no clearance volume",
+        "(Table 1); the geometric volume ratio when there is no clearance volume "
+        "(1 < eps <= 1e6; eps = 1e6 stands for zero-width pistons, the drive alone; above the "
+        "zero-width ratio of plate_tilt and roller_axis_angle)",
     )
-    pistons_per_rotor: int = Field(4, description="vane pistons on each rotor")
+    pistons_per_rotor: int = Field(
+        4, ge=2, le=24, description="vane pistons on each rotor (even, 2 <= N <= 24)"
+    )
     section: Literal["rectangular", "circular"] = Field(
         "rectangular", description="cylinder section: rectangular annulus or circular torus"
     )
-    inner_radius: Length = Field("40 mm", description="inner radius of a rectangular annulus")
-    outer_radius: Length = Field("80 mm", description="outer radius of a rectangular annulus")
-    axial_width: Length = Field("40 mm", description="axial width of a rectangular annulus")
-    mean_radius: Length = Field("60 mm", description="mean radius of a circular torus")
-    section_diameter: Length = Field("40 mm", description="section diameter of a circular torus")
-    clearance_volume: Volume = Field("0 cm^3", description="clearance volume of each chamber")
-    inertia_shaft: Inertia = Field(
-        "0.004 kg*m^2", description="inertia of the input shaft with the plate and rollers"
+    inner_radius: Length = Field(
+        "40 mm",
+        ge=0.001,
+        le=10.0,
+        description="inner radius of a rectangular annulus (1 mm <= inner_radius < outer_radius)",
     )
-    inertia_rotor_1: Inertia = Field("0.008 kg*m^2", description="inertia of rotor 1")
-    inertia_rotor_2: Inertia = Field("0.008 kg*m^2", description="inertia of rotor 2")
+    outer_radius: Length = Field(
+        "80 mm",
+        ge=0.001,
+        le=10.0,
+        description="outer radius of a rectangular annulus (inner_radius < outer_radius <= 10 m)",
+    )
+    axial_width: Length = Field(
+        "40 mm",
+        ge=0.001,
+        le=10.0,
+        description="axial width of a rectangular annulus (1 mm <= axial_width <= 10 m)",
+    )
+    mean_radius: Length = Field(
+        "60 mm",
+        ge=0.001,
+        le=10.0,
+        description="mean radius of a circular torus (1 mm <= mean_radius <= 10 m)",
+    )
+    section_diameter: Length = Field(
+        "40 mm",
+        ge=0.001,
+        le=10.0,
+        description="section diameter of a circular torus "
+        "(1 mm <= section_diameter < 2 mean_radius)",
+    )
+    clearance_volume: Volume = Field(
+        "0 cm^3",
+        ge=0.0,
+        le=1.0,
+        description="clearance volume of each chamber (0 <= clearance_volume <= 1 m^3)",
+    )
+    inertia_shaft: Inertia = Field(
+        "0.004 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="inertia of the input shaft with the plate and rollers (0 <= J <= 1e5 kg*m^2)",
+    )
+    inertia_rotor_1: Inertia = Field(
+        "0.008 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="inertia of rotor 1 (0 <= J <= 1e5 kg*m^2)",
+    )
+    inertia_rotor_2: Inertia = Field(
+        "0.008 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="inertia of rotor 2 (0 <= J <= 1e5 kg*m^2)",
+    )
+    speed_fluctuation: float = speed_fluctuation()
 
 
 class EngineLoads(Section):
-    ambient_pressure: Pressure = Field("1 bar", description="intake and exhaust pressure")
+    ambient_pressure: Pressure = Field(
+        "1 bar",
+        ge=1e3,
+        le=1e7,
+        description="intake and exhaust pressure (0.01 bar <= p <= 100 bar, absolute)",
+    )
     polytropic_exponent: float = Field(
-        1.35, description="exponent n of compression and expansion, p V^n = const"
+        1.35,
+        gt=1.0,
+        le=5.0 / 3.0,
+        description="exponent n of compression and expansion, p V^n = const (1 < n <= 5/3)",
     )
     heat_per_cycle: Energy = Field(
-        "90 J", description="heat added at minimum volume, per chamber and four-stroke cycle"
+        "90 J",
+        ge=0.0,
+        le=1e6,
+        description="heat added at minimum volume, per chamber and four-stroke cycle "
+        "(0 <= Q <= 1 MJ)",
     )
 
 
