@@ -78,7 +78,10 @@ def evaluate(cfg: dict):
     -------
     rotorkin.studies.StudyResult
     """
-    return get(cfg["drive"]["type"]).study(cfg)
+    spec = get(cfg["drive"]["type"])
+    if spec.check_cam is not None:
+        spec.check_cam(cfg)  # what export refuses, every command refuses
+    return spec.study(cfg)
 
 
 def synthesize(

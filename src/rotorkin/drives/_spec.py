@@ -76,6 +76,10 @@ class DriveSpec:
     cad_write : callable, optional
         ``cad_write(cfg, fmt, folder, name) -> list[Path]`` for parts that are not
         planar (writes its own files).
+    check_cam : callable, optional
+        ``check_cam(cfg)``: the cam and part checks of ``export`` without building
+        anything; :func:`rotorkin.drives.evaluate` makes them before the study, so every
+        command refuses what export would.
     check_rows : callable, optional
         ``check_rows(cfg) -> [(check, value)]``: the cam checks printed by ``export``;
         default: the rows of the planar profile checks.
@@ -100,6 +104,7 @@ class DriveSpec:
     scene: ModuleType | None = None
     cad_parts: Callable | None = None
     cad_write: Callable | None = None
+    check_cam: Callable | None = None
     check_rows: Callable | None = None
 
     def __post_init__(self):

@@ -121,9 +121,11 @@ def invalid_parameter(
     dmin = np.asarray(gap_change_min, dtype=float)
     with np.errstate(invalid="ignore"):
         checks = (
-            ("device_length", positive(device_length) | (
-                np.asarray(device_length, dtype=float) < np.asarray(piston_stroke, dtype=float)
-            )),
+            (
+                "device_length",
+                positive(device_length)
+                | (np.asarray(device_length, dtype=float) < np.asarray(piston_stroke, dtype=float)),
+            ),
             ("bore", positive(bore)),
             ("fluid", ~np.isin(np.asarray(fluid), FLUIDS)),
             ("initial_pressure", positive(initial_pressure)),

@@ -6,7 +6,7 @@ from rotorkin.drives.eccentric_cam import cam as eccentric
 from rotorkin.drives.eccentric_cam.study import drive_params
 from rotorkin.render.cad import check_thickness, check_tolerance
 
-__all__ = ["cad_parts"]
+__all__ = ["cad_parts", "check_cam"]
 
 
 def cad_parts(cfg: dict, with_parts: bool = True):
@@ -22,3 +22,12 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     check = eccentric.profile_check(params)
     parts = eccentric.cam_parts(params, thickness, tol) if with_parts else []
     return parts, [("eccentric discs", check)]
+
+
+def check_cam(cfg: dict) -> None:
+    """The profile and part checks of ``rotorkin export``, without building the parts.
+
+    ``rotorkin run`` makes them too (through :func:`rotorkin.drives.evaluate`), so a
+    config that export would refuse is refused by every command, in the same line.
+    """
+    cad_parts(cfg, with_parts=False)

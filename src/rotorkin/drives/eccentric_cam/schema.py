@@ -6,6 +6,13 @@ from typing import Literal
 
 from pydantic import Field
 
+from rotorkin.core.bounds import (
+    INERTIA_MAX,
+    LENGTH_MAX,
+    PRESSURE_MAX,
+    PRESSURE_MIN,
+    speed_fluctuation,
+)
 from rotorkin.core.schema import (
     EmptySection,
     ExportSection,
@@ -18,13 +25,6 @@ from rotorkin.core.schema import (
     RunSection,
     Section,
     Speed,
-)
-from rotorkin.drives.bounds import (
-    INERTIA_MAX,
-    LENGTH_MAX,
-    PRESSURE_MAX,
-    PRESSURE_MIN,
-    speed_fluctuation,
 )
 
 

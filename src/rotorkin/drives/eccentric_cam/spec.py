@@ -28,4 +28,5 @@ SPEC = DriveSpec(
     },
     scene=scene,
     cad_parts=cad.cad_parts,
+    check_cam=cad.check_cam,
 )

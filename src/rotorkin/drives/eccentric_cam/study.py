@@ -35,7 +35,6 @@ from rotorkin.studies.helpers import angle_grid, build_params, time_domain, unde
 
 __all__ = [
     "evaluate",
-    "check_cam",
     "drive_params",
     "machine_params",
     "sections",
@@ -218,22 +217,6 @@ def machine_params(params: ec.EccentricCam, machine: dict) -> op.OpposedPiston:
     )
 
 
-def check_cam(cfg: dict) -> None:
-    """The profile and export checks of ``rotorkin export``, without building the parts.
-
-    Calls :func:`rotorkin.drives.eccentric_cam.cad.cad_parts` with ``with_parts=False``.
-
-    Raises
-    ------
-    ParameterError
-        Named by config key (``cam.roller_radius``, ``cam.thickness``,
-        ``export.tolerance``, drive and machine keys).
-    """
-    from rotorkin.drives.eccentric_cam import cad  # cad builds on this module
-
-    cad.cad_parts(cfg, with_parts=False)
-
-
 def evaluate(cfg: dict) -> StudyResult:
     """Run the eccentric-cam reactor study on a validated config (SI values).
 
@@ -255,7 +238,6 @@ def evaluate(cfg: dict) -> StudyResult:
     """
     params = drive_params(cfg)
     machine, run = sections(cfg)
-    check_cam(cfg)
     reactor = machine_params(params, machine)
     inertia = _inertias(machine)
     speed = run["speed"]

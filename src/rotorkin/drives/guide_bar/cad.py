@@ -6,7 +6,7 @@ from rotorkin.drives.guide_bar import cam as impeller
 from rotorkin.drives.guide_bar.study import drive_params, pump_params
 from rotorkin.render.cad import check_tolerance
 
-__all__ = ["cad_parts"]
+__all__ = ["cad_parts", "check_cam"]
 
 
 def cad_parts(cfg: dict, with_parts: bool = True):
@@ -20,3 +20,12 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     pump = pump_params(cfg, params)
     tol = check_tolerance(cfg, float(pump.hub_radius))
     return (impeller.impeller_parts(params, pump, tol) if with_parts else []), []
+
+
+def check_cam(cfg: dict) -> None:
+    """The profile and part checks of ``rotorkin export``, without building the parts.
+
+    ``rotorkin run`` makes them too (through :func:`rotorkin.drives.evaluate`), so a
+    config that export would refuse is refused by every command, in the same line.
+    """
+    cad_parts(cfg, with_parts=False)

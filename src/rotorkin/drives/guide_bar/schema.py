@@ -6,6 +6,14 @@ from typing import Literal
 
 from pydantic import Field
 
+from rotorkin.core.bounds import (
+    INERTIA_MAX,
+    LENGTH_MAX,
+    PRESSURE_MAX,
+    PRESSURE_MIN,
+    TORQUE_MAX,
+    speed_fluctuation,
+)
 from rotorkin.core.schema import (
     Angle,
     ExportSection,
@@ -17,14 +25,6 @@ from rotorkin.core.schema import (
     Section,
     Speed,
     Torque,
-)
-from rotorkin.drives.bounds import (
-    INERTIA_MAX,
-    LENGTH_MAX,
-    PRESSURE_MAX,
-    PRESSURE_MIN,
-    TORQUE_MAX,
-    speed_fluctuation,
 )
 
 #: Admissible mechanism coefficient lambda [-]: near 1 the guide bar's speed ratio

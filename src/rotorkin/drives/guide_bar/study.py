@@ -39,7 +39,7 @@ from rotorkin.machines import vane_pump as vp
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 
-__all__ = ["evaluate", "check_cam", "drive_params", "pump_params", "pump_state", "HEADLINE"]
+__all__ = ["evaluate", "drive_params", "pump_params", "pump_state", "HEADLINE"]
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {
@@ -307,22 +307,6 @@ def pump_params(cfg: dict, params: gb.GuideBar | None = None) -> vp.VanePump:
     )
 
 
-def check_cam(cfg: dict) -> None:
-    """The profile and export checks of ``rotorkin export``, without building the parts.
-
-    Calls :func:`rotorkin.drives.guide_bar.cad.cad_parts` with ``with_parts=False``.
-
-    Raises
-    ------
-    ParameterError
-        Named by config key (``cam.roller_radius``, ``cam.thickness``,
-        ``export.tolerance``, drive and machine keys).
-    """
-    from rotorkin.drives.guide_bar import cad  # cad builds on this module
-
-    cad.cad_parts(cfg, with_parts=False)
-
-
 def evaluate(cfg: dict) -> StudyResult:
     """Run the guide-bar pump study on a validated config (SI values).
 
@@ -344,7 +328,6 @@ def evaluate(cfg: dict) -> StudyResult:
     """
     params = drive_params(cfg)
     machine, loads, run = _defaults(cfg)
-    check_cam(cfg)
     m7 = float(loads["impeller_torque_1"])
     m8 = float(loads["impeller_torque_2"])
     pump = pump_params(cfg, params)

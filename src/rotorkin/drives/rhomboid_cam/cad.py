@@ -8,7 +8,7 @@ from rotorkin.drives.rhomboid_cam import cam as rhomboid
 from rotorkin.drives.rhomboid_cam.study import drive_params
 from rotorkin.render.cad import check_thickness, check_tolerance
 
-__all__ = ["cad_parts"]
+__all__ = ["cad_parts", "check_cam"]
 
 
 def cad_parts(cfg: dict, with_parts: bool = True):
@@ -29,3 +29,12 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     tol = check_tolerance(cfg, check.extra["pitch_radius_min"])
     parts = [rhomboid.cam_part(params, r, thickness, tol)] if with_parts else []
     return parts, [("rhomboid cam", check)]
+
+
+def check_cam(cfg: dict) -> None:
+    """The profile and part checks of ``rotorkin export``, without building the parts.
+
+    ``rotorkin run`` makes them too (through :func:`rotorkin.drives.evaluate`), so a
+    config that export would refuse is refused by every command, in the same line.
+    """
+    cad_parts(cfg, with_parts=False)

@@ -6,6 +6,16 @@ from typing import Annotated, Literal
 
 from pydantic import Field
 
+from rotorkin.core.bounds import (
+    INERTIA_MAX,
+    LENGTH_MAX,
+    PRESSURE_MAX,
+    PRESSURE_MIN,
+    TEMPERATURE_MAX,
+    TEMPERATURE_MIN,
+    TORQUE_MAX,
+    speed_fluctuation,
+)
 from rotorkin.core.schema import (
     Angle,
     ExportSection,
@@ -18,16 +28,6 @@ from rotorkin.core.schema import (
     Speed,
     Temperature,
     Torque,
-)
-from rotorkin.drives.bounds import (
-    INERTIA_MAX,
-    LENGTH_MAX,
-    PRESSURE_MAX,
-    PRESSURE_MIN,
-    TEMPERATURE_MAX,
-    TEMPERATURE_MIN,
-    TORQUE_MAX,
-    speed_fluctuation,
 )
 
 #: Most harmonics a3.. (b3..) of the law psi(alpha).

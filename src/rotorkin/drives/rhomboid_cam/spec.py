@@ -29,4 +29,5 @@ SPEC = DriveSpec(
     synthesis_options=("max_pressure_angle", "harmonics"),
     scene=scene,
     cad_parts=cad.cad_parts,
+    check_cam=cad.check_cam,
 )

@@ -39,7 +39,6 @@ from rotorkin.studies.helpers import angle_grid, build_params, time_domain, unde
 
 __all__ = [
     "evaluate",
-    "check_cam",
     "drive_params",
     "HEADLINE",
     "Loads",
@@ -399,22 +398,6 @@ def drive_params(cfg: dict) -> rc.RhomboidCam:
     return params
 
 
-def check_cam(cfg: dict) -> None:
-    """The profile and export checks of ``rotorkin export``, without building the parts.
-
-    Calls :func:`rotorkin.drives.rhomboid_cam.cad.cad_parts` with ``with_parts=False``.
-
-    Raises
-    ------
-    ParameterError
-        Named by config key (``cam.roller_radius``, ``cam.thickness``,
-        ``export.tolerance``, drive and machine keys).
-    """
-    from rotorkin.drives.rhomboid_cam import cad  # cad builds on this module
-
-    cad.cad_parts(cfg, with_parts=False)
-
-
 def evaluate(cfg: dict) -> StudyResult:
     """Run the rotary-blade engine study on a validated config (SI values).
 
@@ -433,7 +416,6 @@ def evaluate(cfg: dict) -> StudyResult:
     """
     cfg = _defaults(cfg)
     params = drive_params(cfg)
-    check_cam(cfg)
     m1 = float(cfg["loads"]["torque_high"])
     m2 = float(cfg["loads"]["torque_low"])
     machine, loads, extremes = _machine_setup(cfg, params)

@@ -533,3 +533,14 @@ def check_rows(cfg: dict) -> list[tuple[str, str]]:
     rows.append((f"{label}: closest approach of two grooves mm",
                  _fmt(float(s["cam_groove_separation_mm"]))))  # fmt: skip
     return rows
+
+
+def check_cam(cfg: dict) -> None:
+    """The cam's proportions, checked as ``rotorkin export`` checks them.
+
+    :func:`rotorkin.drives.wobble_cam.cam.from_config`: ``cam.roller_radius``,
+    ``cam.shell_thickness`` and ``cam.groove_depth`` against the sphere radius and each
+    other. (The roller's undercut limit depends on the plate tilt, and the default roller
+    fits only near the paper's 45 deg; ``rotorkin export`` checks it.)
+    """
+    sph.from_config(cfg)

@@ -72,6 +72,7 @@ from rotorkin.drives.wobble_cam.chambers import (
     zero_width_ratio,
 )
 from rotorkin.drives.wobble_cam.fast import rotor_kinematics
+from rotorkin.drives.wobble_cam.schema import PLATE_TILT_MIN, SPIN_RATIO_MAX
 from rotorkin.machines.twin_rotor import check_pistons as _check_pistons
 from rotorkin.machines.twin_rotor import first_violation
 
@@ -132,11 +133,6 @@ CHECKED = (
     "sphere_radius",
     "spin_a",
 )
-#: Largest |spin_ratio| [-]: the plate turns at most 20 times per shaft turn.
-SPIN_RATIO_MAX = 20.0
-#: Smallest plate tilt phi [rad] (0.5 deg, where the paper's Fig. 13 starts): towards 0 the
-#: chamber angles stop changing and the pistons' layout needs an unbounded compression ratio.
-PLATE_TILT_MIN = float(np.radians(0.5))
 #: Shaft angles on which a spin-law correction is checked for a monotone spin.
 _SPIN_CHECK = np.linspace(0.0, 2.0 * np.pi, 4097)
 
@@ -186,9 +182,7 @@ def violation(
         lim = max_plate_tilt(a, n_f)
         n = np.asarray(spin_ratio, dtype=float)
         twice = np.round(2.0 * n)
-        half_int = (
-            (np.abs(n) <= SPIN_RATIO_MAX) & (twice != 0.0) & (np.abs(2.0 * n - twice) < 1e-9)
-        )
+        half_int = (np.abs(n) <= SPIN_RATIO_MAX) & (twice != 0.0) & (np.abs(2.0 * n - twice) < 1e-9)
         r = np.asarray(sphere_radius, dtype=float)
         return first_violation(
             [

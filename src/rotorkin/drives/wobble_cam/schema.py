@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Literal
 
 from pydantic import Field
 
+from rotorkin.core.bounds import INERTIA_MAX, speed_fluctuation
 from rotorkin.core.schema import (
     Angle,
     Energy,
@@ -18,8 +20,13 @@ from rotorkin.core.schema import (
     Section,
     Volume,
 )
-from rotorkin.drives.bounds import INERTIA_MAX, speed_fluctuation
-from rotorkin.drives.wobble_cam.kinematics import PLATE_TILT_MIN, SPIN_RATIO_MAX
+
+#: Largest |spin_ratio| [-]: the plate turns at most 20 times per shaft turn.
+SPIN_RATIO_MAX = 20.0
+
+#: Smallest plate tilt phi [rad] (0.5 deg, where the paper's Fig. 13 starts): towards 0 the
+#: chamber angles stop changing and the pistons' layout needs an unbounded compression ratio.
+PLATE_TILT_MIN = 0.5 * math.pi / 180.0
 
 #: Most harmonics of the spin-law correction (spin_a, spin_b): a work cap (each harmonic is
 #: evaluated on every sampled angle); synthesised laws use a few dozen.

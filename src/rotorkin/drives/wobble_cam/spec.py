@@ -39,5 +39,6 @@ SPEC = DriveSpec(
     synthesis_options=("max_pressure_angle", "harmonics"),
     scene=scene,
     cad_write=cad.export_wobble,
+    check_cam=cad.check_cam,
     check_rows=cad.check_rows,
 )

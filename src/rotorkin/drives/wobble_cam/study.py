@@ -35,7 +35,7 @@ from rotorkin.machines import twin_rotor as tr
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 
-__all__ = ["evaluate", "check_cam", "models", "HEADLINE"]
+__all__ = ["evaluate", "models", "HEADLINE"]
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {
@@ -371,25 +371,6 @@ def models(cfg: dict) -> tuple[wc.WobbleCam, tr.TwinRotor, ec.IdealCycle]:
     return params, machine, cycle
 
 
-def check_cam(cfg: dict) -> None:
-    """The cam's proportions, checked as ``rotorkin export`` checks them.
-
-    :func:`rotorkin.drives.wobble_cam.cam.from_config`: ``cam.roller_radius``,
-    ``cam.shell_thickness`` and ``cam.groove_depth`` against the sphere radius and
-    each other. The roller's undercut limit (``rotorkin export``) depends on the
-    plate tilt and is not checked here: the default 4 mm roller only fits tilts
-    near the example's.
-
-    Raises
-    ------
-    ParameterError
-        Named by config key.
-    """
-    from rotorkin.drives.wobble_cam import cam as sph
-
-    sph.from_config(cfg)
-
-
 def evaluate(cfg: dict) -> StudyResult:
     """Run the twin-rotor engine study on a validated config (SI values).
 
@@ -409,7 +390,6 @@ def evaluate(cfg: dict) -> StudyResult:
         ``docs/drives/wobble_cam.md`` and ``docs/machines/twin_rotor.md``.
     """
     params, machine, cycle = models(cfg)
-    check_cam(cfg)
     layout = _layout(params, machine)
     run = cfg.get("run", {})
     speed = run.get("speed", _DEFAULT_SPEED)

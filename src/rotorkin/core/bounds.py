@@ -1,4 +1,4 @@
-"""Bounds shared by the drives' config schemas.
+"""Physical bounds shared by the drives' config schemas.
 
 Every numeric key of a drive's schema carries its admissible range (``ge``/``le``/
 ``gt``/``lt``, stated in its description); the ones shared by all drives live here.
