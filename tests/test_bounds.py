@@ -157,6 +157,7 @@ def test_out_of_range_is_refused_in_one_line(capsys, tmp_path, example, setting,
     assert not out.exists()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("example", "setting"), INSIDE)
 def test_just_inside_runs_with_finite_summary(capsys, tmp_path, example, setting):
     sets = [setting] if isinstance(setting, str) else list(setting)

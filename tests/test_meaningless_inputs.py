@@ -14,6 +14,7 @@ import pytest
 from rotorkin.cli import main
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("example", "sets", "words", "undefined"),
     [
@@ -43,6 +44,7 @@ def test_warned_and_left_out(example, sets, words, undefined, tmp_path, capsys):
     assert " nan " not in captured.out.lower()
 
 
+@pytest.mark.slow
 def test_the_examples_have_no_warnings(tmp_path, capsys):
     for example in ("guide-bar-pump", "rhomboid-engine", "eccentric-reactor"):
         assert main(["run", "-e", example, "-q", "--out", str(tmp_path / example)]) == 0
