@@ -28,3 +28,12 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if item.get_closest_marker("browser") or item.get_closest_marker("cad"):
             item.add_marker(pytest.mark.slow)
+
+
+# Property tests draw the same examples on every run under CI, so that a red run can be
+# reproduced; on a developer's machine they explore new examples each time.
+from hypothesis import settings as _settings  # noqa: E402
+
+_settings.register_profile("ci", derandomize=True)
+if os.environ.get("CI"):
+    _settings.load_profile("ci")
