@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorkin.core.batch import DEFAULT_SAMPLES
-from rotorkin.core.errors import ConfigError, ParameterError, RotorkinError
+from rotorkin.core.errors import ConfigError, ParameterError, RotorkinError, shown
 from rotorkin.core.units import parse_quantity
 from rotorkin.drives import evaluate, get
 from rotorkin.io.config import validate_config
@@ -78,7 +78,7 @@ class Tolerance:
 def parse_tol(item: str, base_raw: dict) -> Tolerance:
     """Parse ``KEY=WIDTH[:uniform|:normal]`` (WIDTH with its unit for a dimensional key)."""
     key, spec = parse_item(item, "--tol")
-    option = f"--tol {key}={spec}"
+    option = f"--tol {key}={shown(spec)[1:-1]}"
     _, field = _check_key(base_raw, key, "--tol")
     if field.kind in ("choice", "int"):
         raise ConfigError(f"{option} is not admissible: {key} is not a continuous quantity")
@@ -95,12 +95,12 @@ def parse_tol(item: str, base_raw: dict) -> Tolerance:
             raise ConfigError(f"{option} is not admissible: give a temperature difference in K")
         width, reason = parse_quantity(text, field.kind)
         if reason:
-            raise ConfigError(f"{option}: {key} = {text!r} {reason}")
+            raise ConfigError(f"{option}: {key} = {shown(text)} {reason}")
     else:
         try:
             width = float(text)
         except ValueError:
-            raise ConfigError(f"{option} is not admissible: the width {text!r} must be a "
+            raise ConfigError(f"{option} is not admissible: the width {shown(text)} must be a "
                               "number") from None  # fmt: skip
     if not (np.isfinite(width) and width > 0.0):
         raise ConfigError(f"{option} is not admissible: the width must be > 0")
@@ -160,7 +160,7 @@ def run_tolerance(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int 
     keys = [t.key for t in tols]
     dup = next((k for k in keys if keys.count(k) > 1), None)
     if dup:
-        raise ConfigError(f"--tol {dup} is not admissible: the key is given twice")
+        raise ConfigError(f"--tol {shown(dup)[1:-1]} is not admissible: the key is given twice")
     if not 2 <= int(samples) <= MAX_TOLERANCE_SAMPLES:
         raise ParameterError("samples", samples, f"2 <= samples <= {MAX_TOLERANCE_SAMPLES}")
     if not 0 <= int(seed) < 2**63:

@@ -179,9 +179,13 @@ _WHAT_TO_DO = {
 }
 
 
+#: Characters that end a line for Python's ``str.splitlines`` (and for terminals).
+_LINE_BREAKS = "\n\r\x0b\x0c\x1c\x1d\x1e\x85\u2028\u2029"
+
+
 def _one_line(text: str) -> str:
-    """A message on one line: line breaks a user typed are shown escaped."""
-    return text.replace("\r", "\\r").replace("\n", "\\n")
+    """A message on one line: line breaks a user typed are shown escaped (``\\n``)."""
+    return "".join(c.encode("unicode_escape").decode() if c in _LINE_BREAKS else c for c in text)
 
 
 def _environment_message(exc: OSError) -> str:

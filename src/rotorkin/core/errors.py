@@ -7,7 +7,7 @@ the command line turns them into one line on stderr and exit code 2.
 
 from __future__ import annotations
 
-__all__ = ["RotorkinError", "ParameterError", "ConfigError"]
+__all__ = ["RotorkinError", "ParameterError", "ConfigError", "shown"]
 
 
 class RotorkinError(Exception):
@@ -37,3 +37,9 @@ class ParameterError(RotorkinError, ValueError):
 
 class ConfigError(RotorkinError):
     """A configuration that cannot be read: unknown key, wrong type, missing unit, bad file."""
+
+
+def shown(text, most: int = 80) -> str:
+    """A user's string, quoted for a one-line message and cut to ``most`` characters."""
+    text = str(text)
+    return repr(text if len(text) <= most else text[: most - 3] + "...")

@@ -162,33 +162,50 @@ def parse_quantity(value, kind: str) -> tuple[float, str]:
     number_text, unit_text = m.groups()
     if not unit_text.strip():
         return bad, f"has no unit: needs {describe_kind(kind)}"
-    factors = _unit_factors(unit_text)
-    if isinstance(factors, str):
-        return bad, f"{factors}: needs {describe_kind(kind)}"
     number = float(number_text)
     if not math.isfinite(number):
         return bad, "is not admissible: needs a finite value"
-    import pint
-
-    ureg = _registry()
-    unit = ureg.dimensionless
-    for name, _, power in factors:
-        unit = unit * ureg.Unit(name) ** power
-    try:
-        quantity = ureg.Quantity(number, unit)
-        target = "1/s" if kind == "speed" else si
-        converted = float(quantity.to(target).magnitude)
-    except (pint.errors.DimensionalityError, pint.errors.OffsetUnitCalculusError):
-        return bad, f"has the wrong unit: needs {describe_kind(kind)}"
-    if kind == "speed" and not any(canon in _ANGULAR for _, canon, _ in factors):
-        converted *= 2.0 * math.pi  # cycles per time (Hz, 1/min): revolutions
-    if kind in ("angle",) and not any(canon in _ANGULAR for _, canon, _ in factors):
-        return bad, f"has the wrong unit: needs {describe_kind(kind)}"
+    how = _conversion(unit_text, kind)
+    if isinstance(how, str):
+        return bad, f"{how}: needs {describe_kind(kind)}"
+    scale, offset = how
+    converted = number * scale + offset
     if not math.isfinite(converted):
         return bad, "is not admissible: needs a finite value"
     if kind == "temperature" and converted <= 0.0:
         return bad, "is not admissible: a temperature above absolute zero (0 K)"
     return converted, ""
+
+
+@functools.lru_cache(maxsize=512)
+def _conversion(unit_text: str, kind: str):
+    """``(scale, offset)`` with ``SI = number * scale + offset`` for a unit expression, or why not.
+
+    Read once per unit text and quantity kind (a list of a million values in the same
+    unit costs one pint conversion).
+    """
+    factors = _unit_factors(unit_text)
+    if isinstance(factors, str):
+        return factors
+    import pint
+
+    si, _ = KINDS[kind]
+    ureg = _registry()
+    unit = ureg.dimensionless
+    for name, _, power in factors:
+        unit = unit * ureg.Unit(name) ** power
+    target = "1/s" if kind == "speed" else si
+    try:
+        zero = float(ureg.Quantity(0.0, unit).to(target).magnitude)
+        scale = float(ureg.Quantity(1.0, unit).to(target).magnitude) - zero
+    except (pint.errors.DimensionalityError, pint.errors.OffsetUnitCalculusError):
+        return "has the wrong unit"
+    angular = any(canon in _ANGULAR for _, canon, _ in factors)
+    if kind == "speed" and not angular:
+        scale *= 2.0 * math.pi  # cycles per time (Hz, 1/min): revolutions
+    if kind == "angle" and not angular:
+        return "has the wrong unit"
+    return scale, zero
 
 
 def _suggest_unit(kind: str) -> str:

@@ -121,6 +121,8 @@ def synthesize(
     """
     kind = cfg["drive"]["type"]
     spec = get(kind)
+    if spec.check_cam is not None:
+        spec.check_cam(cfg)  # the baseline must pass what export checks
     names = tuple(spec.objectives)
     if spec.synthesize is None or not names:
         raise ParameterError(

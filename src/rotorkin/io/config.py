@@ -20,7 +20,7 @@ from pathlib import Path
 from pydantic import BaseModel
 
 from rotorkin import drives
-from rotorkin.core.errors import ConfigError
+from rotorkin.core.errors import ConfigError, shown
 from rotorkin.core.schema import validate_model
 
 __all__ = [
@@ -126,21 +126,15 @@ def check_size(data, what: str) -> None:
                 stack.append((child, depth + 1))
 
 
-def _shown(text: str, most: int = 80) -> str:
-    """A user's string quoted for a message, cut to ``most`` characters."""
-    text = str(text)
-    return repr(text if len(text) <= most else text[: most - 3] + "...")
-
-
 def parse_set(item: str) -> tuple[list[str], object]:
     """Split ``"section.key=VALUE"``; VALUE is TOML when it parses, else a plain string."""
     if "=" not in item:
-        raise ConfigError(f"--set {_shown(item)} is not admissible: write it as section.key=VALUE")
+        raise ConfigError(f"--set {shown(item)} is not admissible: write it as section.key=VALUE")
     key, _, text = item.partition("=")
     parts = [p.strip() for p in key.strip().split(".")]
     if len(parts) < 2 or len(parts) > 3 or not all(parts):
         raise ConfigError(
-            f"--set {_shown(item)} is not admissible: the key must be section.key, "
+            f"--set {shown(item)} is not admissible: the key must be section.key, "
             "e.g. drive.plate_tilt"
         )
     text = text.strip()
@@ -162,9 +156,7 @@ def apply_sets(raw: dict, sets: list[str]) -> dict:
         for part in parts[:-1]:
             child = node.setdefault(part, {})
             if not isinstance(child, dict):
-                raise ConfigError(
-                    f"--set {_shown(item)} is not admissible: {part} is not a section"
-                )
+                raise ConfigError(f"--set {shown(item)} is not admissible: {part} is not a section")
             node = child
         node[parts[-1]] = value
     check_size(out, "the config with its --set overrides")

@@ -26,7 +26,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, block_progress
-from rotorkin.core.errors import ConfigError, ParameterError
+from rotorkin.core.errors import ConfigError, ParameterError, shown
 from rotorkin.drives import evaluate, get
 from rotorkin.io.config import validate_config
 from rotorkin.sweep.engine import (
@@ -139,7 +139,7 @@ def _varies(base_raw: dict, vary) -> tuple[Vary, ...]:
     keys = [v.key for v in out]
     dup = next((k for k in keys if keys.count(k) > 1), None)
     if dup:
-        raise ConfigError(f"--vary {dup} is not admissible: the key is given twice")
+        raise ConfigError(f"--vary {shown(dup)[1:-1]} is not admissible: the key is given twice")
     return out
 
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from rotorkin import __version__, drives
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, sample_grid
-from rotorkin.core.errors import ParameterError, RotorkinError
+from rotorkin.core.errors import ParameterError, RotorkinError, shown
 from rotorkin.core.units import metric_units
 from rotorkin.io.config import glossary
 from rotorkin.sweep.spec import display
@@ -430,7 +430,7 @@ def _refuse(spec: SweepSpec, axis: int, j: int, flat: int):
     """Raise the one-line error of value ``j`` of swept key ``axis`` (design ``flat``)."""
 
     v = spec.varies[axis]
-    where = f"--vary {v.key}={v.text} at {display(v.field, v.values[j])}"
+    where = f"--vary {v.key}={shown(v.text)[1:-1]} at {display(v.field, v.values[j])}"
     try:
         drives.evaluate(designs_at(spec, [flat]).config(0))
     except ParameterError as exc:

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorkin import drives
-from rotorkin.core.errors import ConfigError
+from rotorkin.core.errors import ConfigError, shown
 from rotorkin.core.units import parse_quantity
 from rotorkin.io.config import validate_config
 
@@ -228,20 +228,24 @@ def _validated(base_raw: dict, field: Field, text: str, option: str):
     if field.dimensional:
         number, reason = parse_quantity(text, field.kind)
         if reason:
-            raise ConfigError(f"{option}: {key} = {text!r} {reason}")
+            raise ConfigError(f"{option}: {key} = {shown(text)} {reason}")
         return number
     if field.kind == "choice":
         if text not in field.choices:
-            raise ConfigError(f"{option}: {key} = {text!r} is not admissible: choose one of "
+            raise ConfigError(f"{option}: {key} = {shown(text)} is not admissible: choose one of "
                               + ", ".join(repr(c) for c in field.choices))  # fmt: skip
         return text
     value = _raw_value(field, text)
     if field.kind == "int":
         if isinstance(value, bool) or not isinstance(value, int):
-            raise ConfigError(f"{option}: {key} = {text!r} is not admissible: needs an integer")
+            raise ConfigError(
+                f"{option}: {key} = {shown(text)} is not admissible: needs an integer"
+            )
         return value
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value):
-        raise ConfigError(f"{option}: {key} = {text!r} is not admissible: needs a finite number")
+        raise ConfigError(
+            f"{option}: {key} = {shown(text)} is not admissible: needs a finite number"
+        )
     return float(value)
 
 
@@ -249,7 +253,8 @@ def parse_item(item: str, option: str = "--vary") -> tuple[str, str]:
     """Split ``"KEY=SPEC"``; one-line :class:`ConfigError` when there is no ``=``."""
     if "=" not in item:
         raise ConfigError(
-            f"{option} {item!r} is not admissible: write it as KEY=START:STOP:N or KEY=v1,v2,..."
+            f"{option} {shown(item)} is not admissible: write it as KEY=START:STOP:N or "
+            "KEY=v1,v2,..."
         )
     key, _, spec = item.partition("=")
     return key.strip(), spec.strip()
@@ -278,7 +283,7 @@ def parse_vary(item: str, base_raw: dict) -> Vary:
         empty range or list, missing unit, bad number or choice.
     """
     key, spec = parse_item(item)
-    option = f"--vary {key}={spec}"
+    option = f"--vary {key}={shown(spec)[1:-1]}"
     first = spec.split(",")[0].split(":")[0].strip()
     _, field = _check_key(base_raw, key, "--vary", first or None)
     if not spec:
