@@ -49,3 +49,13 @@ def test_the_examples_have_no_warnings(tmp_path, capsys):
     for example in ("guide-bar-pump", "rhomboid-engine", "eccentric-reactor"):
         assert main(["run", "-e", example, "-q", "--out", str(tmp_path / example)]) == 0
     assert capsys.readouterr().err == ""
+
+
+@pytest.mark.slow
+def test_a_roller_that_export_would_refuse_is_warned_about_by_run(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert main(["run", "--set", "drive.plate_tilt=40 deg", "-q", "--out", str(out)]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("rotorkin: warning: cam.roller_radius = 4 mm")
+    assert "rotorkin export will refuse this cam" in err[0]
+    assert main(["export", "--set", "drive.plate_tilt=40 deg", "--out", str(tmp_path / "cad")]) == 2

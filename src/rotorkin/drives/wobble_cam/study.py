@@ -27,6 +27,7 @@ from rotorkin.analysis.torque import (
     torque_ripple,
 )
 from rotorkin.core.errors import ParameterError
+from rotorkin.drives.wobble_cam import cam as cs
 from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import figures as figures_wobble_cam
 from rotorkin.drives.wobble_cam import figures_cam as figures_spherical_cam
@@ -424,8 +425,25 @@ def evaluate(cfg: dict) -> StudyResult:
         headline=HEADLINE,
         write_figures=plot,
         motion=wc.motion(params, theta),
-        warnings=_warnings(cycle, summary),
+        warnings=(*_warnings(cycle, summary), *_cam_warnings(cfg)),
     )
+
+
+def _cam_warnings(cfg: dict) -> tuple[str, ...]:
+    """A roller that ``rotorkin export`` would refuse, said in one line (the motion stands).
+
+    The grooves' undercut limit depends on the plate tilt; the default 4 mm roller fits
+    near the paper's 45 deg only, so the analysis of other tilts is not refused for it.
+    """
+    if "cam" not in cfg:
+        return ()
+    try:
+        cs.check_roller_radius(*cs.from_config(cfg))
+    except ParameterError as exc:
+        key = exc.name if "." in exc.name else f"cam.{exc.name}"
+        return (f"{key} = {exc.value} undercuts the grooves: {exc.admissible}; "
+                "rotorkin export will refuse this cam",)  # fmt: skip
+    return ()
 
 
 def _warnings(cycle, summary: dict) -> tuple[str, ...]:
