@@ -15,6 +15,7 @@ from typing import Annotated
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator
 from pydantic_core import PydanticCustomError
 
+from rotorkin.core.bounds import INERTIA_MAX, speed_fluctuation
 from rotorkin.core.errors import ConfigError
 from rotorkin.core.units import describe_kind, parse_quantity
 
@@ -131,10 +132,13 @@ class ExportSection(Section):
 
 
 class InertialSection(Section):
-    inertia_shaft: Inertia = Field("0 kg*m^2", description="inertia of the input shaft")
-    speed_fluctuation: float = Field(
-        0.02, description="wanted coefficient of speed fluctuation, for the flywheel"
+    inertia_shaft: Inertia = Field(
+        "0 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="inertia of the input shaft (0 <= J <= 1e5 kg*m^2)",
     )
+    speed_fluctuation: float = speed_fluctuation()
 
 
 def validate_model(model: type[BaseModel], raw: dict) -> dict:

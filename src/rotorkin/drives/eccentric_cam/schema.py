@@ -11,7 +11,6 @@ from rotorkin.core.bounds import (
     LENGTH_MAX,
     PRESSURE_MAX,
     PRESSURE_MIN,
-    speed_fluctuation,
 )
 from rotorkin.core.schema import (
     EmptySection,
@@ -65,7 +64,6 @@ class EccentricMachine(InertialSection):
         le=INERTIA_MAX,
         description="inertia of the input shaft (0 <= J <= 1e5 kg*m^2)",
     )
-    speed_fluctuation: float = speed_fluctuation()
     device_length: Length = Field(
         "1000 mm",
         ge=0.001,

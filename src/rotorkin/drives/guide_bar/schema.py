@@ -12,7 +12,6 @@ from rotorkin.core.bounds import (
     PRESSURE_MAX,
     PRESSURE_MIN,
     TORQUE_MAX,
-    speed_fluctuation,
 )
 from rotorkin.core.schema import (
     Angle,
@@ -102,7 +101,6 @@ class VanePumpMachine(InertialSection):
         le=INERTIA_MAX,
         description="inertia of the input shaft (0 <= J <= 1e5 kg*m^2)",
     )
-    speed_fluctuation: float = speed_fluctuation()
     vanes_per_impeller: int = Field(
         2, ge=1, le=24, description="vanes on each impeller (1 <= Z <= 24, room for the swing)"
     )

@@ -14,7 +14,6 @@ from rotorkin.core.bounds import (
     TEMPERATURE_MAX,
     TEMPERATURE_MIN,
     TORQUE_MAX,
-    speed_fluctuation,
 )
 from rotorkin.core.schema import (
     Angle,
@@ -119,7 +118,6 @@ class RotaryBladeMachine(InertialSection):
         le=INERTIA_MAX,
         description="inertia of the input shaft (0 <= J <= 1e5 kg*m^2)",
     )
-    speed_fluctuation: float = speed_fluctuation()
     blades_per_pair: int = Field(
         2, ge=1, le=12, description="blades on each of the two blade pairs (1 <= B <= 12)"
     )

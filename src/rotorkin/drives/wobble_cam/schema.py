@@ -7,7 +7,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field
 
-from rotorkin.core.bounds import INERTIA_MAX, speed_fluctuation
+from rotorkin.core.bounds import INERTIA_MAX
 from rotorkin.core.schema import (
     Angle,
     Energy,
@@ -180,7 +180,6 @@ class WobbleMachine(InertialSection):
         le=INERTIA_MAX,
         description="inertia of rotor 2 (0 <= J <= 1e5 kg*m^2)",
     )
-    speed_fluctuation: float = speed_fluctuation()
 
 
 class EngineLoads(Section):
