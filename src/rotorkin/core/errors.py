@@ -25,7 +25,7 @@ class ParameterError(RotorkinError, ValueError):
         The offending value, already formatted for people where useful
         (e.g. ``"70 deg"``).
     admissible : str
-        What would be accepted, e.g. ``"0 deg < plate_tilt < 65.53 deg"``.
+        What would be accepted, e.g. ``"0.5 deg <= plate_tilt < 65.53 deg"``.
     """
 
     def __init__(self, name: str, value: object, admissible: str):
