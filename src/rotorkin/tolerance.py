@@ -33,7 +33,7 @@ import numpy as np
 from rotorkin.core.batch import DEFAULT_SAMPLES
 from rotorkin.core.errors import ConfigError, ParameterError, RotorkinError, shown
 from rotorkin.core.units import parse_quantity
-from rotorkin.drives import evaluate, get
+from rotorkin.drives import evaluate, spec_of
 from rotorkin.io.config import validate_config
 from rotorkin.sweep import MAX_SAMPLES, MAX_WORK, Designs, evaluate_designs, resolve_metrics
 from rotorkin.sweep.engine import (
@@ -122,7 +122,7 @@ def draw(tols, samples: int, seed: int) -> dict:
 def _held(cfg: dict) -> tuple[dict, dict]:
     """The config and extras that keep the manufactured parts at their nominal size."""
 
-    hold = get(cfg["drive"]["type"]).tolerance_hold
+    hold = spec_of(cfg).tolerance_hold
     return hold(copy.deepcopy(cfg)) if hold else (copy.deepcopy(cfg), {})
 
 

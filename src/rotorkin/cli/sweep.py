@@ -22,7 +22,7 @@ import typer
 
 from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names, out_folder
 from rotorkin.core.errors import ConfigError
-from rotorkin.drives import REGISTRY, get
+from rotorkin.drives import REGISTRY, spec_of
 from rotorkin.io.config import apply_sets, load_config
 from rotorkin.io.output import check_out, staged_output
 from rotorkin.report import figures_sweep as fs
@@ -34,8 +34,8 @@ from rotorkin.tolerance import run_tolerance, summarize
 __all__ = ["register"]
 
 
-def _headline(kind: str) -> tuple:
-    return tuple(get(kind).headline)
+def _headline(cfg: dict) -> tuple:
+    return tuple(spec_of(cfg).headline)
 
 
 def _note(message: str, quiet: bool) -> None:
@@ -136,7 +136,7 @@ def register(app) -> None:
                 )
             )
         if paper_figures:
-            recipes = fs.paper_recipes(cfg, get(cfg["drive"]["type"]))
+            recipes = fs.paper_recipes(cfg, spec_of(cfg))
             if not recipes:
                 raise ConfigError(
                     f"--paper-figures: the {cfg['drive']['type']} paper has no "
@@ -178,7 +178,7 @@ def register(app) -> None:
                     )
                     written.append("sweep.nc")
                     path = fs.fig_overview(
-                        main_ds, _headline(spec.drive_type), stage / "sweep_overview.png"
+                        main_ds, _headline(spec.base_cfg), stage / "sweep_overview.png"
                     )
                     if path is not None:
                         written.append(path.name)
@@ -237,7 +237,7 @@ def register(app) -> None:
         if metrics:
             drawn = [m for m in stats][:9]
         else:
-            order = [*get(kind).tolerance_first, *_headline(kind), *stats]
+            order = [*spec_of(cfg).tolerance_first, *_headline(cfg), *stats]
             drawn = [
                 m
                 for m in dict.fromkeys(order)
@@ -291,7 +291,7 @@ def _print_sweep(name, specs, ds, outdir, written, seconds) -> None:
         table = Table()
         for col in ("metric", "min", "max"):
             table.add_column(col, justify="left" if col == "metric" else "right")
-        for key in _headline(ds.attrs["drive_type"]):
+        for key in _headline(specs[0][1].base_cfg):
             if key in ds and np.any(np.isfinite(ds[key].values)):
                 v = ds[key].values
                 table.add_row(key, f"{np.nanmin(v):.6g}", f"{np.nanmax(v):.6g}")

@@ -11,12 +11,19 @@ defined elsewhere (a test, a plug-in) joins with :func:`register`.
 
 from __future__ import annotations
 
+import dataclasses
+import functools
+
 import numpy as np
+from pydantic import Field, create_model
 
 from rotorkin.core.errors import ConfigError, ParameterError
 from rotorkin.drives import eccentric_cam, guide_bar, rhomboid_cam, wobble_cam
 from rotorkin.drives._spec import DriveSpec
 from rotorkin.synthesis import SynthesisResult
+from rotorkin.vane import MACHINES
+from rotorkin.vane import evaluate as evaluate_vane_machine
+from rotorkin.vane.study import HEADLINES
 
 __all__ = [
     "REGISTRY",
@@ -24,6 +31,9 @@ __all__ = [
     "DriveSpec",
     "get",
     "names",
+    "machine_type",
+    "config_model",
+    "spec_of",
     "register",
     "evaluate",
     "synthesize",
@@ -71,14 +81,107 @@ def get(name) -> DriveSpec:
     return spec
 
 
+def machine_type(cfg: dict, spec: DriveSpec | None = None) -> str:
+    """``machine.type`` of a config (raw or validated); the drive's own machine when unset."""
+    spec = get(cfg["drive"]["type"]) if spec is None else spec
+    section = cfg.get("machine")
+    kind = section.get("type") if isinstance(section, dict) else None
+    return spec.machine if kind is None else kind
+
+
+def _check_machine(spec: DriveSpec, kind) -> None:
+    if kind == spec.machine:
+        return
+    if spec.law is None:
+        raise ConfigError(
+            f"machine.type = {kind!r} is not admissible: drive.type = {spec.name} carries "
+            f"machine.type = {spec.machine!r} only"
+        )
+    if not isinstance(kind, str) or kind not in MACHINES:
+        raise ConfigError(
+            f"machine.type = {kind!r} is not admissible: on drive.type = {spec.name} choose one "
+            "of " + ", ".join(repr(k) for k in MACHINES)
+        )
+
+
+@functools.cache
+def _composed(model: type, kind: str) -> type:
+    machine, loads, _ = MACHINES[kind]
+    return create_model(
+        f"{model.__name__}_{kind}",
+        __base__=model,
+        machine=(machine, Field(default_factory=machine)),
+        loads=(loads, Field(default_factory=loads)),
+    )
+
+
+def config_model(drive_type: str, kind: str | None = None) -> type:
+    """The config model of ``drive_type`` carrying ``machine.type = kind`` (default: its own).
+
+    Raises
+    ------
+    ConfigError
+        One line when the drive cannot carry that machine.
+    """
+    spec = get(drive_type)
+    if kind is None or kind == spec.machine:
+        return spec.config_model
+    _check_machine(spec, kind)
+    return _composed(spec.config_model, kind)
+
+
+def spec_of(cfg: dict) -> DriveSpec:
+    """The spec that evaluates ``cfg``: its drive's, or the drive carrying another vane machine.
+
+    A drive carrying a machine that is not its own keeps its motion, cam checks and
+    CAD of the drive's parts; its study is :func:`rotorkin.vane.evaluate` and it has
+    no batch kernel, paper numbers, synthesis or report scene of its own.
+    """
+    spec = get(cfg["drive"]["type"])
+    kind = machine_type(cfg, spec)
+    if kind == spec.machine:
+        return spec
+    _check_machine(spec, kind)
+    return _carrying(spec, kind)
+
+
+def _carrying(spec: DriveSpec, kind: str) -> DriveSpec:
+    def study(cfg):
+        return evaluate_vane_machine(
+            cfg,
+            spec.law(cfg),
+            drive_type=spec.name,
+            title=f"{kind.replace('_', ' ')} on drive {spec.name}",
+        )
+
+    return dataclasses.replace(
+        spec,
+        title=f"{kind.replace('_', ' ')} on the {spec.name} drive",
+        config_model=_composed(spec.config_model, kind),
+        study=study,
+        headline=HEADLINES[kind],
+        paper="",
+        published=(),
+        batch=None,
+        sweep_recipes=None,
+        tolerance_hold=None,
+        tolerance_first=(),
+        synthesize=None,
+        objectives={},
+        synthesis_options=(),
+        scene=None,
+        machine=kind,
+    )
+
+
 def evaluate(cfg: dict):
-    """Run the study of ``cfg["drive"]["type"]`` on a validated config (SI).
+    """Run the study of ``cfg["drive"]["type"]`` (and ``machine.type``) on a validated config.
 
     Returns
     -------
     rotorkin.studies.StudyResult
     """
-    spec = get(cfg["drive"]["type"])
+    spec = spec_of(cfg)
     if spec.check_cam is not None:
         spec.check_cam(cfg)  # what export refuses, every command refuses
     return spec.study(cfg)
@@ -120,7 +223,7 @@ def synthesize(
         when not admissible.
     """
     kind = cfg["drive"]["type"]
-    spec = get(kind)
+    spec = spec_of(cfg)
     if spec.check_cam is not None:
         spec.check_cam(cfg)  # the baseline must pass what export checks
     names = tuple(spec.objectives)

@@ -83,6 +83,14 @@ class DriveSpec:
     check_rows : callable, optional
         ``check_rows(cfg) -> [(check, value)]``: the cam checks printed by ``export``;
         default: the rows of the planar profile checks.
+    machine : str
+        ``machine.type`` of the drive's own machine (its paper's), what ``study``
+        evaluates; "" when the drive has none of its own.
+    law : callable, optional
+        ``law(cfg) -> rotorkin.vane.RotaryLaw`` for a drive that turns two coaxial
+        members: it then carries any vane machine (``[machine] type``,
+        :mod:`rotorkin.vane`), its own one through ``study``, the others through
+        :func:`rotorkin.vane.evaluate`.
     """
 
     name: str
@@ -106,6 +114,8 @@ class DriveSpec:
     cad_write: Callable | None = None
     check_cam: Callable | None = None
     check_rows: Callable | None = None
+    machine: str = ""
+    law: Callable | None = None
 
     def __post_init__(self):
         if not self.name.isidentifier():

@@ -177,8 +177,10 @@ def validate_config(raw: dict) -> dict:
             "missing section [drive]: a config needs [drive] with type = one of "
             + ", ".join(repr(k) for k in drives.names())
         )
-    model = drives.get(drive.get("type")).config_model
-    return validate_model(model, raw)
+    spec = drives.get(drive.get("type"))
+    section = raw.get("machine")
+    kind = section.get("type") if isinstance(section, dict) else None
+    return validate_model(drives.config_model(spec.name, kind), raw)
 
 
 def load_config(

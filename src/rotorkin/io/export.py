@@ -42,7 +42,7 @@ def planar_parts(cfg: dict, with_parts: bool = True):
         undercutting the cam, ``cam.thickness`` (``0 < thickness <=`` the part's outer
         diameter) or ``export.tolerance`` out of range.
     """
-    spec = drives.get(cfg["drive"]["type"])
+    spec = drives.spec_of(cfg)
     if spec.cad_parts is None:
         raise ConfigError(f"drive.type = {spec.name!r} has no planar parts")
     return spec.cad_parts(cfg, with_parts)
@@ -53,7 +53,7 @@ def profile_checks(cfg: dict) -> list[tuple[str, object]]:
 
     Empty for a drive without planar parts. Raises like :func:`planar_parts`.
     """
-    if drives.get(cfg["drive"]["type"]).cad_parts is None:
+    if drives.spec_of(cfg).cad_parts is None:
         return []
     return planar_parts(cfg, with_parts=False)[1]
 
@@ -107,7 +107,7 @@ def export(cfg: dict, fmt: str, outdir, name: str) -> list[Path]:
         STEP without build123d. Nothing is written then.
     """
     fmts = _check_format(fmt)
-    spec = drives.get(cfg["drive"]["type"])
+    spec = drives.spec_of(cfg)
     if spec.cad_parts is None and spec.cad_write is None:
         raise ConfigError(f"drive.type = {spec.name!r} has no parts to export")
     if "step" in fmts:

@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.core.errors import ConfigError
-from rotorkin.drives import get
+from rotorkin.drives import spec_of
 from rotorkin.io.output import out_error, to_toml
 from rotorkin.render import member_scene
 from rotorkin.render.scenes import Check, fmt
@@ -89,7 +89,7 @@ def render_report(result, cfg, raw, meta, frames: int = FRAMES) -> str:
     """The report as one HTML string (see :func:`write_report`)."""
     import plotly.offline
 
-    spec = get(result.drive_type)
+    spec = spec_of(cfg)
     mod = spec.scene or member_scene
     scene = mod.scene(result, cfg, frames)
     plots = mod.plots(result, cfg)

@@ -27,7 +27,7 @@ import numpy as np
 
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, block_progress
 from rotorkin.core.errors import ConfigError, ParameterError, shown
-from rotorkin.drives import evaluate, get
+from rotorkin.drives import evaluate, spec_of
 from rotorkin.io.config import validate_config
 from rotorkin.sweep.engine import (
     SweepFallbackWarning,
@@ -96,9 +96,9 @@ def resolve_metrics(cfg: dict, metrics=None) -> tuple[str, ...]:
     :func:`rotorkin.drives.evaluate` (the others through the scalar study); or a
     list of names (or one comma-separated string).
     """
-    kern = kernel_of(cfg["drive"]["type"])
+    kern = kernel_of(cfg["drive"]["type"], cfg)
     if metrics is None:
-        return tuple(kern.metric_names(cfg)) or tuple(get(cfg["drive"]["type"]).headline)
+        return tuple(kern.metric_names(cfg)) or tuple(spec_of(cfg).headline)
     known = _all_metrics(cfg)
     if isinstance(metrics, str) and metrics == "all":
         return known
@@ -114,7 +114,7 @@ def resolve_metrics(cfg: dict, metrics=None) -> tuple[str, ...]:
 def _all_metrics(cfg: dict) -> tuple[str, ...]:
     """Numeric summary keys of the study (from the kernel list and one scalar run)."""
 
-    kern = kernel_of(cfg["drive"]["type"])
+    kern = kernel_of(cfg["drive"]["type"], cfg)
     names = [*kern.metric_names(cfg), *getattr(kern, "OPTIONAL_METRICS", ())]
     try:
         summary = evaluate(cfg).summary
@@ -183,7 +183,7 @@ def build_spec(base_cfg_raw: dict, vary, *, keep_curves=False, chunk_size=None, 
         raise ParameterError("samples", samples, f"3 <= samples <= {MAX_SAMPLES}")
     points = int(cfg["run"]["points"])
     size = math.prod(len(v) for v in varies)
-    n_curves = len(kernel_of(cfg["drive"]["type"]).CURVES) if keep_curves else 0
+    n_curves = len(kernel_of(cfg["drive"]["type"], cfg).CURVES) if keep_curves else 0
     _check_size(varies, size, len(names), n_curves, points)
     if size * samples > MAX_WORK:
         raise ParameterError(
@@ -316,7 +316,7 @@ def _empty(spec: SweepSpec) -> dict:
         "count": np.zeros(spec.size, dtype=np.int8),
     }
     if spec.keep_curves:
-        kern = kernel_of(spec.drive_type)
+        kern = kernel_of(spec.drive_type, spec.base_cfg)
         flat["curves"] = {c: np.full((spec.size, spec.points), np.nan) for c in kern.CURVES}
         flat["angle"] = None
     return flat

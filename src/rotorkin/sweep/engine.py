@@ -59,9 +59,14 @@ class _NoBatch:
         return 2.0 * np.pi
 
 
-def kernel_of(drive_type: str):
-    """The batch module of a drive type (``DriveSpec.batch``; a stand-in when it has none)."""
-    return drives.get(drive_type).batch or _NoBatch
+def kernel_of(drive_type: str, cfg: dict | None = None):
+    """The batch module of a drive type (``DriveSpec.batch``; a stand-in when it has none).
+
+    With ``cfg``, the batch module of the spec that evaluates it
+    (:func:`rotorkin.drives.spec_of`): none for a drive carrying another machine.
+    """
+    spec = drives.get(drive_type) if cfg is None else drives.spec_of(cfg)
+    return spec.batch or _NoBatch
 
 
 def reason_keys(drive_type: str) -> list[str]:
@@ -167,7 +172,7 @@ def coverage(drive_type: str, cfg: dict, keys, metrics) -> tuple[list, list, str
     (kernel_metrics, fallback_metrics, why)
         ``why`` is None when nothing falls back.
     """
-    kern = kernel_of(drive_type)
+    kern = kernel_of(drive_type, cfg)
     why = kern.unsupported(cfg)
     if why is None:
         outside = sorted(set(keys) - kern.KEYS)
@@ -217,7 +222,7 @@ def evaluate_designs(p: Designs, metrics, samples: int = DEFAULT_SAMPLES, thread
         with ``curves``: ``"curves"`` name -> (n, curves) and ``"angle"`` [rad].
     """
     drive_type = p.cfg["drive"]["type"]
-    kern = kernel_of(drive_type)
+    kern = kernel_of(drive_type, p.cfg)
     keys = reason_keys(drive_type)
     code = {k: i for i, k in enumerate(keys)}
     fast, slow, why = coverage(drive_type, p.cfg, p.table, metrics)
@@ -308,7 +313,7 @@ def to_dataset(spec: SweepSpec, flat: dict):
     """
     import xarray as xr
 
-    kern = kernel_of(spec.drive_type)
+    kern = kernel_of(spec.drive_type, spec.base_cfg)
     dims = tuple(v.key for v in spec.varies)
     shape = spec.shape
     coords = {}
@@ -406,7 +411,7 @@ def check_spec_values(spec: SweepSpec) -> None:
 
     if not spec.varies:
         return
-    kern = kernel_of(spec.drive_type)
+    kern = kernel_of(spec.drive_type, spec.base_cfg)
     code = {k: i for i, k in enumerate(reason_keys(spec.drive_type))}
     keys = [v.key for v in spec.varies]
     if kern.unsupported(spec.base_cfg) is None and set(keys) <= kern.KEYS:

@@ -122,10 +122,13 @@ def _kind_of(annotation) -> str | None:
     return None
 
 
-def field_of(drive_type: str, key: str) -> Field | None:
-    """The :class:`Field` of ``key`` (``section.name``) for a drive type, None if unknown."""
+def field_of(drive_type: str, key: str, machine: str | None = None) -> Field | None:
+    """The :class:`Field` of ``key`` (``section.name``) for a drive type, None if unknown.
+
+    ``machine``: the ``machine.type`` the drive carries (default: its own).
+    """
     section, _, name = key.partition(".")
-    model = drives.get(drive_type).config_model
+    model = drives.config_model(drive_type, machine)
     sfield = model.model_fields.get(section)
     if sfield is None or not name or "." in name:
         return None
@@ -162,7 +165,11 @@ def _check_key(base_raw: dict, key: str, option: str, value: str | None = None
     drive_type = (base_raw.get("drive") or {}).get("type")
     if drive_type not in drives.REGISTRY:
         validate_config(base_raw)  # raises the config's own message
-    field = field_of(drive_type, key)
+    section_raw = base_raw.get("machine")
+    machine = section_raw.get("type") if isinstance(section_raw, dict) else None
+    if machine is not None:
+        validate_config(base_raw)  # a machine the drive cannot carry: the config's own message
+    field = field_of(drive_type, key, machine)
     if field is None:
         section, _, name = key.partition(".")
         if not name:
@@ -181,7 +188,7 @@ def _check_key(base_raw: dict, key: str, option: str, value: str | None = None
         except ConfigError as exc:
             raise ConfigError(f"{option}: {exc}") from None
         raise ConfigError(f"{option}: unknown key {key}")
-    if field.kind == "other" or key == "drive.type":
+    if field.kind == "other" or key in ("drive.type", "machine.type"):
         raise ConfigError(
             f"{option} {key} is not admissible: only single numbers, quantities and choices can "
             "be swept (not lists or names)"

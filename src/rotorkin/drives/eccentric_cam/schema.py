@@ -25,6 +25,7 @@ from rotorkin.core.schema import (
     Section,
     Speed,
 )
+from rotorkin.machines.schema import machine_type
 
 
 class DiscCamSection(Section):
@@ -58,6 +59,7 @@ class EccentricDrive(Section):
 
 
 class EccentricMachine(InertialSection):
+    type: Literal["opposed_piston"] = machine_type("opposed_piston")
     inertia_shaft: Inertia = Field(
         "0.032 kg*m^2",
         ge=0.0,

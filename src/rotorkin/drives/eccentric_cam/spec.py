@@ -29,4 +29,5 @@ SPEC = DriveSpec(
     scene=scene,
     cad_parts=cad.cad_parts,
     check_cam=cad.check_cam,
+    machine="opposed_piston",
 )

@@ -8,23 +8,18 @@ from pydantic import Field
 
 from rotorkin.core.bounds import (
     INERTIA_MAX,
-    LENGTH_MAX,
-    PRESSURE_MAX,
-    PRESSURE_MIN,
     TORQUE_MAX,
 )
 from rotorkin.core.schema import (
     Angle,
     ExportSection,
     Inertia,
-    InertialSection,
-    Length,
-    Pressure,
     RunSection,
     Section,
     Speed,
     Torque,
 )
+from rotorkin.machines.schema import PumpPorts, VanePumpSection
 
 #: Admissible mechanism coefficient lambda [-]: near 1 the guide bar's speed ratio
 #: (1 + lambda) / (1 - lambda) grows without bound.
@@ -67,7 +62,7 @@ class GuideBarDrive(Section):
     )
 
 
-class GuideBarLoads(Section):
+class GuideBarLoads(PumpPorts):
     impeller_torque_1: Torque = Field(
         "10 N*m",
         ge=0.0,
@@ -80,29 +75,14 @@ class GuideBarLoads(Section):
         le=TORQUE_MAX,
         description="resisting torque M8 on impeller 2 (0 <= M8 <= 1e6 N*m)",
     )
-    suction_pressure: Pressure = Field(
-        "1 bar",
-        ge=PRESSURE_MIN,
-        le=PRESSURE_MAX,
-        description="pressure at the inlet port (0.01 bar <= p <= 1000 bar, absolute)",
-    )
-    discharge_pressure: Pressure = Field(
-        "6 bar",
-        ge=PRESSURE_MIN,
-        le=PRESSURE_MAX,
-        description="pressure at the outlet port (0.01 bar <= p <= 1000 bar, absolute)",
-    )
 
 
-class VanePumpMachine(InertialSection):
+class VanePumpMachine(VanePumpSection):
     inertia_shaft: Inertia = Field(
         "0.001 kg*m^2",
         ge=0.0,
         le=INERTIA_MAX,
         description="inertia of the input shaft (0 <= J <= 1e5 kg*m^2)",
-    )
-    vanes_per_impeller: int = Field(
-        2, ge=1, le=24, description="vanes on each impeller (1 <= Z <= 24, room for the swing)"
     )
     vane_angle: Angle | None = Field(
         None,
@@ -110,36 +90,6 @@ class VanePumpMachine(InertialSection):
         lt=3.141592653589793,
         description="angular width of a vane; default: the drive's gamma_0 "
         "(0 deg < vane_angle < 180 deg, and Z (2 vane_angle + swing) <= 360 deg)",
-    )
-    hub_radius: Length = Field(
-        "30 mm",
-        ge=0.001,
-        le=LENGTH_MAX,
-        description="impeller hub radius (1 mm <= hub_radius < casing_radius)",
-    )
-    casing_radius: Length = Field(
-        "80 mm",
-        ge=0.001,
-        le=LENGTH_MAX,
-        description="casing (vane tip) radius (hub_radius < casing_radius <= 10 m)",
-    )
-    axial_width: Length = Field(
-        "40 mm",
-        ge=0.001,
-        le=LENGTH_MAX,
-        description="axial width of the working space (1 mm <= axial_width <= 10 m)",
-    )
-    inertia_impeller_1: Inertia = Field(
-        "0.005 kg*m^2",
-        ge=0.0,
-        le=INERTIA_MAX,
-        description="inertia of impeller 1 (0 <= J <= 1e5 kg*m^2)",
-    )
-    inertia_impeller_2: Inertia = Field(
-        "0.005 kg*m^2",
-        ge=0.0,
-        le=INERTIA_MAX,
-        description="inertia of impeller 2 (0 <= J <= 1e5 kg*m^2)",
     )
 
 

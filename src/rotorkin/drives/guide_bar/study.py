@@ -21,6 +21,7 @@ against the resisting torques M7, M8.
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -38,6 +39,7 @@ from rotorkin.drives.guide_bar.schema import GuideBarLoads, VanePumpMachine
 from rotorkin.machines import vane_pump as vp
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
+from rotorkin.vane import RotaryLaw
 
 __all__ = ["evaluate", "drive_params", "pump_params", "pump_state", "HEADLINE"]
 
@@ -305,6 +307,12 @@ def pump_params(cfg: dict, params: gb.GuideBar | None = None) -> vp.VanePump:
     return build_params(
         gb_pump.vane_pump, "machine", {"params": params, **{k: machine[k] for k in keys}}
     )
+
+
+def law(cfg: dict) -> RotaryLaw:
+    """The two members' motion for any vane machine on this drive (:mod:`rotorkin.vane`)."""
+    params = drive_params(cfg)
+    return RotaryLaw(functools.partial(gb.motion, params), gb.period(params))
 
 
 def evaluate(cfg: dict) -> StudyResult:

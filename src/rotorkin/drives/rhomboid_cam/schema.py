@@ -7,27 +7,19 @@ from typing import Annotated, Literal
 from pydantic import Field
 
 from rotorkin.core.bounds import (
-    INERTIA_MAX,
     LENGTH_MAX,
-    PRESSURE_MAX,
-    PRESSURE_MIN,
-    TEMPERATURE_MAX,
-    TEMPERATURE_MIN,
     TORQUE_MAX,
 )
 from rotorkin.core.schema import (
     Angle,
     ExportSection,
-    Inertia,
-    InertialSection,
     Length,
-    Pressure,
     RunSection,
     Section,
     Speed,
-    Temperature,
     Torque,
 )
+from rotorkin.machines.schema import RotaryBladeSection, StirlingGas
 
 #: Most harmonics a3.. (b3..) of the law psi(alpha).
 MAX_HARMONICS = 20  # as rotorkin.drives.rhomboid_cam.kinematics.MAX_HARMONICS
@@ -74,7 +66,7 @@ class RhomboidDrive(Section):
     )
 
 
-class RhomboidLoads(Section):
+class RhomboidLoads(StirlingGas):
     torque_high: Torque = Field(
         "100 N*m",
         ge=-TORQUE_MAX,
@@ -90,72 +82,14 @@ class RhomboidLoads(Section):
     pressure_model: Literal["linear", "isothermal"] = Field(
         "linear", description="blade loads: the paper's linear torque model or isothermal gas"
     )
-    charge_pressure: Pressure = Field(
-        "2 bar",
-        ge=PRESSURE_MIN,
-        le=PRESSURE_MAX,
-        description="isothermal model: pressure at the largest volume, cold "
-        "(0.01 bar <= p <= 1000 bar, absolute)",
-    )
-    hot_temperature: Temperature = Field(
-        "900 K",
-        ge=TEMPERATURE_MIN,
-        le=TEMPERATURE_MAX,
-        description="isothermal model: expansion (1 K <= T_hot <= 5000 K)",
-    )
-    cold_temperature: Temperature = Field(
-        "330 K",
-        ge=TEMPERATURE_MIN,
-        le=TEMPERATURE_MAX,
-        description="isothermal model: compression (1 K <= T_cold <= 5000 K)",
-    )
 
 
-class RotaryBladeMachine(InertialSection):
-    inertia_shaft: Inertia = Field(
-        "0.01 kg*m^2",
-        ge=0.0,
-        le=INERTIA_MAX,
-        description="inertia of the input shaft (0 <= J <= 1e5 kg*m^2)",
-    )
-    blades_per_pair: int = Field(
-        2, ge=1, le=12, description="blades on each of the two blade pairs (1 <= B <= 12)"
-    )
+class RotaryBladeMachine(RotaryBladeSection):
     blade_thickness: Angle = Field(
         "10 deg",
         gt=0.0,
         lt=1.5707963267948966,
         description="angular thickness of one blade (0 deg < blade_thickness < psi_min)",
-    )
-    inner_radius: Length = Field(
-        "30 mm",
-        ge=0.001,
-        le=LENGTH_MAX,
-        description="hub radius of the working space (1 mm <= inner_radius < outer_radius)",
-    )
-    outer_radius: Length = Field(
-        "90 mm",
-        ge=0.001,
-        le=LENGTH_MAX,
-        description="casing radius of the working space (inner_radius < outer_radius <= 10 m)",
-    )
-    axial_width: Length = Field(
-        "50 mm",
-        ge=0.001,
-        le=LENGTH_MAX,
-        description="axial width of the working space (1 mm <= axial_width <= 10 m)",
-    )
-    inertia_blade_pair_1: Inertia = Field(
-        "0.005 kg*m^2",
-        ge=0.0,
-        le=INERTIA_MAX,
-        description="inertia of blade pair 1 (0 <= J <= 1e5 kg*m^2)",
-    )
-    inertia_blade_pair_2: Inertia = Field(
-        "0.005 kg*m^2",
-        ge=0.0,
-        le=INERTIA_MAX,
-        description="inertia of blade pair 2 (0 <= J <= 1e5 kg*m^2)",
     )
 
 

@@ -30,4 +30,6 @@ SPEC = DriveSpec(
     scene=scene,
     cad_parts=cad.cad_parts,
     check_cam=cad.check_cam,
+    machine="rotary_blade",
+    law=study.law,
 )

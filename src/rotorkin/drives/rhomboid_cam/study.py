@@ -20,6 +20,7 @@ pressures, member and shaft torques, inertia and flywheel, with work per output-
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 from typing import NamedTuple
 
@@ -36,6 +37,7 @@ from rotorkin.drives.rhomboid_cam.schema import RhomboidLoads, RotaryBladeMachin
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
+from rotorkin.vane import RotaryLaw
 
 __all__ = [
     "evaluate",
@@ -396,6 +398,12 @@ def drive_params(cfg: dict) -> rc.RhomboidCam:
         },
     )
     return params
+
+
+def law(cfg: dict) -> RotaryLaw:
+    """The two members' motion for any vane machine on this drive (:mod:`rotorkin.vane`)."""
+    params = drive_params(cfg)
+    return RotaryLaw(functools.partial(rc.motion, params), rc.period(params))
 
 
 def evaluate(cfg: dict) -> StudyResult:

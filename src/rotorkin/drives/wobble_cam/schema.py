@@ -10,16 +10,13 @@ from pydantic import Field
 from rotorkin.core.bounds import INERTIA_MAX
 from rotorkin.core.schema import (
     Angle,
-    Energy,
     ExportSection,
     Inertia,
-    InertialSection,
     Length,
-    Pressure,
     RunSection,
     Section,
-    Volume,
 )
+from rotorkin.machines.schema import COMPRESSION_RATIO_MAX, EngineLoads, TwinRotorMachine
 
 #: Largest |spin_ratio| [-]: the plate turns at most 20 times per shaft turn.
 SPIN_RATIO_MAX = 20.0
@@ -35,8 +32,6 @@ HALF_PI = 1.5707963267948966
 #: Smallest angle between the roller groups (and 180 deg less the largest) [rad], 1 deg: with
 #: 2-piston rotors eq. 20 admits alpha down to 0, where the plate tilt limit degenerates.
 ROLLER_AXIS_ANGLE_MIN = 0.017453292519943295
-#: Largest compression ratio [-]: 1e6 stands for pistons of zero width (the drive alone).
-COMPRESSION_RATIO_MAX = 1e6
 #: One coefficient of the spin-law correction [rad].
 Coefficient = Annotated[float, Field(ge=-10.0, le=10.0)]
 
@@ -109,7 +104,7 @@ class WobbleDrive(Section):
     )
 
 
-class WobbleMachine(InertialSection):
+class WobbleMachine(TwinRotorMachine):
     compression_ratio: float = Field(
         10.0,
         gt=1.0,
@@ -119,88 +114,11 @@ class WobbleMachine(InertialSection):
         "(1 < eps <= 1e6; eps = 1e6 stands for zero-width pistons, the drive alone; above the "
         "zero-width ratio of plate_tilt and roller_axis_angle)",
     )
-    pistons_per_rotor: int = Field(
-        4, ge=2, le=24, description="vane pistons on each rotor (even, 2 <= N <= 24)"
-    )
-    section: Literal["rectangular", "circular"] = Field(
-        "rectangular", description="cylinder section: rectangular annulus or circular torus"
-    )
-    inner_radius: Length = Field(
-        "40 mm",
-        ge=0.001,
-        le=10.0,
-        description="inner radius of a rectangular annulus (1 mm <= inner_radius < outer_radius)",
-    )
-    outer_radius: Length = Field(
-        "80 mm",
-        ge=0.001,
-        le=10.0,
-        description="outer radius of a rectangular annulus (inner_radius < outer_radius <= 10 m)",
-    )
-    axial_width: Length = Field(
-        "40 mm",
-        ge=0.001,
-        le=10.0,
-        description="axial width of a rectangular annulus (1 mm <= axial_width <= 10 m)",
-    )
-    mean_radius: Length = Field(
-        "60 mm",
-        ge=0.001,
-        le=10.0,
-        description="mean radius of a circular torus (1 mm <= mean_radius <= 10 m)",
-    )
-    section_diameter: Length = Field(
-        "40 mm",
-        ge=0.001,
-        le=10.0,
-        description="section diameter of a circular torus "
-        "(1 mm <= section_diameter < 2 mean_radius)",
-    )
-    clearance_volume: Volume = Field(
-        "0 cm^3",
-        ge=0.0,
-        le=1.0,
-        description="clearance volume of each chamber (0 <= clearance_volume <= 1 m^3)",
-    )
     inertia_shaft: Inertia = Field(
         "0.004 kg*m^2",
         ge=0.0,
         le=INERTIA_MAX,
         description="inertia of the input shaft with the plate and rollers (0 <= J <= 1e5 kg*m^2)",
-    )
-    inertia_rotor_1: Inertia = Field(
-        "0.008 kg*m^2",
-        ge=0.0,
-        le=INERTIA_MAX,
-        description="inertia of rotor 1 (0 <= J <= 1e5 kg*m^2)",
-    )
-    inertia_rotor_2: Inertia = Field(
-        "0.008 kg*m^2",
-        ge=0.0,
-        le=INERTIA_MAX,
-        description="inertia of rotor 2 (0 <= J <= 1e5 kg*m^2)",
-    )
-
-
-class EngineLoads(Section):
-    ambient_pressure: Pressure = Field(
-        "1 bar",
-        ge=1e3,
-        le=1e7,
-        description="intake and exhaust pressure (0.01 bar <= p <= 100 bar, absolute)",
-    )
-    polytropic_exponent: float = Field(
-        1.35,
-        gt=1.0,
-        le=5.0 / 3.0,
-        description="exponent n of compression and expansion, p V^n = const (1 < n <= 5/3)",
-    )
-    heat_per_cycle: Energy = Field(
-        "90 J",
-        ge=0.0,
-        le=1e6,
-        description="heat added at minimum volume, per chamber and four-stroke cycle "
-        "(0 <= Q <= 1 MJ)",
     )
 
 

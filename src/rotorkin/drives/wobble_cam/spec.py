@@ -41,4 +41,6 @@ SPEC = DriveSpec(
     cad_write=cad.export_wobble,
     check_cam=cad.check_cam,
     check_rows=cad.check_rows,
+    machine="twin_rotor",
+    law=study.law,
 )

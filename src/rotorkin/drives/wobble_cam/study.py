@@ -11,6 +11,7 @@ Keys missing from a hand-built cfg take the dataclasses' defaults (= the config'
 
 from __future__ import annotations
 
+import functools
 import sys
 from dataclasses import fields
 from pathlib import Path
@@ -35,8 +36,9 @@ from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.machines import twin_rotor as tr
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
+from rotorkin.vane import RotaryLaw
 
-__all__ = ["evaluate", "models", "HEADLINE"]
+__all__ = ["evaluate", "models", "law", "HEADLINE"]
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {
@@ -370,6 +372,31 @@ def models(cfg: dict) -> tuple[wc.WobbleCam, tr.TwinRotor, ec.IdealCycle]:
     )
     cycle = build_params(ec.IdealCycle, "loads", _section(cfg, "loads", ec.IdealCycle))
     return params, machine, cycle
+
+
+def law(cfg: dict) -> RotaryLaw:
+    """The rotors' motion for any vane machine on this drive (:mod:`rotorkin.vane`).
+
+    The drive's admissible tilt depends on the pistons per rotor (eq. 20); a machine
+    without pistons takes the paper's 4.
+    """
+    d = cfg["drive"]
+    pistons = (cfg.get("machine") or {}).get("pistons_per_rotor", 4)
+    params = build_params(
+        wc.WobbleCam,
+        "drive",
+        {
+            "plate_tilt": d["plate_tilt"],
+            "roller_axis_angle": d["roller_axis_angle"],
+            "spin_ratio": d["spin_ratio"],
+            "sphere_radius": d["sphere_radius"],
+            "pistons_per_rotor": pistons,
+            "spin_a": tuple(d.get("spin_a", ())),
+            "spin_b": tuple(d.get("spin_b", ())),
+        },
+        aliases={"pistons_per_rotor": "machine.pistons_per_rotor"},
+    )
+    return RotaryLaw(functools.partial(wc.motion, params), wc.period(params))
 
 
 def evaluate(cfg: dict) -> StudyResult:

@@ -1,0 +1,311 @@
+"""The three vane machines on any rotary law: setup (with the fit check), state, closed forms.
+
+Each machine is built from the ``[machine]`` and ``[loads]`` sections
+(:mod:`rotorkin.machines.schema`) and a :class:`~rotorkin.vane.law.RotaryLaw`. It
+*mounts* its vanes on member 2 so that at mid-swing of the relative angle its two
+chamber kinds are alike (a twin-rotor engine's rails 90 deg apart, a pump's vanes
+``pi/Z`` apart, a blade pair ``pi/B`` from the other): both kinds then reach the
+same smallest volume, the best a designer can do with a given swing. The papers'
+drives are already mounted that way (wobble cam at a roller axis angle of 90 deg,
+rhomboid cam, guide bars), so on them the numbers are the papers' machines'.
+
+Compatibility: what cannot fit is refused in one line naming the machine key:
+pistons, vanes or blades that would collide over the drive's swing, or a
+four-stroke engine on a drive that does not swing the rotors a multiple of two
+times per turn.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+from rotorkin.analysis import engine_cycle as ec
+from rotorkin.analysis.torque import member_torques, shaft_torque_from_members
+from rotorkin.core.angles import fmt_deg
+from rotorkin.core.errors import ParameterError
+from rotorkin.machines import rotary_blade as rb
+from rotorkin.machines import twin_rotor as tr
+from rotorkin.machines import vane_pump as vp
+from rotorkin.machines.schema import (
+    EngineLoads,
+    PumpPorts,
+    RotaryBladeSection,
+    StirlingGas,
+    TwinRotorMachine,
+    VanePumpSection,
+)
+from rotorkin.studies.helpers import build_params
+from rotorkin.vane.law import RotaryLaw, mounted, relative_extremes, stroke_counter, turning_points
+from rotorkin.vane.law import strokes_per_turn as _strokes_per_turn
+
+__all__ = ["Setup", "State", "MACHINES", "setup", "state", "summary"]
+
+_TWO_PI = 2.0 * np.pi
+
+
+@dataclass(frozen=True)
+class Setup:
+    """A machine mounted on a law: everything that does not depend on the shaft angle."""
+
+    kind: str
+    law: RotaryLaw
+    model: object  # TwinRotor | VanePump | RotaryBlade
+    loads: object  # IdealCycle | PortPressures | IsothermalGas
+    turning: np.ndarray  # turning points of r in [0, period)
+    r_lo: float
+    r_hi: float
+    shift: float  # member 2's vanes mounted this much from its zero [rad]
+    strokes_per_turn: float
+    extra: dict  # the machine's own closed-form numbers
+
+
+@dataclass(frozen=True)
+class State:
+    """The machine at a set of shaft angles."""
+
+    motion: object  # mounted Motion
+    volume: np.ndarray  # (C, ...) [m^3]
+    dvolume: np.ndarray  # (C, ...) dV/dtheta [m^3/rad]
+    pressure: np.ndarray  # (C, ...) [Pa]
+    members: np.ndarray  # (2, ...) torques on the members [N m]
+    shaft: np.ndarray  # (...) torque on the shaft, + drives it [N m]
+
+
+#: machine.type -> (machine section, loads section, inertia keys of the two members).
+MACHINES = {
+    "twin_rotor": (TwinRotorMachine, EngineLoads, ("inertia_rotor_1", "inertia_rotor_2")),
+    "vane_pump": (VanePumpSection, PumpPorts, ("inertia_impeller_1", "inertia_impeller_2")),
+    "rotary_blade": (
+        RotaryBladeSection,
+        StirlingGas,
+        ("inertia_blade_pair_1", "inertia_blade_pair_2"),
+    ),
+}
+
+
+def _fields(cls, section: dict) -> dict:
+    return {f.name: section[f.name] for f in fields(cls) if f.name in section}
+
+
+def inertias(kind: str, machine: dict) -> tuple[float, tuple[float, float]]:
+    """``J_shaft`` and the two members' inertias of a machine section [kg m^2]."""
+    k1, k2 = MACHINES[kind][2]
+    return float(machine["inertia_shaft"]), (float(machine[k1]), float(machine[k2]))
+
+
+def setup(kind: str, cfg: dict, law: RotaryLaw) -> Setup:
+    """Build, mount and check the machine ``kind`` of ``cfg`` on ``law``.
+
+    Raises
+    ------
+    ParameterError
+        Named by the machine key that does not fit the drive.
+    """
+    machine, loads = cfg.get("machine", {}), cfg.get("loads", {})
+    points = turning_points(law)
+    if len(points) == 0:
+        raise ParameterError(
+            "machine.type",
+            kind,
+            "a drive that swings its two members against each other; this one turns them "
+            "together (their relative angle never turns back)",
+        )
+    lo, hi = relative_extremes(law, points)
+    swing, mid = hi - lo, 0.5 * (lo + hi)
+    per_turn = _strokes_per_turn(law, points)
+    return _SETUPS[kind](machine, loads, law, points, lo, hi, swing, mid, per_turn)
+
+
+def _twin_rotor(machine, loads, law, points, lo, hi, swing, mid, per_turn) -> Setup:
+    model = build_params(tr.TwinRotor, "machine", _fields(tr.TwinRotor, machine))
+    cycle = build_params(ec.IdealCycle, "loads", _fields(ec.IdealCycle, loads))
+    n = model.pistons_per_rotor
+    per_span = int(round(per_turn * law.span / _TWO_PI))
+    if per_span % 4:
+        raise ParameterError(
+            "machine.type",
+            "twin_rotor",
+            "a four-stroke engine needs a drive that swings the rotors an even number of times "
+            f"per shaft turn (or per period of the drive); this one swings them {per_span / 2:g} "
+            "times",
+        )
+    pitch = _TWO_PI / n
+    g_lo, g_hi = 0.5 * pitch - 0.5 * swing, 0.5 * pitch + 0.5 * swing  # piston gaps, centred
+    if g_lo <= 0.0:
+        most = 2 * int(np.floor(np.pi / swing / 2.0 - 1e-12)) if swing > 0 else 24
+        raise ParameterError(
+            "machine.pistons_per_rotor",
+            str(n),
+            f"pistons_per_rotor < 360 deg / swing, at most {max(most, 0)} here: the drive swings "
+            f"the rotors by {fmt_deg(swing)} and the pistons must stay apart",
+        )
+    eps = float(model.compression_ratio)
+    beta = (eps * g_lo - g_hi) / (eps - 1.0)
+    if beta < 0.0:
+        raise ParameterError(
+            "machine.compression_ratio",
+            f"{eps:g}",
+            f"compression_ratio > {g_hi / g_lo:.4g}, the ratio of zero-width pistons for "
+            f"{n} pistons per rotor over the drive's swing of {fmt_deg(swing)}",
+        )
+    amin, amax = (g_lo - beta, g_lo - beta), (g_hi - beta, g_hi - beta)
+    extra = {"piston_width": beta, "angle_min": amin, "angle_max": amax, "cycle": cycle}
+    return Setup("twin_rotor", law, model, cycle, points, lo, hi, 0.5 * np.pi - mid, per_turn,
+                 extra)  # fmt: skip
+
+
+def _vane_pump(machine, loads, law, points, lo, hi, swing, mid, per_turn) -> Setup:
+    z = int(machine.get("vanes_per_impeller", 2))
+    widest = float(vp.vane_angle_max(z, swing))
+    if widest <= 0.0:
+        raise ParameterError(
+            "machine.vanes_per_impeller",
+            str(z),
+            f"vanes_per_impeller < 360 deg / swing = {_TWO_PI / swing:.4g}: the drive swings the "
+            f"impellers by {fmt_deg(swing)} and the vanes must stay apart",
+        )
+    gamma = machine.get("vane_angle")
+    values = {k: machine[k] for k in ("hub_radius", "casing_radius", "axial_width") if k in machine}
+    pump = build_params(
+        vp.VanePump,
+        "machine",
+        {
+            "relative_angle_min": lo,
+            "relative_angle_max": hi,
+            "vane_angle": widest if gamma is None else gamma,
+            "vanes_per_impeller": z,
+            **values,
+        },
+    )
+    ports = build_params(vp.PortPressures, "loads", _fields(vp.PortPressures, loads))
+    return Setup("vane_pump", law, pump, ports, points, lo, hi, 0.0, per_turn, {})
+
+
+def _rotary_blade(machine, loads, law, points, lo, hi, swing, mid, per_turn) -> Setup:
+    keys = ("blade_thickness", "inner_radius", "outer_radius", "axial_width", "blades_per_pair",
+            "inertia_shaft", "inertia_blade_pair_1", "inertia_blade_pair_2")  # fmt: skip
+    model = build_params(rb.RotaryBlade, "machine", {k: machine[k] for k in keys if k in machine})
+    gas = build_params(rb.IsothermalGas, "loads", _fields(rb.IsothermalGas, loads))
+    centre = np.pi / model.blades_per_pair
+    psi_lo, psi_hi = centre - 0.5 * swing, centre + 0.5 * swing
+    try:  # the blades must fit the drive's swing
+        rb.check_swing(model, psi_lo, psi_hi)
+    except ParameterError as exc:
+        raise ParameterError(f"machine.{exc.name}", exc.value, exc.admissible) from None
+    v_min, v_max = rb.volume_range(model, psi_lo, psi_hi)
+    extra = {"psi": (psi_lo, psi_hi), "charge": rb.gas_charge(gas, v_max), "v_min": v_min,
+             "v_max": v_max}  # fmt: skip
+    # psi = q1 - q2 runs from its centre pi/B where r = q2 - q1 is at mid-swing
+    return Setup("rotary_blade", law, model, gas, points, lo, hi, -(mid + centre), per_turn,
+                 extra)  # fmt: skip
+
+
+_SETUPS = {"twin_rotor": _twin_rotor, "vane_pump": _vane_pump, "rotary_blade": _rotary_blade}
+
+
+def state(s: Setup, theta) -> State:
+    """Volumes, pressures and torques at the shaft angles ``theta`` (any shape)."""
+    theta = np.asarray(theta, dtype=float)
+    motion = mounted(s.law.motion(theta), s.shift)
+    if s.kind == "twin_rotor":
+        count = stroke_counter(s.law, theta, s.turning)
+        e = s.extra
+        st = tr.engine_state(s.model, e["cycle"], motion, e["piston_width"], e["angle_min"],
+                             e["angle_max"], count)  # fmt: skip
+        return State(motion, st.chambers.volume, st.chambers.dvolume, st.pressure,
+                     st.member_torque, st.shaft_torque)  # fmt: skip
+    if s.kind == "vane_pump":
+        volume, dvolume = vp.chamber_volumes(s.model, motion)
+        pressure = vp.chamber_pressures(s.loads, dvolume)
+        members = member_torques(pressure, vp.volume_derivatives_dq(s.model, motion))
+        return State(motion, volume, dvolume, pressure, members,
+                     shaft_torque_from_members(members, motion.dq))  # fmt: skip
+    volume = rb.chamber_volumes(s.model, motion.q)
+    dvolume = rb.chamber_volume_derivative(s.model, motion.dq)
+    dpsi, d2psi = motion.dq[0] - motion.dq[1], motion.d2q[0] - motion.d2q[1]
+    direction = np.where(dpsi != 0.0, np.sign(dpsi), np.sign(d2psi))
+    strokes = rb.chamber_strokes(s.model, direction)
+    pressure = rb.isothermal_pressure(s.loads, s.extra["charge"], volume, strokes)
+    members = rb.gas_member_torques(s.model, pressure)
+    return State(motion, volume, dvolume, pressure, members,
+                 shaft_torque_from_members(members, motion.dq))  # fmt: skip
+
+
+def summary(s: Setup) -> dict:
+    """Closed-form numbers of the machine: volumes, displacement, work per shaft turn.
+
+    ``indicated_work_J`` is the work the machine does on the shaft per turn (a
+    pump's is negative); ``displacement_cm3_per_rev`` the volume swept by all
+    chambers' strokes of one kind (intake / suction / expansion) per turn.
+    """
+    cycles = s.strokes_per_turn / 2.0  # volume cycles of each chamber per turn
+    swing = s.r_hi - s.r_lo
+    out = {
+        "machine": s.kind,
+        "relative_angle_min_deg": float(np.degrees(s.r_lo)),
+        "relative_angle_max_deg": float(np.degrees(s.r_hi)),
+        "relative_swing_deg": float(np.degrees(swing)),
+        "volume_cycles_per_rev": cycles,
+        "vane_mounting_deg": float(np.degrees(s.shift)),
+    }
+    if s.kind == "twin_rotor":
+        e, m, cycle = s.extra, s.model, s.loads
+        four = cycles / 2.0  # four-stroke cycles of each chamber per turn
+        v_min, v_max = tr.volume_limits(m, e["angle_min"], e["angle_max"])
+        eps = tr.compression_ratio_geometric(m, e["angle_min"], e["angle_max"])
+        work = tr.indicated_work_per_rev(m, cycle, e["angle_min"], e["angle_max"], four)
+        disp = tr.displacement_per_rev(m, swing, four)
+        heat = cycle.heat_per_cycle * m.chambers * four
+        out.update({
+            "pistons_per_rotor": int(m.pistons_per_rotor),
+            "piston_width_deg": float(np.degrees(e["piston_width"])),
+            "chamber_angle_min_deg": float(np.degrees(e["angle_min"][0])),
+            "chamber_angle_max_deg": float(np.degrees(e["angle_max"][0])),
+            "power_strokes_per_rev": float(m.chambers * four),
+            "chamber_volume_min_cm3": float(np.min(v_min)) * 1e6,
+            "chamber_volume_max_cm3": float(np.max(v_max)) * 1e6,
+            "displacement_cm3_per_rev": float(disp) * 1e6,
+            "compression_ratio_geometric": float(min(eps)),
+            "peak_pressure_bar": float(np.max(ec.peak_pressure(cycle, v_max, v_min))) / 1e5,
+            "indicated_work_J": float(work),
+            "heat_added_J_per_rev": float(heat),
+            "indicated_efficiency": float(work / heat) if heat > 0 else float("nan"),
+            "imep_bar": float(work / disp) / 1e5 if disp > 0 else float("nan"),
+        })  # fmt: skip
+    elif s.kind == "vane_pump":
+        pump, ports = s.model, s.loads
+        disp = float(vp.displacement(pump)) * cycles  # per period of one swing, per turn
+        lo, hi = pump.chamber_angle_range
+        out.update({
+            "vanes_per_impeller": int(pump.vanes_per_impeller),
+            "vane_angle_deg": float(np.degrees(pump.vane_angle)),
+            "chamber_angle_min_deg": float(np.degrees(lo)),
+            "chamber_angle_max_deg": float(np.degrees(hi)),
+            "displacement_cm3_per_rev": disp * 1e6,
+            "pressure_rise_bar": (ports.discharge_pressure - ports.suction_pressure) / 1e5,
+            "indicated_work_J": -(ports.discharge_pressure - ports.suction_pressure) * disp,
+        })  # fmt: skip
+    else:
+        m, gas, e = s.model, s.loads, s.extra
+        psi_lo, psi_hi = e["psi"]
+        ends = np.concatenate([[0.0], np.asarray(s.turning, dtype=float), [s.law.period]])
+        ends = np.unique(ends)
+        v_turns = rb.chamber_volumes(m, mounted(s.law.motion(ends), s.shift).q)
+        per_period = float(np.sum(rb.isothermal_cycle_work(gas, e["charge"], v_turns)))
+        periods = _TWO_PI / s.law.period
+        disp = float(rb.displacement_per_rev(m, s.strokes_per_turn * (psi_hi - psi_lo)))
+        out.update({
+            "blades_per_pair": int(m.blades_per_pair),
+            "psi_min_deg": float(np.degrees(psi_lo)),
+            "psi_max_deg": float(np.degrees(psi_hi)),
+            "chamber_volume_min_cm3": float(np.min(e["v_min"])) * 1e6,
+            "chamber_volume_max_cm3": float(np.max(e["v_max"])) * 1e6,
+            "displacement_cm3_per_rev": disp * 1e6,
+            "compression_ratio_geometric": float(np.min(e["v_max"] / e["v_min"])),
+            "indicated_work_J": per_period * periods,
+            "hot_temperature_K": gas.hot_temperature,
+            "cold_temperature_K": gas.cold_temperature,
+        })  # fmt: skip
+    return out
