@@ -331,35 +331,29 @@ def _floor_text(x: float) -> str:
 def _admissible(code: int, n, m, e, a, s) -> tuple[str, str, str]:
     """``(field, value as people read it, what is admissible)`` for rule ``code`` (1-based)."""
     field = CHECKS[code - 1]
+    value = f"{e:g}"
     if code in (1, 2):
-        value = n if code == 1 else m
+        value = f"{n if code == 1 else m:g}"
         what = "driving" if code == 1 else "driven"
-        return field, f"{value:g}", (
-            f"an integer 1 <= {field} <= {MAX_LOBES} (lobes of the {what} pitch curve)"
-        )
-    if code == 3:
-        return field, f"{e:g}", "0 <= eccentricity < 1"
-    if code == 4:
+        text = f"an integer 1 <= {field} <= {MAX_LOBES} (lobes of the {what} pitch curve)"
+    elif code == 3:
+        text = "0 <= eccentricity < 1"
+    elif code == 4:
         lo, hi = CENTRE_DISTANCE_RANGE
-        return field, f"{a:g} m", f"{lo:g} m <= centre_distance <= {hi:g} m"
-    if code == 5:
-        return field, fmt_deg(s) if np.isfinite(s) else f"{s:g} rad", "a finite angle"
-    limit = _floor_text(float(eccentricity_limit(n, m)))
-    if code == 6:
-        return field, f"{e:g}", (
-            f"0 <= eccentricity <= {limit} (no closure root p > 0 with a positive driven "
-            f"radius for n = {n:g}, m = {m:g})"
-        )
-    if code == 7:
-        return field, f"{e:g}", (
-            f"0 <= eccentricity <= {limit} (a {n:g}-lobed driving pitch curve is convex only "
-            "for e <= 1/(n^2-1); external gears need convex pitch curves)"
-        )
-    return field, f"{e:g}", (
-        f"0 <= eccentricity <= {limit} (driven by a {n:g}-lobed gear, a {m:g}-lobed driven "
-        "pitch curve is convex only for e <= 1/sqrt(n^2 (m^2-2) + 1); external gears need "
-        "convex pitch curves)"
-    )
+        value, text = f"{a:g} m", f"{lo:g} m <= centre_distance <= {hi:g} m"
+    elif code == 5:
+        value, text = (fmt_deg(s) if np.isfinite(s) else f"{s:g} rad"), "a finite angle"
+    else:
+        limit = _floor_text(float(eccentricity_limit(n, m)))
+        why = {
+            6: f"no closure root p > 0 with a positive driven radius for n = {n:g}, m = {m:g}",
+            7: f"a {n:g}-lobed driving pitch curve is convex only for e <= 1/(n^2-1); "
+            "external gears need convex pitch curves",
+            8: f"driven by a {n:g}-lobed gear, a {m:g}-lobed driven pitch curve is convex only "
+            "for e <= 1/sqrt(n^2 (m^2-2) + 1); external gears need convex pitch curves",
+        }[code]
+        text = f"0 <= eccentricity <= {limit} ({why})"
+    return field, value, text
 
 
 def raise_violation(values, code) -> None:
