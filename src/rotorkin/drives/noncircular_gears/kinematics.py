@@ -631,6 +631,13 @@ def pitch_curve(params: NoncircularGears, which: str, angle):
 
     ``x = r cos(angle)``, ``y = r sin(angle)``, the gear's centre at the origin, the x axis
     towards the other gear's centre at ``theta = 0``. Both curves are symmetric about it.
+
+    In mesh, in one plane (driving centre at the origin turning counter-clockwise by
+    ``phi1``, driven centre at ``(a, 0)`` turning clockwise by ``phi2 = driven_angle``),
+    a driving point is at ``Rot(phi1) (x, -y)`` and a driven point at
+    ``(a, 0) + Rot(pi - phi2) (x, y)`` (each own angle runs against its gear's rotation);
+    the points of own angles ``phi1`` and ``phi2`` then coincide on the line of centres,
+    where the curves touch.
     """
     r = pitch_radius(params, which, angle)
     angle = np.asarray(angle, dtype=float)
