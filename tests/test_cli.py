@@ -8,7 +8,13 @@ import pytest
 
 from rotorkin.cli import main
 
-EXAMPLES = ["eccentric-reactor", "guide-bar-pump", "rhomboid-engine", "wobble-cam-engine"]
+EXAMPLES = [
+    "eccentric-reactor",
+    "elliptic-gear-engine",
+    "guide-bar-pump",
+    "rhomboid-engine",
+    "wobble-cam-engine",
+]
 
 
 @pytest.mark.slow

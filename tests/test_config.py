@@ -17,7 +17,13 @@ from rotorkin.io.config import (
 )
 from rotorkin.io.output import to_toml
 
-EXAMPLES = ["eccentric-reactor", "guide-bar-pump", "rhomboid-engine", "wobble-cam-engine"]
+EXAMPLES = [
+    "eccentric-reactor",
+    "elliptic-gear-engine",
+    "guide-bar-pump",
+    "rhomboid-engine",
+    "wobble-cam-engine",
+]
 
 
 def test_examples_are_shipped_one_per_drive_type():

@@ -30,7 +30,13 @@ from rotorkin.report.html import write_report
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
 CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
-EXAMPLES = ["eccentric-reactor", "guide-bar-pump", "rhomboid-engine", "wobble-cam-engine"]
+EXAMPLES = [
+    "eccentric-reactor",
+    "elliptic-gear-engine",
+    "guide-bar-pump",
+    "rhomboid-engine",
+    "wobble-cam-engine",
+]
 LOAD_TIMEOUT = 90.0
 
 

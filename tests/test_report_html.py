@@ -26,12 +26,19 @@ from rotorkin.drives import evaluate
 from rotorkin.io.config import load_config
 from rotorkin.report.html import FRAMES, write_report
 
-EXAMPLES = ["eccentric-reactor", "guide-bar-pump", "rhomboid-engine", "wobble-cam-engine"]
+EXAMPLES = [
+    "eccentric-reactor",
+    "elliptic-gear-engine",
+    "guide-bar-pump",
+    "rhomboid-engine",
+    "wobble-cam-engine",
+]
 PLOTS = {  # plot ids every report of the drive must have
     "wobble_cam": {"plot-svaj", "plot-chambers", "plot-torque", "plot-pv", "plot-sphere"},
     "eccentric_cam": {"plot-svaj", "plot-gap", "plot-volume", "plot-torque", "plot-pv", "plot-cam"},
     "guide_bar": {"plot-svaj", "plot-speed", "plot-chambers", "plot-torque", "plot-pv"},
     "rhomboid_cam": {"plot-svaj", "plot-chambers", "plot-torque", "plot-pv", "plot-cam"},
+    "noncircular_gears": {"plot-members", "plot-chambers", "plot-torque"},
 }
 
 

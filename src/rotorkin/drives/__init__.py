@@ -18,7 +18,7 @@ import numpy as np
 from pydantic import Field, create_model
 
 from rotorkin.core.errors import ConfigError, ParameterError
-from rotorkin.drives import eccentric_cam, guide_bar, rhomboid_cam, wobble_cam
+from rotorkin.drives import eccentric_cam, guide_bar, noncircular_gears, rhomboid_cam, wobble_cam
 from rotorkin.drives._spec import DriveSpec
 from rotorkin.synthesis import SynthesisResult
 from rotorkin.vane import MACHINES
@@ -146,6 +146,15 @@ def spec_of(cfg: dict) -> DriveSpec:
 
 
 def _carrying(spec: DriveSpec, kind: str) -> DriveSpec:
+    if spec.carries_any:  # its study runs any machine: only the headline's tail changes
+        own = {k: v for k, v in spec.headline.items() if k not in HEADLINES.get(spec.machine, {})}
+        return dataclasses.replace(
+            spec,
+            config_model=_composed(spec.config_model, kind),
+            headline={**own, **HEADLINES[kind]},
+            machine=kind,
+        )
+
     def study(cfg):
         return evaluate_vane_machine(
             cfg,
@@ -263,5 +272,5 @@ def synthesize(
     return spec.synthesize(cfg, raw, objective, target, harmonics, None)
 
 
-for _module in (wobble_cam, eccentric_cam, guide_bar, rhomboid_cam):
+for _module in (wobble_cam, eccentric_cam, guide_bar, rhomboid_cam, noncircular_gears):
     register(_module.SPEC)

@@ -91,6 +91,10 @@ class DriveSpec:
         members: it then carries any vane machine (``[machine] type``,
         :mod:`rotorkin.vane`), its own one through ``study``, the others through
         :func:`rotorkin.vane.evaluate`.
+    carries_any : bool
+        ``study`` itself runs every vane machine (it adds the drive's own numbers to
+        :func:`rotorkin.vane.evaluate`'s); ``headline`` then starts with the drive's
+        keys and ends with those of ``machine``.
     """
 
     name: str
@@ -116,6 +120,7 @@ class DriveSpec:
     check_rows: Callable | None = None
     machine: str = ""
     law: Callable | None = None
+    carries_any: bool = False
 
     def __post_init__(self):
         if not self.name.isidentifier():

@@ -90,7 +90,7 @@ def plots(result, cfg) -> list:
         (f"d2/dtheta2 [{unit}/rad^2]", [(m.members[k], scale(m.d2q[k])) for k in (0, 1)]),
         (f"d3/dtheta3 [{unit}/rad^3]", [(m.members[k], scale(m.d3q[k])) for k in (0, 1)]),
     ]
-    return [
+    out = [
         lines_plot(
             "plot-members",
             "Members",
@@ -101,6 +101,35 @@ def plots(result, cfg) -> list:
             period=float(x[-1] - x[0]),
         )
     ]
+    return out + _machine_plots(result.columns)
+
+
+def _machine_plots(cols: dict) -> list:
+    """Chambers and shaft torque of a vane machine's columns (:mod:`rotorkin.vane`), if any."""
+    if "theta_deg" not in cols:
+        return []
+    x = np.asarray(cols["theta_deg"], dtype=float)
+    out = []
+    kinds = [k for k in ("a", "b") if f"chamber_{k}_volume_cm3" in cols]
+    if kinds:
+        rows = [("volume [cm^3]", [(f"chamber kind {k.upper()}", cols[f"chamber_{k}_volume_cm3"])
+                                   for k in kinds])]  # fmt: skip
+        if all(f"chamber_{k}_pressure_bar" in cols for k in kinds):
+            pressure = [(f"chamber kind {k.upper()}", cols[f"chamber_{k}_pressure_bar"])
+                        for k in kinds]  # fmt: skip
+            rows.append(("pressure [bar]", pressure))
+        out.append(lines_plot("plot-chambers", "Chambers", x, "shaft angle theta [deg]", rows,
+                              "Volume and pressure of the two kinds of chamber",
+                              period=float(x[-1] - x[0])))  # fmt: skip
+    if "shaft_torque_Nm" in cols:
+        series = [("machine", cols["shaft_torque_Nm"])]
+        if "shaft_torque_with_inertia_Nm" in cols:
+            series.append(("with inertia", cols["shaft_torque_with_inertia_Nm"]))
+        out.append(lines_plot("plot-torque", "Shaft torque", x, "shaft angle theta [deg]",
+                              [("torque [N m]", series)],
+                              "Torque of the machine on the shaft, + drives it",
+                              period=float(x[-1] - x[0])))  # fmt: skip
+    return out
 
 
 def checks(result, cfg) -> list:

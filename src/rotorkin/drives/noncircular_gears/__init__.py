@@ -1,8 +1,13 @@
-"""The noncircular_gears drive: an output shaft carrying two identical non-circular driving
-gears, each meshing externally with a driven non-circular gear fixed to one of two coaxial
-rotors (twin-rotor engines, vane pumps); the second driving gear is turned on the shaft by an
-installation phase, so the two rotors run with periodically varying speeds in antiphase and
-the angle between them swings. The pitch curves are Litvin's n-lobed "modified ellipses"
-about a rotation centre (an ellipse about a focus for one lobe) and their conjugates; the
-kinematics, with its closed forms, is in :mod:`.kinematics`.
+"""Non-circular gears: two gear pairs from the output shaft to two coaxial rotors.
+
+The classic drive of cat-and-mouse (scissor) engines and differential pumps:
+n-lobed "modified ellipses" (Litvin et al. 2009) rolling on conjugate driven
+gears, phase-shifted on the shaft. :mod:`.kinematics` holds the pitch curves,
+the rotors' motion with exact derivatives and the convexity checks; any vane
+machine runs on it (:mod:`rotorkin.vane`).
 """
+
+from rotorkin.drives.noncircular_gears.kinematics import NoncircularGears, motion, period
+from rotorkin.drives.noncircular_gears.spec import SPEC
+
+__all__ = ["NoncircularGears", "motion", "period", "SPEC"]
