@@ -20,9 +20,10 @@ step). A periodic cubic spline would be the other choice; its third derivative
 (the jerk the bearings and rollers feel) is piecewise constant and jumps at every
 knot, and its error falls only as the fourth power of the step. The trigonometric
 fit has a smooth jerk and is exact for the sum of harmonics that a periodic
-mechanism is. With ``harmonics`` given, the interpolant is cut to that many
-harmonics: for uniform samples this is the least-squares fit of that order, a
-low-pass filter for noisy measured data.
+mechanism is. With ``harmonics`` given, the fit is the least-squares fit of a
+linear trend and that many harmonics (for uniform samples the harmonics' part is
+the interpolant cut to that order): a low-pass filter for noisy measured data,
+whose trend no longer hangs on the noise of two end points.
 
 Non-uniform tables are refused. For uniform samples the fit is an FFT, exact,
 O(n log n) and its error is bounded by the spectrum the samples cannot resolve.
@@ -46,15 +47,19 @@ and a motion that is not periodic.
 Periodicity criterion: after the trend is taken out, the angles join in value
 across the ends by construction; what is checked is that they join in slope. The
 slope on each side of a row is estimated by a least-squares cubic through the 8
-samples on that side (fewer for short tables); the jump ``J_j`` between the two
-is ``O(h^3 q'''')`` for smooth data and the slope jump for a kink. The table is
-refused when, at its ends (row 1 joined to the last row), ``J`` exceeds both
-``1 %`` of the member's largest slope ``max |dq/dtheta|`` and 3 times the largest
-``|J_j|`` at the rows at least a window away from the ends (the scatter of the
-estimate itself: its discretisation error on a coarse table, the data's noise on a
-measured one). A smooth periodic table, and the wobble-cam rotors at 721 rows
-(joint jump about 1e-6 of the slope), pass; a kink of 2 % of the largest slope at
-the joint is refused on any table fine enough to show it.
+samples on that side (fewer for short tables); the difference ``J_j`` of the two
+is the slope jump for a kink and ``O(h^3 q'''')`` for smooth data. At the ends
+(the first row joined to the last) the table is refused when ``|J|`` exceeds all
+of: ``1 %`` of the member's largest slope ``max |dq/dtheta|``; 6 times the median
+of ``|J_j|`` at the rows at least a window away from the ends (the estimate's
+noise on measured data); and twice the change of ``J`` when estimated from every
+second sample (a kink's jump does not depend on the step, while the estimate's
+error for a smooth feature too narrow for the window grows eight-fold). Smooth
+periodic tables pass, coarse ones (8 rows) too, and narrow peaks at the ends as
+long as a peak spans a few steps; so do the wobble-cam rotors at any tilt (slope
+jump about 4e-5 of the largest slope at 721 rows) and noisy measurements. A kink
+of 2 % of the largest slope at the ends is refused once the table has some 150
+rows (fewer when the motion is smooth), unless noise hides it.
 
 Error estimate
 --------------
@@ -65,7 +70,7 @@ samples left out, the derivatives against the full fit on the samples and the
 midpoints between them. The coarser fit's error is larger than the full fit's
 for data the full fit resolves (its unresolved spectrum starts at half the
 frequency), so the numbers over-estimate the full fit's error within the table's
-range; a roundoff floor of 8 machine epsilons of the largest angle (times ``(H w)^order``) is added.
+range; a roundoff floor ``8 eps max|q| (H w)^order`` is added (H harmonics).
 """
 
 from __future__ import annotations
@@ -109,8 +114,10 @@ MAX_HARMONICS = 1000
 MAX_FILE_BYTES = 16 * 2**20
 #: Largest slope jump across the ends of a table, as a fraction of the largest slope.
 KINK_TOLERANCE = 0.01
-#: ... and as a multiple of the scatter of the same estimate inside the table.
-_KINK_SCATTER = 3.0
+#: ... as a multiple of the median of the same estimate inside the table (its noise) ...
+_KINK_NOISE = 6.0
+#: ... and of the change of the estimate from every second sample (its discretisation error).
+_KINK_RICHARDSON = 2.0
 #: Samples on each side of a row from which its one-sided slopes are estimated.
 _KINK_WINDOW = 8
 #: Relative tolerance of the steps of a table and of ``2 pi / P`` being an integer.
@@ -198,6 +205,11 @@ class FitError:
     def __getitem__(self, order: int) -> np.ndarray:
         """The bound of the derivative of order 0..3."""
         return (self.q, self.dq, self.d2q, self.d3q)[order]
+
+    @property
+    def array(self) -> np.ndarray:
+        """All the bounds, shape (4, 2): order 0..3 by member."""
+        return np.stack([self.q, self.dq, self.d2q, self.d3q])
 
 
 def motion(law: FourierLaw, theta, members=("member 1", "member 2")) -> Motion:
@@ -450,12 +462,23 @@ def _check_joint(periodic, largest_slope, h, name, at):
     for i, w in enumerate(weights):
         jump += w * (np.roll(periodic, -i, axis=1) + np.roll(periodic, i, axis=1))
     jump /= h
+    # the same at the ends from every second sample: a kink gives the same jump, the
+    # estimate's own error (a smooth feature too narrow for the window) grows as h^3
+    wide = sum(
+        w * (periodic[:, (2 * i) % n] + periodic[:, (-2 * i) % n]) for i, w in enumerate(weights)
+    ) / (2.0 * h)
     far = np.arange(m, n - m + 1)
     if far.size == 0:
         far = np.arange(1, n)
-    scatter = np.abs(jump[:, far]).max(axis=1)
-    limit = np.maximum(KINK_TOLERANCE * largest_slope, _KINK_SCATTER * scatter)
+    noise = np.median(np.abs(jump[:, far]), axis=1)
     at_ends = np.abs(jump[:, 0])
+    limit = np.maximum.reduce(
+        [
+            KINK_TOLERANCE * largest_slope,
+            _KINK_NOISE * noise,
+            _KINK_RICHARDSON * np.abs(wide - jump[:, 0]),
+        ]
+    )
     bad = at_ends > limit
     if bad.any():
         i = int(np.argmax(bad))
@@ -516,19 +539,45 @@ def _trimmed(a, b, scale):
     return a[:, :keep], b[:, :keep]
 
 
-def _law(table: _Table, a0, a, b) -> FourierLaw:
+def _low_pass(samples, harmonics):
+    """Uniform samples (last axis) without their harmonics above ``harmonics``."""
+    spec = np.fft.rfft(samples, axis=-1)
+    spec[..., harmonics + 1 :] = 0.0
+    return np.fft.irfft(spec, n=samples.shape[-1], axis=-1)
+
+
+def _fit(periodic, step, harmonics, scale):
+    """Slope correction, mean, cosine and sine coefficients of the fit of uniform samples.
+
+    ``periodic`` (2, n): the angles minus the trend through the end points, at
+    ``theta_j = theta_0 + j step``. With all the harmonics the samples carry, the fit
+    interpolates them and the trend stays. With fewer it is the least-squares fit of
+    the trend's slope and the harmonics together (noise at the end points then does
+    not tilt the trend): the slope moves by the correction that minimises the
+    residual left by the low-pass filter.
+    """
+    n = periodic.shape[1]
+    correction = np.zeros(2)
+    if 2 * harmonics + 1 < n:
+        ramp = step * np.arange(n)
+        rest = ramp - _low_pass(ramp, harmonics)
+        correction = (periodic - _low_pass(periodic, harmonics)) @ rest / (rest @ rest)
+        periodic = periodic - correction[:, None] * ramp
+    a0, a, b = _coefficients(periodic, harmonics)
+    return (correction, a0, *_trimmed(a, b, scale))
+
+
+def _scale(table: _Table) -> float:
+    return max(table.scale, np.abs(table.periodic).max(), 1e-300)
+
+
+def _law(table: _Table, correction, a0, a, b) -> FourierLaw:
     """The law of a table from coefficients about its first angle."""
-    a, b = _trimmed(a, b, max(table.scale, np.abs(a0).max(), 1e-300))
+    slope = table.slope + correction
     w = 2.0 * np.pi / table.period
     shift = np.arange(1, a.shape[1] + 1) * (w * np.mod(table.theta0, table.period))
     c, s = np.cos(shift), np.sin(shift)
-    return FourierLaw(
-        table.period,
-        a0 - table.slope * table.theta0,
-        table.slope,
-        a * c - b * s,
-        a * s + b * c,
-    )
+    return FourierLaw(table.period, a0 - slope * table.theta0, slope, a * c - b * s, a * s + b * c)
 
 
 def from_table(theta, q1, q2, harmonics=None, *, name: str = TABLE) -> FourierLaw:
@@ -542,8 +591,10 @@ def from_table(theta, q1, q2, harmonics=None, *, name: str = TABLE) -> FourierLa
     q1, q2 : array_like, shape (n,)
         Angles of the members [rad], continuous (not wrapped into one turn).
     harmonics : int, optional
-        Cut the fit to this many harmonics (a least-squares low-pass fit for noisy
-        data); default: the interpolant, exact at the samples.
+        Cut the fit to this many harmonics: the least-squares fit of a linear trend
+        and that many harmonics to the ``n - 1`` distinct rows (the last row is the
+        first one's periodic image), a low-pass filter for noisy data. Default: the
+        interpolant, exact at the samples, with the trend through the end points.
     name : str, optional
         Parameter the errors name.
 
@@ -558,15 +609,18 @@ def from_table(theta, q1, q2, harmonics=None, *, name: str = TABLE) -> FourierLa
 
 def _from_checked(table: _Table, harmonics) -> FourierLaw:
     p = table.periodic
-    return _law(table, *_coefficients(p, _harmonics(harmonics, p.shape[1])))
+    step = table.period / p.shape[1]
+    return _law(table, *_fit(p, step, _harmonics(harmonics, p.shape[1]), _scale(table)))
 
 
-def _on_grid(a0, a, b, w, size):
-    """Values and derivatives 1..3 of ``a0 + sum a_k cos(k x) + b_k sin(k x)``, shape (4, 2, size).
+def _on_grid(correction, a0, a, b, step, size):
+    """The fit on ``size`` uniform angles over the period, shape (4, 2, size).
 
-    On ``size`` uniform angles over the period (``x = 2 pi j / size``), by FFT;
-    ``size`` > twice the number of harmonics.
+    Values and derivatives 1..3 of ``correction (theta - theta_0) + a0 + sum_k
+    a_k cos(k x) + b_k sin(k x)`` (``x = 2 pi j / size``), by FFT; ``size`` more
+    than twice the harmonics; ``step`` the table's.
     """
+    w = 2.0 * np.pi / (step * size)
     k = np.arange(1, a.shape[1] + 1)
     spec = np.zeros((2, size // 2 + 1), dtype=complex)
     out = np.empty((4, 2, size))
@@ -574,6 +628,8 @@ def _on_grid(a0, a, b, w, size):
         spec[:, 0] = a0 * size if order == 0 else 0.0
         spec[:, 1 : k.size + 1] = 0.5 * size * (a - 1j * b) * (1j * k * w) ** order
         out[order] = np.fft.irfft(spec, n=size, axis=1)
+    out[0] += correction[:, None] * (step * np.arange(size))
+    out[1] += correction[:, None]
     return out
 
 
@@ -602,27 +658,27 @@ def fit_error(theta, q1, q2, harmonics=None, *, name: str = TABLE) -> FitError:
     p = table.periodic
     n = p.shape[1]
     h = _harmonics(harmonics, n)
-    a0, a, b = _coefficients(p, h)
-    a, b = _trimmed(a, b, max(table.scale, np.abs(a0).max(), 1e-300))
+    step = table.period / n
+    scale = _scale(table)
+    full = _fit(p, step, h, scale)
     d = _smallest_divisor(n)
     if d is not None:
-        sub = _coefficients(p[:, ::d], min(h, (n // d) // 2))
+        coarse = _fit(p[:, ::d], d * step, min(h, (n // d) // 2), scale)
         left_out = np.arange(n) % d != 0
         suffix = {2: "nd", 3: "rd"}.get(d, "th")
         method = f"fit from every {d}{suffix} sample"
     else:
-        sub = (a0, a[:, : a.shape[1] // 2], b[:, : a.shape[1] // 2])
+        coarse = _fit(p, step, h // 2, scale)
         left_out = np.ones(n, dtype=bool)
         method = "fit from half the harmonics"
-    w = 2.0 * np.pi / table.period
-    full = _on_grid(a0, a, b, w, 2 * n)
-    coarse = _on_grid(*sub, w, 2 * n)
-    diff = np.abs(coarse - full).max(axis=2)
-    diff[0] = np.abs(coarse[0][:, ::2] - p)[:, left_out].max(axis=1)
-    top = max(a.shape[1], 1) * w
+    half = 0.5 * step
+    on_full = _on_grid(*full, half, 2 * n)
+    on_coarse = _on_grid(*coarse, half, 2 * n)
+    diff = np.abs(on_coarse - on_full).max(axis=2)
+    diff[0] = np.abs(on_coarse[0][:, ::2] - p)[:, left_out].max(axis=1)
+    top = max(full[2].shape[1], 1) * 2.0 * np.pi / table.period
     floor = 8.0 * _EPS * table.scale * top ** np.arange(4)
-    est = diff + floor[:, None]
-    return FitError(*est, method=method)
+    return FitError(*(diff + floor[:, None]), method=method)
 
 
 # --------------------------------------------------------------------------------------------
