@@ -244,7 +244,7 @@ def test_start_away_from_zero():
 def test_harmonics_out_of_range_refused():
     theta = np.linspace(0.0, TWO_PI, 21)
     q = analytic(theta)[0]
-    for bad in (0, 11, 2.5, "three"):
+    for bad in (0, 11, 2.5, "three", True):
         with pytest.raises(ParameterError) as info:
             tl.from_table(theta, *q, harmonics=bad)
         assert "\n" not in str(info.value)
