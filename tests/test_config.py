@@ -22,6 +22,7 @@ EXAMPLES = [
     "elliptic-gear-engine",
     "guide-bar-pump",
     "rhomboid-engine",
+    "tabulated-engine",
     "wobble-cam-engine",
 ]
 

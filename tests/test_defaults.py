@@ -20,9 +20,13 @@ README = Path(__file__).resolve().parent.parent / "README.md"
 
 
 def _required_only(spec, raw: dict) -> dict:
-    """The example's [drive] keys that have no default, and nothing else."""
+    """The example's [drive] keys that have no default value, and nothing else.
+
+    A key whose default is None (a table to read, a phase computed from other keys) has no
+    value of its own either: it stays.
+    """
     fields = spec.config_model.model_fields["drive"].annotation.model_fields
-    required = {(f.alias or n) for n, f in fields.items() if f.is_required()}
+    required = {(f.alias or n) for n, f in fields.items() if f.is_required() or f.default is None}
     return {"drive": {k: v for k, v in raw["drive"].items() if k in required}}
 
 

@@ -35,6 +35,7 @@ EXAMPLES = [
     "elliptic-gear-engine",
     "guide-bar-pump",
     "rhomboid-engine",
+    "tabulated-engine",
     "wobble-cam-engine",
 ]
 LOAD_TIMEOUT = 90.0

@@ -31,6 +31,7 @@ EXAMPLES = [
     "elliptic-gear-engine",
     "guide-bar-pump",
     "rhomboid-engine",
+    "tabulated-engine",
     "wobble-cam-engine",
 ]
 PLOTS = {  # plot ids every report of the drive must have
@@ -39,6 +40,7 @@ PLOTS = {  # plot ids every report of the drive must have
     "guide_bar": {"plot-svaj", "plot-speed", "plot-chambers", "plot-torque", "plot-pv"},
     "rhomboid_cam": {"plot-svaj", "plot-chambers", "plot-torque", "plot-pv", "plot-cam"},
     "noncircular_gears": {"plot-members", "plot-chambers", "plot-torque"},
+    "tabulated": {"plot-members", "plot-chambers", "plot-torque"},
 }
 
 

@@ -22,6 +22,11 @@ DRIVES = {
     "guide_bar": {"type": "guide_bar", "lambda": 0.5, "gear_ratio": 2, "input_gear_ratio": 0.5,
                   "phase": "180 deg"},
     "rhomboid_cam": {"type": "rhomboid_cam", "link_length": "120 mm", "psi_min": "40 deg"},
+    "noncircular_gears": {"type": "noncircular_gears", "lobes": 2, "rotor_lobes": 2,
+                          "eccentricity": 0.15},
+    # q1 = theta, q2 = theta + 90 deg + 0.3 rad sin(2 theta): two swings per turn
+    "tabulated": {"type": "tabulated", "period": "180 deg", "mean_ratio": [1, 1],
+                  "offset": ["0 deg", "90 deg"], "b2": [0.3]},
 }  # fmt: skip
 #: A machine section of each vane machine that fits all three drives.
 MACHINES = {

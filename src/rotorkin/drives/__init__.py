@@ -18,7 +18,14 @@ import numpy as np
 from pydantic import Field, create_model
 
 from rotorkin.core.errors import ConfigError, ParameterError
-from rotorkin.drives import eccentric_cam, guide_bar, noncircular_gears, rhomboid_cam, wobble_cam
+from rotorkin.drives import (
+    eccentric_cam,
+    guide_bar,
+    noncircular_gears,
+    rhomboid_cam,
+    tabulated,
+    wobble_cam,
+)
 from rotorkin.drives._spec import DriveSpec
 from rotorkin.synthesis import SynthesisResult
 from rotorkin.vane import MACHINES
@@ -272,5 +279,5 @@ def synthesize(
     return spec.synthesize(cfg, raw, objective, target, harmonics, None)
 
 
-for _module in (wobble_cam, eccentric_cam, guide_bar, rhomboid_cam, noncircular_gears):
+for _module in (wobble_cam, eccentric_cam, guide_bar, rhomboid_cam, noncircular_gears, tabulated):
     register(_module.SPEC)

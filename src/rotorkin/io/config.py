@@ -212,7 +212,30 @@ def load_config(
     else:
         name = Path(path).stem
     raw = apply_sets(read_toml(path), sets or [])
-    return validate_config(raw), raw, name
+    cfg = validate_config(raw)
+    folder = Path(path).resolve().parent
+    for section, key in _path_keys(cfg):
+        value = cfg[section][key]
+        if isinstance(value, str) and not Path(value).is_absolute():
+            cfg[section][key] = raw[section][key] = str(folder / value)
+    return cfg, raw, name
+
+
+def _path_keys(cfg: dict) -> list[tuple[str, str]]:
+    """The file keys of a config (schema fields marked ``path``): ``[(section, key)]``.
+
+    A relative path in a config names a file next to the config (an example's table
+    ships in the example's folder); :func:`load_config` makes it absolute in both the
+    config and the raw mapping, so a written ``config.toml`` runs from anywhere.
+    """
+    model = drives.config_model(cfg["drive"]["type"], cfg.get("machine", {}).get("type"))
+    out = []
+    for section, sfield in model.model_fields.items():
+        for key, field in getattr(sfield.annotation, "model_fields", {}).items():
+            extra = field.json_schema_extra if isinstance(field.json_schema_extra, dict) else {}
+            if extra.get("path") and (cfg.get(section) or {}).get(key) is not None:
+                out.append((section, key))
+    return out
 
 
 def glossary() -> list[tuple[str, str, str, str]]:

@@ -6,3 +6,8 @@ one :class:`rotorkin.drives.tabulated.law.FourierLaw`, whose
 :func:`~rotorkin.drives.tabulated.law.motion` gives the member angles and their exact
 first to third derivatives with respect to the shaft angle.
 """
+
+from rotorkin.drives.tabulated.law import FourierLaw, from_csv, from_fourier, from_table
+from rotorkin.drives.tabulated.spec import SPEC
+
+__all__ = ["FourierLaw", "from_csv", "from_fourier", "from_table", "SPEC"]
