@@ -23,6 +23,7 @@ import numpy as np
 import typer
 
 from rotorkin import __version__
+from rotorkin.cli import compare as cli_compare
 from rotorkin.cli import export as cli_export
 from rotorkin.cli import report as cli_report
 from rotorkin.cli import sweep as cli_sweep
@@ -147,7 +148,7 @@ def _print_summary(result, name, outdir, written):
 
 # Commands that live in their own modules (cad export, synthesis, html report, sweeps):
 # each module has register(app), which adds its commands.
-for _module in (cli_export, cli_synthesize, cli_report, cli_sweep):
+for _module in (cli_export, cli_synthesize, cli_report, cli_sweep, cli_compare):
     _module.register(app)
 
 

@@ -129,12 +129,12 @@ def _twin_rotor(machine, loads, law, points, lo, hi, swing, mid, per_turn) -> Se
             "twin_rotor",
             "a four-stroke engine needs a drive that swings the rotors an even number of times "
             f"per shaft turn (or per period of the drive); this one swings them {per_span / 2:g} "
-            "times",
+            "time(s)",
         )
     pitch = _TWO_PI / n
     g_lo, g_hi = 0.5 * pitch - 0.5 * swing, 0.5 * pitch + 0.5 * swing  # piston gaps, centred
     if g_lo <= 0.0:
-        most = 2 * int(np.floor(np.pi / swing / 2.0 - 1e-12)) if swing > 0 else 24
+        most = 2 * int(np.floor(np.pi / swing - 1e-12)) if swing > 0 else 24
         raise ParameterError(
             "machine.pistons_per_rotor",
             str(n),
