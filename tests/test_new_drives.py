@@ -111,6 +111,22 @@ def test_a_runs_motion_csv_is_read_back_by_its_columns(tmp_path, capsys):
         assert a[key] == pytest.approx(b[key], rel=1e-6), key
 
 
+def test_the_readme_table_config_runs_on_a_runs_motion_csv(tmp_path, capsys):
+    import re
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text()
+    block = [b for b in re.findall(r"```toml\n(.*?)```", readme, re.S) if "tabulated" in b][0]
+    code, _, err = _run(["run", "-e", "wobble-cam-engine", "-q", "--out", str(tmp_path)], capsys)
+    assert code == 0, err
+    (tmp_path / "pump.toml").write_text(block)
+    code, _, err = _run(["run", str(tmp_path / "pump.toml"), "-q", "--out", str(tmp_path / "p")],
+                        capsys)  # fmt: skip
+    assert code == 0, err
+    s = json.loads((tmp_path / "p" / "summary.json").read_text())
+    assert s["machine"] == "vane_pump" and s["indicated_work_J"] < 0
+
+
 @pytest.mark.parametrize(
     ("body", "fragment"),
     [
