@@ -7,15 +7,9 @@ import sys
 import pytest
 
 from rotorkin.cli import main
+from rotorkin.io.config import example_names
 
-EXAMPLES = [
-    "eccentric-reactor",
-    "elliptic-gear-engine",
-    "guide-bar-pump",
-    "rhomboid-engine",
-    "tabulated-engine",
-    "wobble-cam-engine",
-]
+EXAMPLES = example_names()  # every built-in example
 
 
 @pytest.mark.slow

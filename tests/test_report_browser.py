@@ -24,20 +24,13 @@ import pytest
 
 from rotorkin import __version__
 from rotorkin.drives import evaluate
-from rotorkin.io.config import load_config
+from rotorkin.io.config import example_names, load_config
 from rotorkin.report.html import write_report
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
 CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
-EXAMPLES = [
-    "eccentric-reactor",
-    "elliptic-gear-engine",
-    "guide-bar-pump",
-    "rhomboid-engine",
-    "tabulated-engine",
-    "wobble-cam-engine",
-]
+EXAMPLES = example_names()  # every built-in example
 LOAD_TIMEOUT = 90.0
 
 

@@ -23,17 +23,10 @@ import pytest
 from rotorkin import __version__
 from rotorkin.cli import main
 from rotorkin.drives import evaluate
-from rotorkin.io.config import load_config
+from rotorkin.io.config import example_names, load_config
 from rotorkin.report.html import FRAMES, write_report
 
-EXAMPLES = [
-    "eccentric-reactor",
-    "elliptic-gear-engine",
-    "guide-bar-pump",
-    "rhomboid-engine",
-    "tabulated-engine",
-    "wobble-cam-engine",
-]
+EXAMPLES = example_names()  # every built-in example
 PLOTS = {  # plot ids every report of the drive must have
     "wobble_cam": {"plot-svaj", "plot-chambers", "plot-torque", "plot-pv", "plot-sphere"},
     "eccentric_cam": {"plot-svaj", "plot-gap", "plot-volume", "plot-torque", "plot-pv", "plot-cam"},

@@ -9,7 +9,7 @@ from typing import Annotated
 import numpy as np
 import typer
 
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, out_folder
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, out_option
 from rotorkin.compare import ROWS, compare, plot_comparison
 from rotorkin.core.errors import ConfigError
 from rotorkin.io.config import load_config
@@ -38,15 +38,7 @@ def register(app) -> None:
                 "that file). Repeatable; the config's own drive comes first.",
             ),
         ] = None,
-        out: Annotated[
-            Path | None,
-            typer.Option(
-                "--out",
-                "-o",
-                parser=out_folder,
-                help="Output folder; default ./rotorkin-out/<name>-compare.",
-            ),
-        ] = None,  # fmt: skip
+        out: out_option("./rotorkin-out/<name>-compare") = None,  # fmt: skip
         quiet: QuietOpt = False,
     ):
         """Run the config's vane machine on several drives sized to the same displacement."""

@@ -12,7 +12,14 @@ from typing import Annotated
 
 import typer
 
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names, out_folder
+from rotorkin.cli.options import (
+    ConfigArg,
+    ExampleOpt,
+    QuietOpt,
+    SetOpt,
+    flag_names,
+    out_option,
+)
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import get
 from rotorkin.io.config import load_config
@@ -73,15 +80,7 @@ def register(app) -> None:
                 "--format", "-f", help="dxf, stl, step (needs rotorkin[cad]), csv or all."
             ),  # fmt: skip
         ] = "dxf",
-        out: Annotated[
-            Path | None,
-            typer.Option(
-                "--out",
-                "-o",
-                parser=out_folder,
-                help="Output folder; default ./rotorkin-out/<name>/cad.",
-            ),
-        ] = None,
+        out: out_option("./rotorkin-out/<name>/cad") = None,
         quiet: QuietOpt = False,
     ):
         """Write CAD files of the cam(s): DXF profiles, STL/STEP solids, CSV point lists (mm)."""

@@ -12,7 +12,8 @@ import typer
 from rotorkin.core.errors import ParameterError
 from rotorkin.drives import DEFAULT_EXAMPLE
 
-__all__ = ["ConfigArg", "ExampleOpt", "SetOpt", "QuietOpt", "out_folder", "flag_names"]
+__all__ = ["ConfigArg", "ExampleOpt", "SetOpt", "QuietOpt", "out_folder", "out_option",
+           "flag_names"]  # fmt: skip
 
 #: The config file (positional).
 ConfigArg = Annotated[
@@ -36,6 +37,14 @@ def out_folder(text: str) -> Path:
     if "\0" in str(text):
         raise typer.BadParameter("a folder name cannot hold a NUL character", param_hint="--out")
     return Path(text)
+
+
+def out_option(default: str):
+    """``--out``/``-o`` with ``default`` (where the outputs go without it) in its help."""
+    return Annotated[
+        Path | None,
+        typer.Option("--out", "-o", parser=out_folder, help=f"Output folder; default {default}."),
+    ]
 
 
 #: ``--quiet``.

@@ -7,12 +7,11 @@ writes the same page next to the other outputs.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
 
 import typer
 
 from rotorkin import __version__
-from rotorkin.cli.options import ConfigArg, ExampleOpt, SetOpt, out_folder
+from rotorkin.cli.options import ConfigArg, ExampleOpt, SetOpt, out_option
 from rotorkin.core.errors import ConfigError
 from rotorkin.drives import evaluate
 from rotorkin.io.config import load_config
@@ -27,15 +26,7 @@ def register(app) -> None:
         config: ConfigArg = None,
         example: ExampleOpt = None,
         set_: SetOpt = None,
-        out: Annotated[
-            Path | None,
-            typer.Option(
-                "--out",
-                "-o",
-                parser=out_folder,
-                help="Output folder; default ./rotorkin-out/<name>.",
-            ),
-        ] = None,
+        out: out_option("./rotorkin-out/<name>") = None,
     ):
         """Write report.html: summary vs the paper, checks, animated mechanism, plots (offline)."""
 

@@ -19,7 +19,14 @@ import numpy as np
 import typer
 
 from rotorkin import __version__
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names, out_folder
+from rotorkin.cli.options import (
+    ConfigArg,
+    ExampleOpt,
+    QuietOpt,
+    SetOpt,
+    flag_names,
+    out_option,
+)
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import REGISTRY
 from rotorkin.drives import synthesize as run_synthesis
@@ -102,15 +109,7 @@ def register(app) -> None:
                 ),
             ),
         ] = None,
-        out: Annotated[
-            Path | None,
-            typer.Option(
-                "--out",
-                "-o",
-                parser=out_folder,
-                help="Output folder; default ./rotorkin-out/<name>-<objective>.",
-            ),
-        ] = None,
+        out: out_option("./rotorkin-out/<name>-<objective>") = None,
         quiet: QuietOpt = False,
     ):
         """Synthesize a design for an objective; compare it with the config's (the paper's)."""

@@ -352,37 +352,10 @@ def _engine_columns(params, machine, cycle, speed, theta):
     return cols, docs, tsummary
 
 
-def models(cfg: dict) -> tuple[wc.WobbleCam, tr.TwinRotor, ec.IdealCycle]:
-    """Drive, machine and cycle parameters from a validated config (SI); errors name the keys."""
+def _drive(cfg: dict, pistons) -> wc.WobbleCam:
+    """The drive's parameters for ``pistons`` per rotor (eq. 20 limits the tilt with them)."""
     d = cfg["drive"]
-    machine = build_params(tr.TwinRotor, "machine", _section(cfg, "machine", tr.TwinRotor))
-    params = build_params(
-        wc.WobbleCam,
-        "drive",
-        {
-            "plate_tilt": d["plate_tilt"],
-            "roller_axis_angle": d["roller_axis_angle"],
-            "spin_ratio": d["spin_ratio"],
-            "sphere_radius": d["sphere_radius"],
-            "pistons_per_rotor": machine.pistons_per_rotor,
-            "spin_a": tuple(d.get("spin_a", ())),
-            "spin_b": tuple(d.get("spin_b", ())),
-        },
-        aliases={"pistons_per_rotor": "machine.pistons_per_rotor"},
-    )
-    cycle = build_params(ec.IdealCycle, "loads", _section(cfg, "loads", ec.IdealCycle))
-    return params, machine, cycle
-
-
-def law(cfg: dict) -> RotaryLaw:
-    """The rotors' motion for any vane machine on this drive (:mod:`rotorkin.vane`).
-
-    The drive's admissible tilt depends on the pistons per rotor (eq. 20); a machine
-    without pistons takes the paper's 4.
-    """
-    d = cfg["drive"]
-    pistons = (cfg.get("machine") or {}).get("pistons_per_rotor", 4)
-    params = build_params(
+    return build_params(
         wc.WobbleCam,
         "drive",
         {
@@ -396,6 +369,23 @@ def law(cfg: dict) -> RotaryLaw:
         },
         aliases={"pistons_per_rotor": "machine.pistons_per_rotor"},
     )
+
+
+def models(cfg: dict) -> tuple[wc.WobbleCam, tr.TwinRotor, ec.IdealCycle]:
+    """Drive, machine and cycle parameters from a validated config (SI); errors name the keys."""
+    machine = build_params(tr.TwinRotor, "machine", _section(cfg, "machine", tr.TwinRotor))
+    params = _drive(cfg, machine.pistons_per_rotor)
+    cycle = build_params(ec.IdealCycle, "loads", _section(cfg, "loads", ec.IdealCycle))
+    return params, machine, cycle
+
+
+def law(cfg: dict) -> RotaryLaw:
+    """The rotors' motion for any vane machine on this drive (:mod:`rotorkin.vane`).
+
+    The drive's admissible tilt depends on the pistons per rotor (eq. 20); a machine
+    without pistons takes the paper's 4.
+    """
+    params = _drive(cfg, (cfg.get("machine") or {}).get("pistons_per_rotor", 4))
     return RotaryLaw(functools.partial(wc.motion, params), wc.period(params))
 
 
