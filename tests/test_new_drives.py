@@ -181,3 +181,59 @@ def test_compare_needs_a_drive_and_a_vane_machine(tmp_path, capsys):
     code, _, err = _run(["compare", "-e", "eccentric-reactor", "--drive", "wobble_cam", "--out",
                          str(tmp_path)], capsys)  # fmt: skip
     assert code == 2 and err.count("\n") == 1
+
+
+# --- sweeps, tolerance and report through the registry ---------------------------------------
+def test_sweep_of_the_gears_eccentricity_widens_the_swing(tmp_path, capsys):
+    import xarray as xr
+
+    code, _, err = _run(["sweep", "-e", "elliptic-gear-engine", "--vary",
+                         "drive.eccentricity=0.05,0.15,0.25", "-q", "--out", str(tmp_path)],
+                        capsys)  # fmt: skip
+    assert code == 0, err
+    ds = xr.open_dataset(tmp_path / "sweep.nc")
+    swing = ds["relative_swing_deg"].values
+    assert np.all(ds["reason"].values == 0) and np.all(np.diff(swing) > 0)
+    for e, s in zip((0.05, 0.15, 0.25), swing, strict=True):
+        lo, hi = ng.relative_angle_extremes(ng.NoncircularGears(eccentricity=e))
+        assert s == pytest.approx(np.degrees(hi - lo), rel=1e-9)
+
+
+def test_sweep_and_tolerance_of_a_pump_on_the_wobble_cam(tmp_path, capsys):
+    import xarray as xr
+
+    (tmp_path / "c.toml").write_text(
+        '[drive]\ntype = "wobble_cam"\nplate_tilt = "45 deg"\nroller_axis_angle = "90 deg"\n'
+        '[machine]\ntype = "vane_pump"\n'
+    )
+    code, _, err = _run(["sweep", str(tmp_path / "c.toml"), "--vary",
+                         "machine.vanes_per_impeller=1,2,3", "-q", "--out",
+                         str(tmp_path / "s")], capsys)  # fmt: skip
+    assert code == 0, err
+    ds = xr.open_dataset(tmp_path / "s" / "sweep.nc")
+    assert np.all(ds["reason"].values == 0)
+    disp = ds["displacement_cm3_per_rev"].values
+    # 2 Z chambers, each sweeping k s per volume cycle: proportional to the vane count
+    assert disp / np.array([1, 2, 3]) == pytest.approx(np.full(3, disp[0]), rel=1e-12)
+    code, _, err = _run(["tolerance", str(tmp_path / "c.toml"), "--tol",
+                         "drive.plate_tilt=0.2deg", "--samples", "16", "-q", "--out",
+                         str(tmp_path / "t")], capsys)  # fmt: skip
+    assert code == 0, err
+    assert (tmp_path / "t" / "tolerance.nc").exists()
+    # ten vanes do not fit the 38.9 deg swing (360 / 38.9 = 9.2): one line naming the key
+    code, _, err = _run(["sweep", str(tmp_path / "c.toml"), "--vary",
+                         "machine.vanes_per_impeller=2,10", "-q", "--out", str(tmp_path / "x")],
+                        capsys)  # fmt: skip
+    assert code == 2 and err.count("\n") == 1 and "machine.vanes_per_impeller" in err
+
+
+def test_report_of_a_machine_on_another_drive_draws_its_chambers(tmp_path, capsys):
+    (tmp_path / "c.toml").write_text(
+        '[drive]\ntype = "rhomboid_cam"\nlink_length = "120 mm"\npsi_min = "40 deg"\n'
+        '[machine]\ntype = "twin_rotor"\npistons_per_rotor = 2\ncompression_ratio = 8\n'
+    )
+    code, _, err = _run(["report", str(tmp_path / "c.toml"), "--out", str(tmp_path / "r")],
+                        capsys)  # fmt: skip
+    assert code == 0, err
+    page = (tmp_path / "r" / "report.html").read_text()
+    assert "plot-chambers" in page and "plot-torque" in page and "plot-members" in page
