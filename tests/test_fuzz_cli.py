@@ -22,6 +22,7 @@ from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 from rotorkin.cli import main
+from rotorkin.drives import REGISTRY
 from rotorkin.io.config import example_path, glossary, read_toml
 
 pytestmark = pytest.mark.slow
@@ -103,12 +104,7 @@ for _kind, _key, _default, _doc in glossary():
     KINDS.setdefault(_kind, []).append(_key)
     _parts = _default.strip('"').split(" ", 1)
     UNIT_OF[_kind, _key] = _parts[1] if _default.startswith('"') and len(_parts) == 2 else ""
-EXAMPLE = {
-    "wobble_cam": "wobble-cam-engine",
-    "eccentric_cam": "eccentric-reactor",
-    "guide_bar": "guide-bar-pump",
-    "rhomboid_cam": "rhomboid-engine",
-}
+EXAMPLE = {kind: spec.examples[0] for kind, spec in REGISTRY.items() if spec.examples}
 ALL_KEYS = sorted({k for keys in KINDS.values() for k in keys})
 UNITS = ["", "deg", "rad", "mm", "m", "km", "kg", "kg*m^2", "cm^3", "bar", "Pa", "GPa", "J",
          "rpm", "rad/s", "N*m", "K", "%", "s", "deg deg", "mm/0", "**", "1/0"]  # fmt: skip
