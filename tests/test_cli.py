@@ -133,12 +133,12 @@ def test_printed_summary_says_what_each_metric_is(name, tmp_path, capsys):
     """Every headline metric is in summary.json and printed with a line saying what it is
     (e.g. which torque model, which sign), so two work or torque keys cannot be confused."""
     from rotorkin.drives import evaluate
-    from rotorkin.io.config import example_path, read_toml, validate_config
+    from rotorkin.io.config import load_config
 
     assert main(["run", "--example", name, "--out", str(tmp_path / "o")]) == 0
     printed = capsys.readouterr().out
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())
-    result = evaluate(validate_config(read_toml(example_path(name))))
+    result = evaluate(load_config(example=name)[0])
     assert isinstance(result.headline, dict)
     assert "meaning" in printed
     for key, meaning in result.headline.items():

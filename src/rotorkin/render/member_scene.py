@@ -16,11 +16,13 @@ from rotorkin.render.scenes import (
     COLOR_2,
     GREY,
     Check,
+    Plot,
     SceneBuilder,
     circle,
     frame_angles,
     lines_plot,
     trace,
+    xy_figure,
 )
 
 __all__ = ["scene", "plots", "checks"]
@@ -121,6 +123,12 @@ def _machine_plots(cols: dict) -> list:
         out.append(lines_plot("plot-chambers", "Chambers", x, "shaft angle theta [deg]", rows,
                               "Volume and pressure of the two kinds of chamber",
                               period=float(x[-1] - x[0])))  # fmt: skip
+    if kinds and all(f"chamber_{k}_pressure_bar" in cols for k in kinds):
+        pv = [(f"chamber kind {k.upper()}", cols[f"chamber_{k}_volume_cm3"],
+               cols[f"chamber_{k}_pressure_bar"], None) for k in kinds]  # fmt: skip
+        out.append(Plot("plot-pv", "p-V diagram",
+                        xy_figure(pv, "volume [cm^3]", "pressure [bar]",
+                                  "p-V diagram of the chambers", height=440)))  # fmt: skip
     if "shaft_torque_Nm" in cols:
         series = [("machine", cols["shaft_torque_Nm"])]
         if "shaft_torque_with_inertia_Nm" in cols:
