@@ -36,6 +36,7 @@ __all__ = [
     "EmptySection",
     "ExportSection",
     "InertialSection",
+    "ContactSection",
     "validate_model",
 ]
 
@@ -129,6 +130,68 @@ class ExportSection(Section):
                 "rotorkin_range", "0.00001 mm <= tolerance <= 1 mm (a chordal tolerance)"
             )
         return value
+
+
+class ContactSection(Section):
+    youngs_modulus: Modulus = Field(
+        "210 GPa",
+        gt=1e8,
+        le=1e12,
+        description="Young's modulus of the contacting parts (steel: 210 GPa; 0.1 GPa < E <= "
+        "1000 GPa)",
+    )
+    poisson_ratio: float = Field(
+        0.3, ge=0.0, lt=0.5, description="Poisson's ratio of the contacting parts (0 <= nu < 0.5)"
+    )
+    allowable_stress: Pressure = Field(
+        "1500 MPa",
+        gt=0.0,
+        le=1e10,
+        description="allowable Hertz contact pressure (hardened steel: about 1500 MPa; "
+        "0 < p <= 10000 MPa)",
+    )
+    roller_width: Length = Field(
+        "10 mm",
+        ge=1e-4,
+        le=1.0,
+        description="width of the rollers and followers in line contact (0.1 mm <= w <= 1 m)",
+    )
+    friction_rolling: float = Field(
+        0.002,
+        ge=0.0,
+        le=0.1,
+        description="rolling-resistance coefficient of rollers on cams and grooves (0 <= c <= 0.1)",
+    )
+    friction_sliding: float = Field(
+        0.08,
+        ge=0.0,
+        le=1.0,
+        description="Coulomb coefficient of sliding pairs, lubricated steel (0 <= mu <= 1)",
+    )
+    friction_mesh: float = Field(
+        0.01,
+        ge=0.0,
+        le=0.2,
+        description="fraction of the transmitted power a gear mesh loses (spur gears about "
+        "0.01; 0 <= c <= 0.2)",
+    )
+    friction_bearing: float = Field(
+        0.0015,
+        ge=0.0,
+        le=0.2,
+        description="friction coefficient of the bearings, referred to bearing_radius (rolling "
+        "bearings about 0.0015; 0 <= mu <= 0.2)",
+    )
+    bearing_radius: Length = Field(
+        "10 mm",
+        ge=1e-4,
+        le=1.0,
+        description="journal radius of the bearings and pins (0.1 mm <= r <= 1 m)",
+    )
+    efficiency_min: float = Field(
+        0.9, ge=0.0, le=1.0,
+        description="mechanical efficiency below which the report flags the drive (0 <= eta <= 1)",
+    )  # fmt: skip
 
 
 class InertialSection(Section):

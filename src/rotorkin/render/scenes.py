@@ -687,3 +687,52 @@ def flywheel_checks(s: dict, member_word: str = "the members", supplied=False) -
                 f"config, within the wanted {100 * wanted:.3g} %.")  # fmt: skip
         out.append(Check("ok", "No flywheel needed", text))
     return out
+
+
+def force_plot(cols, x, x_label, heading, period=None) -> Plot | None:
+    """Normal force of every pair (``*_force_N`` columns) and the contact stresses
+    (``*_contact_stress_MPa``) over the input angle; None when the study has no pairs."""
+    forces = [(k[: -len("_force_N")].replace("_", " "), cols[k]) for k in cols
+              if k.endswith("_force_N")]  # fmt: skip
+    if not forces:
+        return None
+    rows = [("force [N]", forces)]
+    stresses = [(k[: -len("_contact_stress_MPa")].replace("_", " "), cols[k]) for k in cols
+                if k.endswith("_contact_stress_MPa")]  # fmt: skip
+    if stresses:
+        rows.append(("Hertz pressure [MPa]", stresses))
+    if "friction_torque_Nm" in cols:
+        rows.append(("friction torque [N*m]", [("friction", cols["friction_torque_Nm"])]))
+    return lines_plot("plot-forces", "Forces", x, x_label, rows, heading, period,
+                      caption="Normal force of every load-carrying pair, the peak Hertz "
+                      "pressure of the contacts and the torque friction takes from the shaft "
+                      "(first order in the friction coefficients).")  # fmt: skip
+
+
+def contact_checks(summary: dict, cfg: dict) -> list[Check]:
+    """Contact stress against the allowable, and the mechanical efficiency, in words."""
+    out = []
+    contact = cfg.get("contact") or {}
+    sf = summary.get("contact_safety_factor")
+    if sf is not None and np.isfinite(sf):
+        allowable = contact.get("allowable_stress", 1.5e9) / 1e6
+        peak = summary.get("peak_contact_stress_MPa")
+        where = summary.get("peak_contact_stress_pair", "a contact")
+        if sf < 1.0:
+            out.append(Check("error", "Contact stress above the allowable",
+                             f"{where} reaches {fmt(peak)} MPa, above contact.allowable_stress = "
+                             f"{fmt(allowable)} MPa (safety factor {fmt(sf)}): a wider roller, "
+                             "larger radii of curvature or a harder material"))  # fmt: skip
+        else:
+            out.append(Check("ok", "Contact stress",
+                             f"peak {fmt(peak)} MPa at {where}, safety factor {fmt(sf)} against "
+                             f"{fmt(allowable)} MPa"))  # fmt: skip
+    eta = summary.get("mechanical_efficiency")
+    if eta is not None and np.isfinite(eta):
+        least = contact.get("efficiency_min", 0.9)
+        level = "warning" if eta < least else "ok"
+        out.append(Check(level, "Mechanical efficiency",
+                         f"{fmt(100 * eta)} % ({fmt(summary.get('friction_loss_W'))} W lost to "
+                         f"friction at the run speed); the threshold is {fmt(100 * least)} % "
+                         "(contact.efficiency_min)"))  # fmt: skip
+    return out

@@ -13,6 +13,7 @@ from rotorkin.core.bounds import (
     PRESSURE_MIN,
 )
 from rotorkin.core.schema import (
+    ContactSection,
     EmptySection,
     ExportSection,
     Inertia,
@@ -119,5 +120,6 @@ class EccentricConfig(Section):
     machine: EccentricMachine = Field(default_factory=EccentricMachine)
     loads: EmptySection = Field(default_factory=EmptySection)
     cam: DiscCamSection = Field(default_factory=DiscCamSection)
+    contact: ContactSection = Field(default_factory=ContactSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: Run = Field(default_factory=Run)

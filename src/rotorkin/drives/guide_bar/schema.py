@@ -12,6 +12,7 @@ from rotorkin.core.bounds import (
 )
 from rotorkin.core.schema import (
     Angle,
+    ContactSection,
     ExportSection,
     Inertia,
     RunSection,
@@ -105,5 +106,6 @@ class GuideBarConfig(Section):
     drive: GuideBarDrive
     machine: VanePumpMachine = Field(default_factory=VanePumpMachine)
     loads: GuideBarLoads = Field(default_factory=GuideBarLoads)
+    contact: ContactSection = Field(default_factory=ContactSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: Run = Field(default_factory=Run)

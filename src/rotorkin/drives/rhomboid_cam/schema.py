@@ -12,6 +12,7 @@ from rotorkin.core.bounds import (
 )
 from rotorkin.core.schema import (
     Angle,
+    ContactSection,
     ExportSection,
     Length,
     RunSection,
@@ -106,5 +107,6 @@ class RhomboidConfig(Section):
     machine: RotaryBladeMachine = Field(default_factory=RotaryBladeMachine)
     loads: RhomboidLoads = Field(default_factory=RhomboidLoads)
     cam: PlanarCamSection = Field(default_factory=PlanarCamSection)
+    contact: ContactSection = Field(default_factory=ContactSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: Run = Field(default_factory=Run)

@@ -7,7 +7,7 @@ from typing import Annotated, Literal
 from pydantic import Field, model_validator
 from pydantic_core import PydanticCustomError
 
-from rotorkin.core.schema import Angle, ExportSection, RunSection, Section
+from rotorkin.core.schema import Angle, ContactSection, ExportSection, RunSection, Section
 from rotorkin.machines.schema import EngineLoads, TwinRotorMachine
 
 #: Most harmonics of a Fourier law or of a table's fit.
@@ -96,5 +96,6 @@ class TabulatedConfig(Section):
     drive: TabulatedDrive
     machine: TwinRotorMachine = Field(default_factory=TwinRotorMachine)
     loads: EngineLoads = Field(default_factory=EngineLoads)
+    contact: ContactSection = Field(default_factory=ContactSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: RunSection = Field(default_factory=RunSection)

@@ -10,6 +10,7 @@ from pydantic import Field
 from rotorkin.core.bounds import INERTIA_MAX
 from rotorkin.core.schema import (
     Angle,
+    ContactSection,
     ExportSection,
     Inertia,
     Length,
@@ -128,5 +129,6 @@ class WobbleConfig(Section):
     machine: WobbleMachine = Field(default_factory=WobbleMachine)
     loads: EngineLoads = Field(default_factory=EngineLoads)
     cam: WobbleCamSection = Field(default_factory=WobbleCamSection)
+    contact: ContactSection = Field(default_factory=ContactSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: RunSection = Field(default_factory=RunSection)  # 3000 rpm
