@@ -26,8 +26,8 @@ Point contact (a crowned roller, a ball): principal radii in aligned planes,
 ``x^2 / (2 Rx) + y^2 / (2 Ry)``. The contact is an ellipse with the pressure
 ``p_max sqrt(1 - x^2 / a^2 - y^2 / b^2)``; with ``q`` the ratio of the minor to
 the major semi-axis, the modulus ``m = 1 - q^2`` and the complete elliptic
-integrals ``K(m)``, ``E(m)``, the two compatibility conditions (Johnson eqs.
-3.63 to 3.66) give
+integrals ``K(m)``, ``E(m)``, the two compatibility conditions (Johnson sec.
+4.2) give
 
     R_major / R_minor = (E / q^2 - K) / (K - E)
     major^3 = 3 P R_major (K - E) / (pi E* m),   p_max = 3 P / (2 pi a b)
