@@ -30,6 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rotorkin.analysis import contact as hz
+
 __all__ = ["KINDS", "Pair", "ContactModel", "stress", "friction_torque", "summary", "columns"]
 
 #: The kinds of pair, each with its friction coefficient ``contact.friction_<kind>``.
@@ -54,8 +56,9 @@ class Pair:
         Sliding, rolling, pitch-line or journal speed per unit shaft speed [m/rad]
         (see the module text); its sign does not matter.
     geometry : tuple, optional
-        Hertz geometry: ``("line", r1, r2)`` (roller of the contact's width; signed
-        radii of curvature, + convex, - concave, ``inf`` flat) or
+        Hertz geometry: ``("line", r1, r2)`` (a roller of ``contact.roller_width``;
+        signed radii of curvature, + convex, - concave, ``inf`` flat), ``("line", r1, r2,
+        width)`` (a contact of its own width, e.g. a gear's face width) or
         ``("point", rx1, ry1, rx2, ry2)``; radii broadcast with ``force``. None: no
         contact stress (bearings, pins).
     where : str
@@ -105,13 +108,12 @@ def stress(pair: Pair, model: ContactModel) -> np.ndarray | None:
     """Peak Hertz pressure of a contact pair at every angle [Pa]; None without geometry."""
     if pair.geometry is None:
         return None
-    from rotorkin.analysis import contact as hz
-
     force = np.abs(np.asarray(pair.force, dtype=float))
     shape, *radii = pair.geometry
     m = hz.Material(model.youngs_modulus, model.poisson_ratio)
-    if shape == "line":
-        return hz.line_contact(force, model.roller_width, *radii, m, m).p_max
+    if shape == "line":  # ("line", r1, r2) with the roller width, or ("line", r1, r2, width)
+        width = radii[2] if len(radii) > 2 else model.roller_width
+        return hz.line_contact(force, width, radii[0], radii[1], m, m).p_max
     return hz.point_contact(force, *radii, m, m).p_max
 
 
