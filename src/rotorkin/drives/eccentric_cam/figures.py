@@ -25,6 +25,7 @@ __all__ = [
     "fig_reactor_volume_pressure",
     "fig_reactor_torque",
     "fig_reactor_ripple_vs_lambda",
+    "fig_forces",
 ]
 
 #: The eccentricity ratios drawn in Fig. 6 and 7 (besides the config's).
@@ -259,8 +260,48 @@ def fig_reactor_ripple_vs_lambda(params, reactor, path: Path) -> Path:
     return _save(fig, path)
 
 
+def fig_forces(params, beta, cols: dict, path: Path) -> Path:
+    """Forces over the turn: every pair's normal force, the signed follower push and side
+    thrust, the contact stress (when the follower has a contact radius)."""
+    plt = _plt()
+    deg = np.degrees(beta)
+    stresses = [k for k in cols if k.endswith("_contact_stress_MPa")]
+    rows = 3 if stresses else 2
+    fig, axes = plt.subplots(rows, 1, figsize=(8, 2.8 * rows + 0.8), sharex=True)
+    ax = axes[0]
+    for k in cols:
+        if k.endswith("_force_N"):
+            ax.plot(deg, cols[k], lw=1.4, label=k[: -len("_force_N")].replace("_", " "))
+    ax.set_ylabel("normal force [N]")
+    ax.legend(fontsize=7, ncol=2)
+    ax.grid(True, alpha=0.4)
+    ax = axes[1]
+    for side, c in (("left", "C0"), ("right", "C1")):
+        ax.plot(deg, cols[f"follower_normal_{side}_N"], color=c, lw=1.6,
+                label=f"{side} disc push N (< 0: lift-off)")  # fmt: skip
+        ax.plot(deg, cols[f"side_thrust_{side}_N"], color=c, ls="--", lw=1.2,
+                label=f"{side} side thrust N n_y (+y wall > 0)")  # fmt: skip
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set_ylabel("signed force [N]")
+    ax.legend(fontsize=7, ncol=2)
+    ax.grid(True, alpha=0.4)
+    if stresses:
+        ax = axes[2]
+        for k in stresses:
+            ax.plot(deg, cols[k], lw=1.4, label=k[: -len("_contact_stress_MPa")].replace("_", " "))
+        ax.set_ylabel("Hertz pressure [MPa]")
+        ax.legend(fontsize=7)
+        ax.grid(True, alpha=0.4)
+    axes[-1].set_xlabel("shaft angle beta [deg]")
+    axes[-1].set_xlim(0.0, 360.0)
+    fig.suptitle(f"Pair forces at the run speed, {params.follower} follower, "
+                 f"R = {float(params.disc_radius) * 1e3:.4g} mm, "
+                 f"e = {float(params.eccentricity) * 1e3:.4g} mm", fontsize=10)  # fmt: skip
+    return _save(fig, path)
+
+
 def plot_all(params: ec.EccentricCam, outdir: Path, reactor=None, beta=None, state=None,
-             summary=None) -> list[Path]:  # fmt: skip
+             summary=None, forces=None) -> list[Path]:  # fmt: skip
     """Write every figure of the drive (and of the reactor, when given) into ``outdir``.
 
     Parameters
@@ -271,6 +312,8 @@ def plot_all(params: ec.EccentricCam, outdir: Path, reactor=None, beta=None, sta
     beta, state, summary : optional
         Shaft angles, :func:`rotorkin.drives.eccentric_cam.study.reactor_state` on them
         and the study's summary; needed with ``reactor``.
+    forces : dict, optional
+        The study's force columns on ``beta`` (``forces.png``).
 
     Returns
     -------
@@ -292,4 +335,6 @@ def plot_all(params: ec.EccentricCam, outdir: Path, reactor=None, beta=None, sta
                                outdir / "reactor_torque.png"),
             fig_reactor_ripple_vs_lambda(params, reactor, outdir / "reactor_ripple_vs_lambda.png"),
         ]  # fmt: skip
+    if forces is not None:
+        paths.append(fig_forces(params, beta, forces, outdir / "forces.png"))
     return paths

@@ -71,6 +71,10 @@ __all__ = [
     "pressure_angle_max",
     "motion",
     "period",
+    "adjuster_eccentricity",
+    "adjuster_slide",
+    "section_semi_axes",
+    "section_travels",
 ]
 
 #: Admissible follower kinds.
@@ -426,3 +430,143 @@ def period(params: EccentricCam) -> float:
     (The gap change alone repeats every pi.)
     """
     return 2.0 * np.pi
+
+
+# --------------------------------------------------------------------------------------------
+# the adjuster of the paper's Fig. 2: an inclined disc slid along the shaft
+# --------------------------------------------------------------------------------------------
+def adjuster_eccentricity(inclination, slide):
+    """Eccentricity ``e = s tan(alpha)`` set by an inclined disc slid along the shaft [m].
+
+    Paper, section 2 (Fig. 2): the rotor is a circular cylinder of radius ``R`` whose
+    own axis makes the angle ``alpha`` with the shaft axis and crosses it at the
+    point ``o''``; the rotor can slide along the shaft to change ``e``. In the plane
+    of a piston (normal to the shaft, at the axial distance ``s`` from ``o''``) the
+    rotor's axis stands ``s tan(alpha)`` from the shaft axis: that is ``e``. At
+    ``alpha = 0`` (or ``s = 0``) there is no eccentricity. Broadcasts.
+
+    Parameters
+    ----------
+    inclination : array_like
+        alpha [rad], ``0 <= alpha < pi/2``.
+    slide : array_like
+        s [m], the axial distance of the piston plane from ``o''``.
+    """
+    return np.asarray(slide, dtype=float) * np.tan(np.asarray(inclination, dtype=float))
+
+
+def adjuster_slide(inclination, eccentricity):
+    """The slide ``s = e / tan(alpha)`` that sets the eccentricity ``e`` (``alpha > 0``) [m]."""
+    return np.asarray(eccentricity, dtype=float) / np.tan(np.asarray(inclination, dtype=float))
+
+
+def section_semi_axes(disc_radius, inclination):
+    """Semi-axes ``(a, b) = (R / cos(alpha), R)`` of the rotor's section in a piston plane [m].
+
+    Derived here. Shaft axis ``Z``; the rotor's axis passes through ``o''`` (the
+    origin) with the direction ``(sin alpha, 0, cos alpha)``. A point ``(X, Y, s)`` of
+    the piston plane ``Z = s`` lies on the cylinder of radius ``R`` when its distance
+    from that axis is ``R``. With ``dX = X - s tan(alpha)`` (measured from the point
+    where the axis pierces the plane, the section's centre, ``e`` from the shaft),
+    the squared distance is ``dX^2 + Y^2 - (dX sin alpha)^2``, so
+
+        dX^2 cos^2(alpha) + Y^2 = R^2:
+
+    an ellipse centred ``e`` from the shaft axis, semi-major axis ``a = R/cos(alpha)``
+    along the eccentricity (the line from the shaft axis to the centre), semi-minor
+    ``b = R`` across it. The paper draws the section as the circle of radius ``R``;
+    the two agree at ``alpha = 0``.
+    """
+    R = np.asarray(disc_radius, dtype=float)
+    return R / np.cos(np.asarray(inclination, dtype=float)), R
+
+
+def _knife_on_ellipse(a, b, e_signed, beta):
+    """Distance from the shaft axis of the follower axis' crossing with the section [m].
+
+    In the ellipse's own axes (``u = (cos beta, sin beta)`` along the major axis,
+    ``v`` across) the point ``(rho, 0)`` of the follower axis is at
+    ``(rho cos beta - e, -rho sin beta)``; on the ellipse when
+    ``A rho^2 - 2 B rho + C = 0`` with ``A = cos^2/a^2 + sin^2/b^2``,
+    ``B = e cos beta / a^2``, ``C = e^2/a^2 - 1 < 0``: the positive root.
+    """
+    c, s = np.cos(beta), np.sin(beta)
+    A = c * c / (a * a) + s * s / (b * b)
+    B = e_signed * c / (a * a)
+    C = e_signed * e_signed / (a * a) - 1.0
+    return (B + np.sqrt(B * B - A * C)) / A
+
+
+def _roller_on_ellipse(a, b, r, e_signed, beta, iterations=60):
+    """Distance from the shaft axis of the roller centre on the section's parallel curve [m].
+
+    The roller centre is ``r`` out along the section's outward normal from the
+    contact point ``(a cos t, b sin t)`` (ellipse axes), i.e. at
+    ``(cos t (a + r b/k), sin t (b + r a/k))`` with ``k = sqrt(b^2 cos^2 t + a^2 sin^2 t)``;
+    ``t`` puts it on the follower axis (Newton's method, derivative by complex step,
+    started where the normal is parallel to the follower axis).
+    """
+    c, s = np.cos(beta), np.sin(beta)
+
+    def centre(t):
+        ct, st = np.cos(t), np.sin(t)
+        k = np.sqrt(b * b * ct * ct + a * a * st * st)
+        return ct * (a + r * b / k), st * (b + r * a / k)
+
+    def g(t):
+        xi, eta = centre(t)
+        return (e_signed + xi) * s + eta * c
+
+    t = np.arctan2(-b * s, a * c) + 0.0 * (a + r + e_signed)
+    h = 1e-20
+    for _ in range(iterations):
+        dg = np.imag(g(t + 1j * h)) / h
+        step = g(t) / dg
+        t = t - step
+        if np.all(np.abs(step) < 1e-15):
+            break
+    xi, eta = centre(t)
+    return (e_signed + xi) * c - eta * s
+
+
+def section_travels(disc_radius, eccentricity, inclination, follower, roller_radius, beta):
+    """Travels ``(z, z')`` of the pistons on the rotors' exact (elliptic) section [m].
+
+    The section in a piston plane of a rotor inclined by ``alpha``
+    (:func:`section_semi_axes`): an ellipse of semi-axes ``a = R/cos(alpha)`` along
+    the eccentricity and ``b = R`` across, centred ``e`` from the shaft axis, turning
+    with the shaft (left: centre ``e u``, right ``-e u``, ``u = (cos beta, sin beta)``
+    in a follower's frame). The follower point on the piston axis is
+    ``rho(beta)`` from the shaft axis:
+
+    * knife edge: where the axis crosses the ellipse (:func:`_knife_on_ellipse`);
+    * roller of radius ``r``: on the ellipse's parallel curve at ``r``;
+    * flat face: the ellipse's support function along the axis,
+      ``rho = +-e cos beta + sqrt(a^2 cos^2 beta + b^2 sin^2 beta)``.
+
+    The travel is measured from the mid position as in the paper (top ``+e`` at
+    ``beta = 0``, bottom ``-e`` at ``pi``): ``z = rho - (a + r)`` (``r = 0`` but for
+    a roller). At ``alpha = 0`` this is eq. 1, 3 (knife edge), 7, 8 (flat face) and
+    the roller law of :func:`travels`. A flat face no longer keeps the gap
+    constant: ``Delta = 2 (sqrt(a^2 cos^2 beta + b^2 sin^2 beta) - a)``, down to
+    ``2 R (1 - 1/cos(alpha))`` at 90 deg. Floats (one design) and angles.
+
+    Returns
+    -------
+    ndarray, shape (2, ...)
+        ``(z, z')`` [m], positive towards the reactor centre.
+    """
+    beta = np.asarray(beta, dtype=float)
+    e = float(eccentricity)
+    a, b = (float(v) for v in section_semi_axes(disc_radius, inclination))
+    r = float(roller_radius) if follower == "roller" else 0.0
+    out = []
+    for sign in (1.0, -1.0):
+        if follower == "flat":
+            rho = sign * e * np.cos(beta) + np.hypot(a * np.cos(beta), b * np.sin(beta))
+        elif follower == "roller":
+            rho = _roller_on_ellipse(a, b, r, sign * e, beta)
+        else:
+            rho = _knife_on_ellipse(a, b, sign * e, beta)
+        out.append(rho - (a + r))
+    return np.stack(out)

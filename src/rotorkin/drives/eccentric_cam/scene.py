@@ -28,8 +28,10 @@ from rotorkin.render.scenes import (
     Plot,
     SceneBuilder,
     circle,
+    contact_checks,
     flywheel_checks,
     fmt,
+    force_plot,
     frame_angles,
     join,
     lines_plot,
@@ -261,7 +263,8 @@ def scene(result, cfg, frames: int = 120):
 
 
 def plots(result, cfg) -> list[Plot]:
-    """SVAJ of the pistons, travel decomposition and gap, volume and pressure, torque, p-V, cam."""
+    """SVAJ of the pistons, travel decomposition and gap, volume and pressure, torque, p-V,
+    pair forces, cam."""
     cols, s = result.columns, result.summary
     params = _models(cfg)[0]
     be, x_lab = cols["beta_deg"], "shaft angle beta [deg]"
@@ -339,6 +342,7 @@ def plots(result, cfg) -> list[Plot]:
                 height=440,
             ),
         ),
+        force_plot(cols, be, x_lab, f"Pair forces at {rpm} rpm", 360.0),
         Plot(
             "plot-cam",
             "Cam and pressure angle",
@@ -469,4 +473,38 @@ def checks(result, cfg) -> list[Check]:
             "translating follower is about 30 deg): side load on the piston rods.",
         )
     )
-    return out + flywheel_checks(s, "the pistons")
+    lift = s.get("follower_force_min_N")
+    if lift is not None:
+        if s.get("follower_lift_off"):
+            out.append(
+                Check(
+                    "error",
+                    "Follower lift-off",
+                    f"A disc would have to pull its piston ({fmt(lift)} N at the run "
+                    "speed): only the fluid's pressure holds the pistons on the discs. "
+                    "A lower speed, lighter pistons or a higher charge pressure.",
+                )
+            )
+        else:
+            out.append(
+                Check(
+                    "ok",
+                    "Followers stay on the discs",
+                    f"The smallest push of a disc on its follower is {fmt(lift)} N.",
+                )
+            )
+    if "section_travel_difference_max_mm" in s:
+        out.append(
+            Check(
+                "note",
+                "Inclined discs",
+                f"At {fmt(s['inclination_deg'])} deg the disc's section in the piston "
+                f"plane is an ellipse ({fmt(s['section_major_axis_mm'])} mm by "
+                f"{fmt(s['section_minor_axis_mm'])} mm): its piston travel differs from "
+                "the paper's circle by up to "
+                f"{fmt(s['section_travel_difference_max_mm'])} mm (gap change down to "
+                f"{fmt(s['section_gap_change_min_mm'])} mm); the reactor and force "
+                "results use the circle.",
+            )
+        )
+    return out + contact_checks(s, cfg) + flywheel_checks(s, "the pistons")

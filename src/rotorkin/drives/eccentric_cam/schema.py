@@ -13,6 +13,7 @@ from rotorkin.core.bounds import (
     PRESSURE_MIN,
 )
 from rotorkin.core.schema import (
+    Angle,
     ContactSection,
     EmptySection,
     ExportSection,
@@ -43,10 +44,12 @@ class EccentricDrive(Section):
     disc_radius: Length = Field(
         ge=0.001, le=LENGTH_MAX, description="radius R of each eccentric disc (1 mm <= R <= 10 m)"
     )
-    eccentricity: Length = Field(
+    eccentricity: Length | None = Field(
+        None,
         gt=0.0,
         le=LENGTH_MAX,
-        description="eccentricity e of the disc centre from the shaft (0 < e < disc_radius)",
+        description="eccentricity e of the disc centre from the shaft (0 < e < disc_radius); "
+        "required, unless inclination and slide set it (e = slide tan(inclination))",
     )
     follower: Literal["knife_edge", "flat", "roller"] = Field(
         "knife_edge", description="piston follower: knife_edge, flat or roller"
@@ -56,6 +59,29 @@ class EccentricDrive(Section):
         ge=0.0,
         le=LENGTH_MAX,
         description="roller radius r (follower = roller) (0 <= r <= 10 m; > 0 for a roller)",
+    )
+    tip_radius: Length = Field(
+        "0 mm",
+        ge=0.0,
+        le=LENGTH_MAX,
+        description="tip radius of a knife-edge follower, for its contact stress only (0: a "
+        "sharp edge, no contact stress; the travel takes the tip as a point, eq. 1)",
+    )
+    inclination: Angle = Field(
+        "0 deg",
+        ge=0.0,
+        lt=1.5707963267948966,
+        description="adjuster (paper's Fig. 2): angle alpha of each disc's own axis to the shaft "
+        "(0 deg: off, the paper's circular section; 0 <= alpha < 90 deg); the section in a "
+        "piston plane is then an ellipse of semi-axes R/cos(alpha) and R",
+    )
+    slide: Length | None = Field(
+        None,
+        gt=0.0,
+        le=LENGTH_MAX,
+        description="adjuster: axial distance s of the piston plane from the point where the "
+        "disc's axis crosses the shaft axis; sets e = s tan(inclination) (needs inclination > 0; "
+        "leave eccentricity out or give the same value)",
     )
 
 

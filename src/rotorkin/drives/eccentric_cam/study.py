@@ -21,10 +21,13 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.analysis import flywheel as fw
+from rotorkin.analysis import pairs as pairs_mod
 from rotorkin.analysis import torque as tq
+from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError
-from rotorkin.core.schema import RunSection
+from rotorkin.core.schema import ContactSection, RunSection
 from rotorkin.drives.eccentric_cam import figures as figures_eccentric_cam
+from rotorkin.drives.eccentric_cam import forces as fz
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.drives.eccentric_cam.curves import drive_curves
 from rotorkin.drives.eccentric_cam.reactor import closed_forms, opposed_piston, reactor_state
@@ -38,6 +41,7 @@ __all__ = [
     "drive_params",
     "machine_params",
     "sections",
+    "adjuster",
     "reactor_state",
     "HEADLINE",
 ]
@@ -59,6 +63,16 @@ HEADLINE = {
     "piston_left_accel_peak_m_per_s2": "peak acceleration of the left piston",
     "shaft_torque_peak_Nm": "peak torque of the fluid on the shaft, without inertia",
     "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+    "peak_contact_force_N": "largest normal force of a disc on its follower, at the run speed",
+    "peak_contact_stress_MPa": "largest Hertz pressure of a disc on its follower",
+    "contact_safety_factor": "contact.allowable_stress over that pressure",
+    "peak_bearing_load_N": "largest load of a disc on the shaft bearings (or a roller pin)",
+    "follower_force_min_N": "smallest push of a disc on its follower (< 0: it would lift off)",
+    "side_thrust_peak_N": "largest side thrust of a piston on its guide",
+    "friction_loss_W": "power friction takes from the shaft at the run speed",
+    "mechanical_efficiency": "work through the drive over it plus the friction loss",
+    "section_travel_difference_max_mm": "adjuster: largest travel change, exact elliptic "
+    "section against the paper's circle",
 }
 
 #: Samples per shaft turn used for the peaks of the piston derivatives (independent of run.points).
@@ -200,9 +214,156 @@ def _reactor_columns(drive, reactor, inertia, speed, beta) -> tuple[dict, dict]:
     return cols, {**_REACTOR_DOCS, **tdocs}
 
 
-def drive_params(cfg: dict) -> ec.EccentricCam:
-    """The drive's parameters from a validated config (SI); errors name the config keys."""
+def adjuster(cfg: dict) -> tuple[float, float | None]:
+    """The adjuster's inclination [rad] (0: off) and slide [m] (None: not given), checked.
+
+    Refused (one line naming the key): a slide without an inclination, an
+    inclination outside ``0 <= alpha < 90 deg``, a slide and an eccentricity that
+    disagree (``e = s tan(alpha)``), neither eccentricity nor slide.
+    """
     d = cfg["drive"]
+    alpha = float(d.get("inclination") or 0.0)
+    slide = d.get("slide")
+    e = d.get("eccentricity")
+    if not (np.isfinite(alpha) and 0.0 <= alpha < 0.5 * np.pi):
+        raise ParameterError("drive.inclination", f"{np.degrees(alpha):g} deg",
+                             "0 deg <= inclination < 90 deg")  # fmt: skip
+    if slide is not None:
+        slide = float(slide)
+        if alpha == 0.0:
+            raise ParameterError("drive.slide", fmt_mm(slide), "a slide needs drive.inclination "
+                                 "> 0 deg (e = slide tan(inclination))")  # fmt: skip
+        if not (np.isfinite(slide) and slide > 0.0):
+            raise ParameterError("drive.slide", fmt_mm(slide), "slide > 0 mm")
+        set_e = float(ec.adjuster_eccentricity(alpha, slide))
+        if e is not None and not np.isclose(float(e), set_e, rtol=1e-9, atol=0.0):
+            raise ParameterError(
+                "drive.slide",
+                fmt_mm(slide),
+                f"slide tan(inclination) = {fmt_mm(set_e)} must equal "
+                f"drive.eccentricity = {fmt_mm(float(e))}; give one of the two",
+            )
+    elif e is None:
+        raise ParameterError(
+            "drive.eccentricity",
+            "missing",
+            "an eccentricity, or drive.inclination > 0 deg with drive.slide",
+        )
+    return alpha, slide
+
+
+def _forces(params, reactor, inertia, speed, beta, cfg):
+    """Reactor state, contact state and pairs at the angles ``beta``."""
+    st = reactor_state(params, reactor, inertia, speed, beta)
+    state = fz.contact_state(params, beta, st["F"], inertia[1], st["omega"], st["omega_dot"])
+    contact = {**ContactSection().model_dump(), **(cfg.get("contact") or {})}
+    tip = float(cfg["drive"].get("tip_radius") or 0.0)
+    return st, state, fz.pairs(params, state, float(contact["bearing_radius"]), tip)
+
+
+def work_through_drive(state, beta) -> float:
+    """Work the shaft hands to the pistons per turn through the discs [J] (>= 0).
+
+    The fluid is a conservative spring (no net work over a turn), so the drive's
+    efficiency is taken on the work that passes through it: the integral of the
+    contact forces' torque on the shaft where it resists the shaft,
+    ``oint max(-T_contact, 0) dbeta``.
+    """
+    return float(np.trapezoid(np.maximum(-state.shaft_torque, 0.0), beta))
+
+
+def _forces_summary(params, reactor, inertia, speed, cfg) -> dict:
+    fine = np.linspace(0.0, ec.period(params), _PEAK_SAMPLES)
+    st, state, prs = _forces(params, reactor, inertia, speed, fine, cfg)
+    work = work_through_drive(state, fine)
+    out = pairs_mod.summary(prs, fine, -work, pairs_mod.ContactModel.from_config(cfg),
+                            st["omega"])  # fmt: skip
+    out["work_through_drive_J"] = work
+    out.update(fz.own_summary(state))
+    return out
+
+
+_FORCE_DOCS = {
+    "follower_normal_left_N": "Push N of the left disc on its follower along the contact "
+    "normal (signed: < 0 means the follower would lift off).",
+    "follower_normal_right_N": "Push N of the right disc on its follower (signed).",
+    "side_thrust_left_N": "Side thrust N n_y of the left piston on its guide along y of its "
+    "follower frame (> 0: the +y wall).",
+    "side_thrust_right_N": "Side thrust of the right piston on its guide (signed, as the left).",
+    "shaft_radial_load_N": "Magnitude of the sum of both discs' loads on the shaft.",
+    "contact_shaft_torque_Nm": "Torque of the contact forces on the shaft (with the pistons' "
+    "inertia), positive in the sense of rotation.",
+}
+
+
+def _forces_columns(params, reactor, inertia, speed, beta, cfg) -> tuple[dict, dict]:
+    st, state, prs = _forces(params, reactor, inertia, speed, beta, cfg)
+    cols, docs = pairs_mod.columns(prs, pairs_mod.ContactModel.from_config(cfg), st["shaft"])
+    cols.update({
+        "follower_normal_left_N": state.normal[0],
+        "follower_normal_right_N": state.normal[1],
+        "side_thrust_left_N": state.side_thrust[0],
+        "side_thrust_right_N": state.side_thrust[1],
+        "shaft_radial_load_N": np.hypot(*state.shaft_load),
+        "contact_shaft_torque_Nm": state.shaft_torque,
+    })  # fmt: skip
+    return cols, {**docs, **_FORCE_DOCS}
+
+
+def _adjuster_summary(params, cfg) -> dict:
+    """Keys of the inclined-disc adjuster (none when it is off)."""
+    alpha, slide = adjuster(cfg)
+    if alpha == 0.0:
+        return {}
+    fine = np.linspace(0.0, ec.period(params), _PEAK_SAMPLES)
+    exact = ec.section_travels(params.disc_radius, params.eccentricity, alpha, params.follower,
+                               params.roller_radius, fine)  # fmt: skip
+    circle = ec.piston_travels(params, fine)[0]
+    a, _ = ec.section_semi_axes(params.disc_radius, alpha)
+    s = float(ec.adjuster_slide(alpha, params.eccentricity)) if slide is None else slide
+    return {
+        "inclination_deg": float(np.degrees(alpha)),
+        "slide_mm": s * 1e3,
+        "section_major_axis_mm": 2e3 * float(a),
+        "section_minor_axis_mm": 2e3 * float(params.disc_radius),
+        "section_travel_difference_max_mm": float(np.max(np.abs(exact - circle))) * 1e3,
+        "section_gap_change_min_mm": float(np.min(exact[0] + exact[1])) * 1e3,
+    }
+
+
+_ADJUSTER_DOCS = {
+    "z_left_section_mm": "Left piston travel on the disc's exact (elliptic) section in the "
+    "piston plane (adjuster).",
+    "z_right_section_mm": "Right piston travel on the exact section (adjuster).",
+    "gap_change_section_mm": "Gap change z + z' on the exact section (adjuster).",
+}
+
+
+def _adjuster_columns(params, cfg, beta) -> dict:
+    alpha, _ = adjuster(cfg)
+    if alpha == 0.0:
+        return {}
+    z = ec.section_travels(params.disc_radius, params.eccentricity, alpha, params.follower,
+                           params.roller_radius, beta)  # fmt: skip
+    return {"z_left_section_mm": z[0] * 1e3, "z_right_section_mm": z[1] * 1e3,
+            "gap_change_section_mm": (z[0] + z[1]) * 1e3}  # fmt: skip
+
+
+def drive_params(cfg: dict) -> ec.EccentricCam:
+    """The drive's parameters from a validated config (SI); errors name the config keys.
+
+    The eccentricity is ``drive.eccentricity`` or, with the adjuster,
+    ``drive.slide * tan(drive.inclination)`` (:func:`adjuster`).
+    """
+    d = dict(cfg["drive"])
+    alpha, slide = adjuster(cfg)
+    if slide is not None:
+        e = float(ec.adjuster_eccentricity(alpha, slide))
+        if not e < float(d["disc_radius"]):
+            raise ParameterError("drive.slide", fmt_mm(slide),
+                                 f"slide tan(inclination) = {fmt_mm(e)} below disc_radius = "
+                                 f"{fmt_mm(float(d['disc_radius']))}")  # fmt: skip
+        d["eccentricity"] = e
     keys = ("disc_radius", "eccentricity", "follower", "roller_radius")
     return build_params(ec.EccentricCam, "drive", {k: d[k] for k in keys if k in d})
 
@@ -215,6 +376,12 @@ def machine_params(params: ec.EccentricCam, machine: dict) -> op.OpposedPiston:
     return build_params(
         lambda **kw: opposed_piston(params, **kw), "machine", {k: machine[k] for k in keys}
     )
+
+
+_UNDEFINED = {
+    "mechanical_efficiency": "no work passes through the drive (no pressure and no piston "
+    "mass: machine.initial_pressure, machine.piston_mass)",
+}
 
 
 def evaluate(cfg: dict) -> StudyResult:
@@ -245,17 +412,29 @@ def evaluate(cfg: dict) -> StudyResult:
     summary.update(
         _reactor_summary(params, reactor, inertia, speed, float(machine["speed_fluctuation"]))
     )
+    summary.update(_forces_summary(params, reactor, inertia, speed, cfg))
+    summary.update(_adjuster_summary(params, cfg))
     summary = {k: v.item() if isinstance(v, np.generic) else v for k, v in summary.items()}
     columns = _columns(params, run["points"])
     beta = angle_grid(ec.period(params), run["points"])
     more, more_docs = _reactor_columns(params, reactor, inertia, speed, beta)
     columns.update(more)
+    columns.update(_adjuster_columns(params, cfg, beta))
+    fcols, fdocs = _forces_columns(params, reactor, inertia, speed, beta, cfg)
+    columns.update(fcols)
 
     def plot(outdir: Path) -> list[Path]:
         grid = angle_grid(ec.period(params), 1441)
         state = reactor_state(params, reactor, inertia, speed, grid)
+        fcols = _forces_columns(params, reactor, inertia, speed, grid, cfg)[0]
         return figures_eccentric_cam.plot_all(
-            params, Path(outdir), reactor=reactor, beta=grid, state=state, summary=summary
+            params,
+            Path(outdir),
+            reactor=reactor,
+            beta=grid,
+            state=state,
+            summary=summary,
+            forces=fcols,
         )
 
     return StudyResult(
@@ -263,9 +442,9 @@ def evaluate(cfg: dict) -> StudyResult:
         title="Opposed-piston reactor, double eccentric cams",
         summary=summary,
         columns=columns,
-        column_docs={**_DOCS, **more_docs},
-        headline=HEADLINE,
+        column_docs={**_DOCS, **more_docs, **_ADJUSTER_DOCS, **fdocs},
+        headline={k: v for k, v in HEADLINE.items() if k in summary},
         write_figures=plot,
         motion=ec.motion(params, beta),
-        warnings=undefined_warnings(summary),
+        warnings=undefined_warnings(summary, _UNDEFINED),
     )

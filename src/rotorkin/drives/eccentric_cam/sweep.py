@@ -94,6 +94,8 @@ ANGLE = ("beta_deg", "Shaft angle beta; 0 puts the left piston at its top (+e)."
 
 def unsupported(cfg: dict) -> str | None:
     """Why the kernel cannot evaluate designs on this base config (None: it can)."""
+    if cfg["drive"].get("eccentricity") is None:
+        return "the eccentricity is set by the adjuster (drive.slide), not drive.eccentricity"
     return None
 
 

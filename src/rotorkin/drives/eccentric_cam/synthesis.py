@@ -178,7 +178,7 @@ def synthesize(cfg, raw, objective, target, harmonics, options=None):
     if harmonics is not None:
         raise ParameterError("harmonics", str(harmonics), "not used by the eccentric_cam drive")
     d = cfg["drive"]
-    base = ec.EccentricCam(d["disc_radius"], d["eccentricity"], d["follower"], d["roller_radius"])
+    base = study.drive_params(cfg)
     length = float(cfg["machine"]["device_length"])
     gap = default_gap_change(base) if target is None else _parse_gap(target, length)
     options = design_options(base, gap)
