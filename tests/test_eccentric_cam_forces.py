@@ -384,3 +384,22 @@ def test_missing_eccentricity_without_the_adjuster_is_refused(tmp_path, capsys):
     code = main(["run", str(cfg), "-q", "--out", str(tmp_path / "o")])
     _, err = capsys.readouterr()
     assert code == 2 and "drive.eccentricity" in err and err.strip().count("\n") == 0
+
+
+@pytest.mark.parametrize(("follower", "r"), FOLLOWERS)
+def test_largest_travel_change_is_the_semi_axes_difference(follower, r):
+    # the section contains the paper's circle and touches it at the minor axis' ends: there
+    # the follower stands where the circle would put it, and the travels (from mid stroke)
+    # differ by the shift a - R of the mid position, the largest difference over the turn
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        R, alpha = rng.uniform(0.04, 0.12), np.radians(rng.uniform(3.0, 35.0))
+        e = rng.uniform(0.1, 0.7) * R
+        rr = r * R / 0.08
+        beta = np.linspace(0.0, 2.0 * np.pi, 40001)
+        d = (
+            ec.section_travels(R, e, alpha, follower, rr, beta)
+            - ec.piston_travels(ec.EccentricCam(R, e, follower, rr), beta)[0]
+        )
+        assert np.max(d) <= 1e-15
+        assert np.min(d) == pytest.approx(R * (1.0 - 1.0 / np.cos(alpha)), rel=1e-6)
