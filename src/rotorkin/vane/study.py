@@ -20,6 +20,9 @@ import numpy as np
 
 from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import torque as tq
+from rotorkin.analysis.pairs import ContactModel
+from rotorkin.analysis.pairs import columns as pair_columns
+from rotorkin.analysis.pairs import summary as pair_summary
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.machines.vane_pump import flow_ripple
 from rotorkin.studies import StudyResult
@@ -79,6 +82,15 @@ HEADLINES = {
     },
 }
 _SLUGS = ("member1", "member2")
+#: The printed keys of a drive's load-carrying pairs (:mod:`rotorkin.analysis.pairs`).
+CONTACT_HEADLINE = {
+    "peak_contact_force_N": "largest normal force in a contact (mesh, roller, slider)",
+    "peak_contact_stress_MPa": "largest Hertz pressure in a contact",
+    "contact_safety_factor": "contact.allowable_stress over the largest Hertz pressure",
+    "peak_bearing_load_N": "largest load on a bearing",
+    "friction_loss_W": "power lost to friction at the run speed (first order)",
+    "mechanical_efficiency": "work delivered over work put in, friction included",
+}
 
 
 def dynamics(st: vm.State, theta, speed, period, inertia) -> dict:
@@ -100,14 +112,18 @@ def dynamics(st: vm.State, theta, speed, period, inertia) -> dict:
     js, jm = inertia
     dq, d2q = st.motion.dq, st.motion.d2q
     omega, omega_dot, _ = shaft_speed(theta, speed, period)
+    jm_arr = np.asarray(jm, dtype=float)[:, None] if np.ndim(dq) > 1 else np.asarray(jm)
     t_in = tq.inertia_torque(js, jm, dq, d2q, omega, omega_dot)
     span = theta[-1] - theta[0]
     omega_mean = span / float(np.trapezoid(1.0 / omega, theta))  # time average
     steady = st.shaft - tq.inertia_torque(js, jm, dq, d2q, omega_mean, 0.0)
     j_eq = tq.equivalent_inertia(js, jm, dq)
+    member_accel = d2q * omega**2 + dq * omega_dot  # [rad/s^2]
     return {
         "omega": omega,
         "omega_mean": omega_mean,
+        # what the drive must put on each member: its inertia less the machine's torque
+        "drive_torque": jm_arr * member_accel - st.members,
         "inertia_torque": t_in,
         "net": st.shaft - t_in,
         "steady": steady,
@@ -219,6 +235,7 @@ def evaluate(
     drive_headline: dict | None = None,
     drive_columns=None,
     drive_figures=None,
+    drive_pairs=None,
     warnings: tuple = (),
 ) -> StudyResult:
     """Run ``cfg["machine"]["type"]`` on ``law`` (a validated SI config).
@@ -238,6 +255,10 @@ def evaluate(
         ``drive_columns(theta) -> (columns, docs)``: the drive's own columns.
     drive_figures : callable, optional
         ``drive_figures(outdir) -> list[Path]``: the drive's own figures.
+    drive_pairs : callable, optional
+        ``drive_pairs(theta, drive_torque, motion) -> list[Pair]``: the drive's
+        load-carrying pairs (:mod:`rotorkin.analysis.pairs`) from the torque it must
+        put on each member (machine and inertia at the run speed, shape (2, n)).
     warnings : tuple of str
         The drive's warnings.
     """
@@ -250,6 +271,11 @@ def evaluate(
     st_fine = vm.state(setup, fine)
     dyn_fine = dynamics(st_fine, fine, speed, law.period, inertia)
     summary = {**(drive_summary or {}), **_summary(setup, cfg, fine, st_fine, dyn_fine)}
+    model = ContactModel.from_config(cfg)
+    if drive_pairs is not None:
+        found = drive_pairs(fine, dyn_fine["drive_torque"], st_fine.motion)
+        summary.update(pair_summary(found, fine, summary["indicated_work_J"], model,
+                                    dyn_fine["omega"]))  # fmt: skip
     _, _, peaks, _ = time_domain(st_fine.motion, speed, _SLUGS, law.period)
     summary.update(peaks)
     summary = {k: v.item() if isinstance(v, np.generic) else v for k, v in summary.items()}
@@ -263,6 +289,11 @@ def evaluate(
         extra, extra_docs = drive_columns(theta)
         columns.update(extra)
         docs.update(extra_docs)
+    if drive_pairs is not None:
+        extra, extra_docs = pair_columns(drive_pairs(theta, dyn["drive_torque"], st.motion),
+                                         model, st.shaft)  # fmt: skip
+        columns.update(extra)
+        docs.update(extra_docs)
     tcols, tdocs, _, _ = time_domain(st.motion, speed, _SLUGS, law.period)
     columns.update(tcols)
     docs.update({k: v[0].upper() + v[1:] + "." for k, v in tdocs.items()})
@@ -274,6 +305,8 @@ def evaluate(
                                             title)  # fmt: skip
 
     headline = {**(drive_headline or {}), **HEADLINES[kind]}
+    if drive_pairs is not None:
+        headline.update({k: v for k, v in CONTACT_HEADLINE.items() if k in summary})
     return StudyResult(
         drive_type=drive_type,
         title=title,
