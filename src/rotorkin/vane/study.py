@@ -48,6 +48,7 @@ _COMMON = {
     "member_accel_peak_per_rad": "peak member acceleration over shaft speed squared",
     "member_jerk_peak_per_rad2": "peak member jerk over shaft speed cubed",
     "tdc_dwell_deg": "shaft angle a chamber stays within 1 % of the stroke of its dead centre",
+    "drive_torque_peak_Nm": "largest torque the drive puts on a member (machine and inertia)",
     "displacement_cm3_per_rev": "volume swept by all chambers per shaft turn",
 }
 _TAIL = {
@@ -164,6 +165,7 @@ def _summary(setup: vm.Setup, cfg: dict, theta, st, dyn) -> dict:
         "shaft_torque_max_Nm": float(np.max(st.shaft)),
         "shaft_torque_min_Nm": float(np.min(st.shaft)),
         "member_torque_peak_Nm": float(np.max(np.abs(st.members))),
+        "drive_torque_peak_Nm": float(np.max(np.abs(dyn["drive_torque"]))),
         "indicated_power_kW": work * w / _TWO_PI / 1e3,
         "equivalent_inertia_mean_kgm2": j_mean,
         "energy_fluctuation_J": d_e,
@@ -212,6 +214,12 @@ def _columns(setup: vm.Setup, st: vm.State, dyn: dict, theta, members) -> tuple[
         cols[f"member{k + 1}_torque_Nm"] = st.members[k]
         docs[f"member{k + 1}_torque_Nm"] = (
             f"Torque of the chamber pressures on {members[k]}, sum p_j dV_j/dq_{k + 1}."
+        )
+    for k in (0, 1):
+        cols[f"member{k + 1}_drive_torque_Nm"] = dyn["drive_torque"][k]
+        docs[f"member{k + 1}_drive_torque_Nm"] = (
+            f"Torque the drive must put on {members[k]} at the run speed: its inertia less "
+            "the machine's torque (what the drive's pairs carry)."
         )
     for key, values, doc in (
         ("shaft_torque_Nm", st.shaft,
