@@ -517,7 +517,7 @@ def _roller_on_ellipse(a, b, r, e_signed, beta, iterations=60):
         xi, eta = centre(t)
         return (e_signed + xi) * s + eta * c
 
-    t = np.arctan2(-b * s, a * c) + 0.0 * (a + r + e_signed)
+    t = np.arctan2(-b * s, a * c)
     h = 1e-20
     for _ in range(iterations):
         dg = np.imag(g(t + 1j * h)) / h
