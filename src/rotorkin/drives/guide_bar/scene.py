@@ -30,8 +30,10 @@ from rotorkin.render.scenes import (
     Plot,
     SceneBuilder,
     circle,
+    contact_checks,
     flywheel_checks,
     fmt,
+    force_plot,
     frame_angles,
     join,
     lines_plot,
@@ -229,7 +231,7 @@ def scene(result, cfg, frames: int = 120):
 
 
 def plots(result, cfg) -> list[Plot]:
-    """SVAJ of the impellers, speed ratios, chambers and flow, torque, p-V."""
+    """SVAJ of the impellers, speed ratios, chambers and flow, torque, p-V, forces."""
     cols, s = result.columns, result.summary
     params = _models(cfg)[0]
     th, x_lab = cols["theta_deg"], "input gear angle theta [deg]"
@@ -333,11 +335,26 @@ def plots(result, cfg) -> list[Plot]:
                 height=440,
             ),
         ),
+        *filter(
+            None,
+            [
+                force_plot(
+                    cols,
+                    th,
+                    x_lab,
+                    "Forces in the pairs of both guide-bar "
+                    f"mechanisms and the gear meshes at {rpm} rpm (pump torques, "
+                    "ideal ports, and impeller inertia)",
+                    per,
+                )
+            ],
+        ),
     ]
 
 
 def checks(result, cfg) -> list[Check]:
-    """Vane clearance, speed and flow ripple, torque fluctuation, flywheel."""
+    """Vane clearance, speed and flow ripple, torque fluctuation, flywheel, contact stress and
+    efficiency."""
     s = result.summary
     out = []
     lo = s.get("chamber_angle_min_deg")
@@ -380,4 +397,4 @@ def checks(result, cfg) -> list[Check]:
                 "guide-driven would fluctuate less (paper, Fig. 10-11).",
             )
         )
-    return out + flywheel_checks(s, "the impellers", supplied=True)
+    return out + flywheel_checks(s, "the impellers", supplied=True) + contact_checks(s, cfg)
