@@ -400,9 +400,16 @@ def pairs(params: gb.GuideBar, size: Gearing, forces: Forces, bearing_radius: fl
 
 
 def own_summary(forces: Forces, omega) -> dict:
-    """The drive's own peaks: slider force and speed, mesh tangential forces, pivot loads."""
+    """The drive's own peaks: slider force and speed, mesh tangential forces, pivot loads, and
+    how often per period the load on an impeller's mesh (and on its slot's walls) reverses."""
     w = np.asarray(omega, dtype=float)
+    reversals = 0
+    for k in (0, 1):  # over the samples of a period; where the load is 0 no wall is chosen
+        sign = np.sign(forces.impeller_torque[k])
+        sign = sign[sign != 0]
+        reversals = max(reversals, int(np.sum(sign[1:] != sign[:-1])))
     out = {
+        "load_reversals_per_period": reversals,
         "peak_slider_force_N": float(np.max(np.abs(forces.slider))),
         "peak_slider_speed_m_per_s": float(np.max(np.abs(forces.pin_slip) * w)),
     }

@@ -66,6 +66,7 @@ HEADLINE = {
     "peak_slider_force_N": "largest force of a guide bar on its slider block, at speed",
     "peak_input_mesh1_tangential_force_N": "largest tangential force of gear 1 on gear 2",
     "peak_impeller_mesh1_tangential_force_N": "largest tangential force of gear 6 on gear 7",
+    "load_reversals_per_period": "times an impeller's load reverses (slot wall, tooth flank)",
     "peak_contact_stress_MPa": "largest Hertz pressure of a gear mesh (pitch point)",
     "contact_safety_factor": "allowable contact pressure over the largest",
     "peak_bearing_load_N": "largest load of a pin or bearing",
