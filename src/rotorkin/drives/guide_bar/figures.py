@@ -372,18 +372,24 @@ def fig_forces(theta, pairs, model: pr.ContactModel, summary, path: Path) -> Pat
     deg = np.degrees(theta)
     fig, axes = plt.subplots(4, 1, figsize=(9, 11), sharex=True)
 
-    def pin(p):
-        return p.kind == "sliding" or p.slug.startswith("crank_pin")
+    # the crank pin carries the slider's force, an impeller's bearing its mesh's normal force
+    also = {"sliding": " = crank pin", "mesh": ""}
+
+    def shown(p):
+        return not p.slug.startswith(("crank_pin", "impeller1_bearing", "impeller2_bearing"))
 
     groups = (
-        ("slider on guide bar, crank pin [N]", pin),
-        ("pivots and bearings [N]", lambda p: p.kind == "bearing" and not pin(p)),
+        ("slider on guide bar = crank pin [N]", lambda p: p.kind == "sliding"),
+        ("pivots and bearings [N]", lambda p: p.kind == "bearing" and shown(p)),
         ("gear meshes, tooth normal force [N]", lambda p: p.kind == "mesh"),
     )
     for ax, (label, chosen) in zip(axes[:3], groups, strict=False):
         for p in filter(chosen, pairs):
             ls = "--" if "2" in p.slug or p.slug == "input_bearing" else "-"
-            ax.plot(deg, np.abs(p.force), lw=1.4, ls=ls, label=p.name)
+            extra = also.get(p.kind, "")
+            if p.slug.startswith("impeller_mesh"):
+                extra = f" = impeller {p.slug[-1]} bearing"
+            ax.plot(deg, np.abs(p.force), lw=1.4, ls=ls, label=p.name + extra)
         _theta_axis(ax, theta, label)
         ax.set_xlabel("")
         ax.set_ylim(bottom=0.0)

@@ -339,17 +339,26 @@ def plots(result, cfg) -> list[Plot]:
             None,
             [
                 force_plot(
-                    cols,
+                    _distinct_forces(cols),
                     th,
                     x_lab,
-                    "Forces in the pairs of both guide-bar "
-                    f"mechanisms and the gear meshes at {rpm} rpm (pump torques, "
-                    "ideal ports, and impeller inertia)",
+                    "Forces in the pairs of both guide-bar mechanisms and the "
+                    f"gear meshes at {rpm} rpm (pump torques, ideal ports, and "
+                    "impeller inertia); the crank pin carries the slider's force, "
+                    "an impeller's bearing its mesh's",
                     per,
                 )
             ],
         ),
     ]
+
+
+def _distinct_forces(cols: dict) -> dict:
+    """The columns without the pairs whose force repeats another's: the crank pin carries the
+    slider block's force, an impeller's bearing its mesh's normal force."""
+    same = ("crank_pin1_force_N", "crank_pin2_force_N", "impeller1_bearing_force_N",
+            "impeller2_bearing_force_N")  # fmt: skip
+    return {k: v for k, v in cols.items() if k not in same}
 
 
 def checks(result, cfg) -> list[Check]:
