@@ -32,7 +32,7 @@ PLOTS = {  # plot ids every report of the drive must have
     "eccentric_cam": {"plot-svaj", "plot-gap", "plot-volume", "plot-torque", "plot-pv", "plot-cam"},
     "guide_bar": {"plot-svaj", "plot-speed", "plot-chambers", "plot-torque", "plot-pv"},
     "rhomboid_cam": {"plot-svaj", "plot-chambers", "plot-torque", "plot-pv", "plot-cam"},
-    "noncircular_gears": {"plot-members", "plot-chambers", "plot-pv", "plot-torque"},
+    "noncircular_gears": {"plot-members", "plot-chambers", "plot-pv", "plot-torque", "plot-forces"},
     "tabulated": {"plot-members", "plot-chambers", "plot-pv", "plot-torque"},
 }
 

@@ -209,3 +209,22 @@ def test_periods_must_divide_a_turn_or_be_whole_turns():
     RotaryLaw(law.motion, 4 * np.pi)
     with pytest.raises(ValueError):
         RotaryLaw(law.motion, 2.0)
+
+
+@pytest.mark.parametrize("drive", ["noncircular_gears", "tabulated", "wobble_cam"])
+def test_drive_torques_on_the_members_balance_the_shaft_at_constant_speed(drive):
+    """At a constant speed the torques the drive puts on the members, times their speed
+    ratios, are the shaft's net torque with the sign turned: power through the drive."""
+    from rotorkin.vane import evaluate
+
+    cfg = _cfg(drive, "twin_rotor" if drive != "wobble_cam" else "vane_pump")
+    r = evaluate(cfg, _law_of(cfg), drive_type=drive, title="t")
+    c = r.columns
+    through = c["member1_drive_torque_Nm"] * c["member1_speed_ratio"] + (
+        c["member2_drive_torque_Nm"] * c["member2_speed_ratio"]
+    )
+    scale = np.max(np.abs(c["shaft_torque_with_inertia_Nm"]))
+    assert -through == pytest.approx(c["shaft_torque_with_inertia_Nm"], abs=1e-9 * scale)
+    assert r.summary["drive_torque_peak_Nm"] == pytest.approx(
+        np.max(np.abs([c["member1_drive_torque_Nm"], c["member2_drive_torque_Nm"]])), rel=1e-3
+    )

@@ -19,6 +19,8 @@ from rotorkin.render.scenes import (
     Plot,
     SceneBuilder,
     circle,
+    contact_checks,
+    force_plot,
     frame_angles,
     lines_plot,
     trace,
@@ -103,7 +105,15 @@ def plots(result, cfg) -> list:
             period=float(x[-1] - x[0]),
         )
     ]
-    return out + _machine_plots(result.columns)
+    out += _machine_plots(result.columns)
+    cols = result.columns
+    if "theta_deg" in cols:
+        x = np.asarray(cols["theta_deg"], dtype=float)
+        forces = force_plot(cols, x, "shaft angle theta [deg]", "Forces of the drive's pairs",
+                            float(x[-1] - x[0]))  # fmt: skip
+        if forces is not None:
+            out.append(forces)
+    return out
 
 
 def _machine_plots(cols: dict) -> list:
@@ -141,8 +151,8 @@ def _machine_plots(cols: dict) -> list:
 
 
 def checks(result, cfg) -> list:
-    """A drive without its own report has no drive-specific checks: say so."""
-    return [
+    """Contact stress and efficiency where the drive has pairs; no drive-specific checks."""
+    return contact_checks(result.summary, cfg) + [
         Check(
             "note",
             "No drive-specific checks",

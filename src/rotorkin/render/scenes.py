@@ -692,8 +692,14 @@ def flywheel_checks(s: dict, member_word: str = "the members", supplied=False) -
 def force_plot(cols, x, x_label, heading, period=None) -> Plot | None:
     """Normal force of every pair (``*_force_N`` columns) and the contact stresses
     (``*_contact_stress_MPa``) over the input angle; None when the study has no pairs."""
-    forces = [(k[: -len("_force_N")].replace("_", " "), cols[k]) for k in cols
-              if k.endswith("_force_N")]  # fmt: skip
+    forces = []  # pairs that carry the same force share one curve, named by both
+    for k in (k for k in cols if k.endswith("_force_N")):
+        name, y = k[: -len("_force_N")].replace("_", " "), np.asarray(cols[k], dtype=float)
+        same = next((i for i, (_, f) in enumerate(forces) if np.allclose(f, y)), None)
+        if same is None:
+            forces.append((name, y))
+        else:
+            forces[same] = (f"{forces[same][0]} = {name}", forces[same][1])
     if not forces:
         return None
     rows = [("force [N]", forces)]

@@ -20,6 +20,9 @@ import numpy as np
 
 from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import torque as tq
+from rotorkin.analysis.pairs import ContactModel
+from rotorkin.analysis.pairs import columns as pair_columns
+from rotorkin.analysis.pairs import summary as pair_summary
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.machines.vane_pump import flow_ripple
 from rotorkin.studies import StudyResult
@@ -45,6 +48,7 @@ _COMMON = {
     "member_accel_peak_per_rad": "peak member acceleration over shaft speed squared",
     "member_jerk_peak_per_rad2": "peak member jerk over shaft speed cubed",
     "tdc_dwell_deg": "shaft angle a chamber stays within 1 % of the stroke of its dead centre",
+    "drive_torque_peak_Nm": "largest torque the drive puts on a member (machine and inertia)",
     "displacement_cm3_per_rev": "volume swept by all chambers per shaft turn",
 }
 _TAIL = {
@@ -79,6 +83,15 @@ HEADLINES = {
     },
 }
 _SLUGS = ("member1", "member2")
+#: The printed keys of a drive's load-carrying pairs (:mod:`rotorkin.analysis.pairs`).
+CONTACT_HEADLINE = {
+    "peak_contact_force_N": "largest normal force in a contact (mesh, roller, slider)",
+    "peak_contact_stress_MPa": "largest Hertz pressure in a contact",
+    "contact_safety_factor": "contact.allowable_stress over the largest Hertz pressure",
+    "peak_bearing_load_N": "largest load on a bearing",
+    "friction_loss_W": "power lost to friction at the run speed (first order)",
+    "mechanical_efficiency": "work delivered over work put in, friction included",
+}
 
 
 def dynamics(st: vm.State, theta, speed, period, inertia) -> dict:
@@ -100,14 +113,18 @@ def dynamics(st: vm.State, theta, speed, period, inertia) -> dict:
     js, jm = inertia
     dq, d2q = st.motion.dq, st.motion.d2q
     omega, omega_dot, _ = shaft_speed(theta, speed, period)
+    jm_arr = np.asarray(jm, dtype=float)[:, None] if np.ndim(dq) > 1 else np.asarray(jm)
     t_in = tq.inertia_torque(js, jm, dq, d2q, omega, omega_dot)
     span = theta[-1] - theta[0]
     omega_mean = span / float(np.trapezoid(1.0 / omega, theta))  # time average
     steady = st.shaft - tq.inertia_torque(js, jm, dq, d2q, omega_mean, 0.0)
     j_eq = tq.equivalent_inertia(js, jm, dq)
+    member_accel = d2q * omega**2 + dq * omega_dot  # [rad/s^2]
     return {
         "omega": omega,
         "omega_mean": omega_mean,
+        # what the drive must put on each member: its inertia less the machine's torque
+        "drive_torque": jm_arr * member_accel - st.members,
         "inertia_torque": t_in,
         "net": st.shaft - t_in,
         "steady": steady,
@@ -148,6 +165,7 @@ def _summary(setup: vm.Setup, cfg: dict, theta, st, dyn) -> dict:
         "shaft_torque_max_Nm": float(np.max(st.shaft)),
         "shaft_torque_min_Nm": float(np.min(st.shaft)),
         "member_torque_peak_Nm": float(np.max(np.abs(st.members))),
+        "drive_torque_peak_Nm": float(np.max(np.abs(dyn["drive_torque"]))),
         "indicated_power_kW": work * w / _TWO_PI / 1e3,
         "equivalent_inertia_mean_kgm2": j_mean,
         "energy_fluctuation_J": d_e,
@@ -197,6 +215,12 @@ def _columns(setup: vm.Setup, st: vm.State, dyn: dict, theta, members) -> tuple[
         docs[f"member{k + 1}_torque_Nm"] = (
             f"Torque of the chamber pressures on {members[k]}, sum p_j dV_j/dq_{k + 1}."
         )
+    for k in (0, 1):
+        cols[f"member{k + 1}_drive_torque_Nm"] = dyn["drive_torque"][k]
+        docs[f"member{k + 1}_drive_torque_Nm"] = (
+            f"Torque the drive must put on {members[k]} at the run speed: its inertia less "
+            "the machine's torque (what the drive's pairs carry)."
+        )
     for key, values, doc in (
         ("shaft_torque_Nm", st.shaft,
          "Torque of the machine on the shaft by virtual work, sum M_i q_i'; + drives the shaft."),
@@ -219,6 +243,7 @@ def evaluate(
     drive_headline: dict | None = None,
     drive_columns=None,
     drive_figures=None,
+    drive_pairs=None,
     warnings: tuple = (),
 ) -> StudyResult:
     """Run ``cfg["machine"]["type"]`` on ``law`` (a validated SI config).
@@ -238,6 +263,10 @@ def evaluate(
         ``drive_columns(theta) -> (columns, docs)``: the drive's own columns.
     drive_figures : callable, optional
         ``drive_figures(outdir) -> list[Path]``: the drive's own figures.
+    drive_pairs : callable, optional
+        ``drive_pairs(theta, drive_torque, motion) -> list[Pair]``: the drive's
+        load-carrying pairs (:mod:`rotorkin.analysis.pairs`) from the torque it must
+        put on each member (machine and inertia at the run speed, shape (2, n)).
     warnings : tuple of str
         The drive's warnings.
     """
@@ -250,6 +279,11 @@ def evaluate(
     st_fine = vm.state(setup, fine)
     dyn_fine = dynamics(st_fine, fine, speed, law.period, inertia)
     summary = {**(drive_summary or {}), **_summary(setup, cfg, fine, st_fine, dyn_fine)}
+    model = ContactModel.from_config(cfg)
+    if drive_pairs is not None:
+        found = drive_pairs(fine, dyn_fine["drive_torque"], st_fine.motion)
+        summary.update(pair_summary(found, fine, summary["indicated_work_J"], model,
+                                    dyn_fine["omega"]))  # fmt: skip
     _, _, peaks, _ = time_domain(st_fine.motion, speed, _SLUGS, law.period)
     summary.update(peaks)
     summary = {k: v.item() if isinstance(v, np.generic) else v for k, v in summary.items()}
@@ -263,6 +297,11 @@ def evaluate(
         extra, extra_docs = drive_columns(theta)
         columns.update(extra)
         docs.update(extra_docs)
+    if drive_pairs is not None:
+        extra, extra_docs = pair_columns(drive_pairs(theta, dyn["drive_torque"], st.motion),
+                                         model, st.shaft)  # fmt: skip
+        columns.update(extra)
+        docs.update(extra_docs)
     tcols, tdocs, _, _ = time_domain(st.motion, speed, _SLUGS, law.period)
     columns.update(tcols)
     docs.update({k: v[0].upper() + v[1:] + "." for k, v in tdocs.items()})
@@ -274,6 +313,8 @@ def evaluate(
                                             title)  # fmt: skip
 
     headline = {**(drive_headline or {}), **HEADLINES[kind]}
+    if drive_pairs is not None:
+        headline.update({k: v for k, v in CONTACT_HEADLINE.items() if k in summary})
     return StudyResult(
         drive_type=drive_type,
         title=title,

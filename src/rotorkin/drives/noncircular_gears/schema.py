@@ -41,6 +41,13 @@ class NoncircularDrive(Section):
         description="angle between the two driving gears on the shaft; default 180 deg / n "
         "(the two speed ratios in antiphase: the largest swing)",
     )
+    pressure_angle: Angle = Field(
+        "20 deg",
+        ge=0.17453292519943295,
+        le=0.6108652381980153,
+        description="pressure angle of the gear-cutting tool (10 deg <= alpha_0 <= 35 deg); "
+        "the pitch curves' inclination adds to it",
+    )
     face_width: Length = Field(
         "20 mm",
         ge=0.001,

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorkin.drives.noncircular_gears import figures
+from rotorkin.drives.noncircular_gears import figures, forces
 from rotorkin.drives.noncircular_gears import kinematics as ng
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import build_params
@@ -97,4 +97,16 @@ def evaluate(cfg: dict) -> StudyResult:
         drive_headline=HEADLINE,
         drive_columns=functools.partial(_columns, params),
         drive_figures=lambda outdir: figures.plot_pitch_curves(params, Path(outdir)),
+        drive_pairs=functools.partial(
+            _pairs,
+            params,
+            cfg["drive"].get("pressure_angle", np.radians(20.0)),
+            cfg["drive"].get("face_width", 0.02),
+            (cfg.get("contact") or {}).get("bearing_radius", 0.01),
+        ),
     )
+
+
+def _pairs(params, pressure_angle, face_width, bearing_radius, theta, drive_torque, motion):
+    return forces.pairs(params, theta, drive_torque, motion, pressure_angle, face_width,
+                        bearing_radius)  # fmt: skip
