@@ -435,3 +435,10 @@ def test_load_reversals_are_counted():
     assert fo.own_summary(F, 100.0)["load_reversals_per_period"] == 2
     F = fo.solve(params, fo.Gearing(), theta, np.ones((2, 9)))
     assert fo.own_summary(F, 100.0)["load_reversals_per_period"] == 0
+
+
+def test_gearing_defaults_are_the_schemas():
+    from rotorkin.drives.guide_bar.schema import GuideBarDrive
+
+    drive = GuideBarDrive.model_validate({"type": "guide_bar", "lambda": 0.5, "gear_ratio": 2})
+    assert fo.gearing(drive.model_dump()) == fo.Gearing()
