@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.patches import Patch, Wedge
 
+from rotorkin.analysis import pairs as pr
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.machines import vane_pump as vp
 from rotorkin.render.figures import pyplot as _plt
@@ -30,6 +31,7 @@ __all__ = [
     "fig_pump_chambers",
     "fig_pump_flow",
     "fig_pump_torque",
+    "fig_forces",
 ]
 
 #: The lambdas of Fig. 10 and 11 (besides the config's).
@@ -363,8 +365,59 @@ def fig_pump_torque(pump, ports, theta, state, summary, path: Path) -> Path:
     return _save(fig, path)
 
 
+def fig_forces(theta, pairs, model: pr.ContactModel, summary, path: Path) -> Path:
+    """Forces in the pairs over a period: slider and pins, pivots and bearings, gear meshes,
+    and the meshes' Hertz pressure against the allowable."""
+    plt = _plt()
+    deg = np.degrees(theta)
+    fig, axes = plt.subplots(4, 1, figsize=(9, 11), sharex=True)
+
+    # the crank pin carries the slider's force, an impeller's bearing its mesh's normal force
+    also = {"sliding": " = crank pin", "mesh": ""}
+
+    def shown(p):
+        return not p.slug.startswith(("crank_pin", "impeller1_bearing", "impeller2_bearing"))
+
+    groups = (
+        ("slider on guide bar = crank pin [N]", lambda p: p.kind == "sliding"),
+        ("pivots and bearings [N]", lambda p: p.kind == "bearing" and shown(p)),
+        ("gear meshes, tooth normal force [N]", lambda p: p.kind == "mesh"),
+    )
+    for ax, (label, chosen) in zip(axes[:3], groups, strict=False):
+        for p in filter(chosen, pairs):
+            ls = "--" if "2" in p.slug or p.slug == "input_bearing" else "-"
+            extra = also.get(p.kind, "")
+            if p.slug.startswith("impeller_mesh"):
+                extra = f" = impeller {p.slug[-1]} bearing"
+            ax.plot(deg, np.abs(p.force), lw=1.4, ls=ls, label=p.name + extra)
+        _theta_axis(ax, theta, label)
+        ax.set_xlabel("")
+        ax.set_ylim(bottom=0.0)
+        ax.legend(fontsize=7, loc="upper right", ncol=2)
+    ax = axes[3]
+    for p in pairs:
+        st = pr.stress(p, model)
+        if st is not None:
+            ls = "--" if "2" in p.slug else "-"
+            ax.plot(deg, st / 1e6, lw=1.4, ls=ls, label=p.name)
+    ax.axhline(model.allowable_stress / 1e6, color="C3", lw=1, ls=":",
+               label=f"allowable {model.allowable_stress / 1e6:.4g} MPa")  # fmt: skip
+    _theta_axis(ax, theta, "Hertz pressure [MPa]")
+    ax.set_ylim(bottom=0.0)
+    ax.legend(fontsize=7, loc="upper right", ncol=2)
+    eta = summary.get("mechanical_efficiency", float("nan"))
+    axes[0].set_title(
+        f"Forces in the pairs at {summary.get('shaft_speed_mean_rpm', float('nan')):.5g} rpm "
+        f"(pump torques, ideal ports, and impeller inertia); friction loss "
+        f"{summary.get('friction_loss_W', float('nan')):.4g} W, efficiency {100 * eta:.4g} %",
+        fontsize=9,
+    )
+    return _save(fig, path)
+
+
 def plot_all(params: gb.GuideBar, m7: float, m8: float, outdir: Path, pump=None, ports=None,
-             theta=None, state=None, summary=None) -> list[Path]:  # fmt: skip
+             theta=None, state=None, summary=None, pairs=None,
+             contact=None) -> list[Path]:  # fmt: skip
     """Write every figure of the drive (and of the pump, when given) into ``outdir``.
 
     Parameters
@@ -377,6 +430,8 @@ def plot_all(params: gb.GuideBar, m7: float, m8: float, outdir: Path, pump=None,
     theta, state, summary : optional
         Input angles, :func:`rotorkin.drives.guide_bar.study.pump_state` on them and
         the study's summary; needed with ``pump``.
+    pairs, contact : list of Pair, ContactModel, optional
+        The pairs at ``theta`` and the contact model: ``forces.png``.
 
     Returns
     -------
@@ -399,4 +454,7 @@ def plot_all(params: gb.GuideBar, m7: float, m8: float, outdir: Path, pump=None,
             fig_pump_flow(pump, ports, theta, state, summary, outdir / "pump_flow.png"),
             fig_pump_torque(pump, ports, theta, state, summary, outdir / "pump_torque.png"),
         ]
+    if pairs:
+        paths.append(fig_forces(theta, pairs, contact or pr.ContactModel(), summary or {},
+                                outdir / "forces.png"))  # fmt: skip
     return paths

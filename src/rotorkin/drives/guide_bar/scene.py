@@ -30,8 +30,10 @@ from rotorkin.render.scenes import (
     Plot,
     SceneBuilder,
     circle,
+    contact_checks,
     flywheel_checks,
     fmt,
+    force_plot,
     frame_angles,
     join,
     lines_plot,
@@ -229,7 +231,7 @@ def scene(result, cfg, frames: int = 120):
 
 
 def plots(result, cfg) -> list[Plot]:
-    """SVAJ of the impellers, speed ratios, chambers and flow, torque, p-V."""
+    """SVAJ of the impellers, speed ratios, chambers and flow, torque, p-V, forces."""
     cols, s = result.columns, result.summary
     params = _models(cfg)[0]
     th, x_lab = cols["theta_deg"], "input gear angle theta [deg]"
@@ -333,11 +335,35 @@ def plots(result, cfg) -> list[Plot]:
                 height=440,
             ),
         ),
+        *filter(
+            None,
+            [
+                force_plot(
+                    _distinct_forces(cols),
+                    th,
+                    x_lab,
+                    "Forces in the pairs of both guide-bar mechanisms and the "
+                    f"gear meshes at {rpm} rpm (pump torques, ideal ports, and "
+                    "impeller inertia); the crank pin carries the slider's force, "
+                    "an impeller's bearing its mesh's",
+                    per,
+                )
+            ],
+        ),
     ]
 
 
+def _distinct_forces(cols: dict) -> dict:
+    """The columns without the pairs whose force repeats another's: the crank pin carries the
+    slider block's force, an impeller's bearing its mesh's normal force."""
+    same = ("crank_pin1_force_N", "crank_pin2_force_N", "impeller1_bearing_force_N",
+            "impeller2_bearing_force_N")  # fmt: skip
+    return {k: v for k, v in cols.items() if k not in same}
+
+
 def checks(result, cfg) -> list[Check]:
-    """Vane clearance, speed and flow ripple, torque fluctuation, flywheel."""
+    """Vane clearance, speed and flow ripple, torque fluctuation, flywheel, contact stress and
+    efficiency."""
     s = result.summary
     out = []
     lo = s.get("chamber_angle_min_deg")
@@ -380,4 +406,4 @@ def checks(result, cfg) -> list[Check]:
                 "guide-driven would fluctuate less (paper, Fig. 10-11).",
             )
         )
-    return out + flywheel_checks(s, "the impellers", supplied=True)
+    return out + flywheel_checks(s, "the impellers", supplied=True) + contact_checks(s, cfg)

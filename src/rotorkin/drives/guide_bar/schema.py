@@ -15,6 +15,7 @@ from rotorkin.core.schema import (
     ContactSection,
     ExportSection,
     Inertia,
+    Length,
     RunSection,
     Section,
     Speed,
@@ -28,6 +29,12 @@ LAMBDA_MIN, LAMBDA_MAX = 0.01, 0.99
 #: Admissible gear ratios u and i12 [-].
 GEAR_RATIO_MIN, GEAR_RATIO_MAX = 0.1, 10.0
 TWO_PI = 6.283185307179586
+#: Admissible crank length and gear pitch radii [m] (a watch's wheels to a press drive's).
+DRIVE_LENGTH_MIN, DRIVE_LENGTH_MAX = 1e-3, 1.0
+#: Admissible gear face width [m].
+FACE_WIDTH_MIN, FACE_WIDTH_MAX = 1e-3, 0.5
+#: Admissible pressure angle [rad]: 10 deg to 35 deg (involute spur gears; standard 20 deg).
+PRESSURE_ANGLE_MIN, PRESSURE_ANGLE_MAX = 0.17453292519943295, 0.6108652381980153
 
 
 # --- rotating guide bars + gears ------------------------------------------------------------
@@ -60,6 +67,42 @@ class GuideBarDrive(Section):
     )
     driver: Literal["crank", "guide"] = Field(
         "crank", description="driving member: crank (paper Fig. 2) or guide (Fig. 4)"
+    )
+    # sizes for the forces in the pairs (the paper's drive is dimensionless; ours)
+    crank_length: Length = Field(
+        "40 mm",
+        ge=DRIVE_LENGTH_MIN,
+        le=DRIVE_LENGTH_MAX,
+        description="crank length a (guide pivot to crank pivot: lambda a); sets the slider "
+        "force (1 mm <= a <= 1 m)",
+    )
+    input_pitch_radius: Length = Field(
+        "25 mm",
+        ge=DRIVE_LENGTH_MIN,
+        le=DRIVE_LENGTH_MAX,
+        description="pitch radius r1 of input gear 1; gears 2 and 9 on the driving members have "
+        "i12 r1 (1 mm <= r1 <= 1 m)",
+    )
+    output_pitch_radius: Length = Field(
+        "30 mm",
+        ge=DRIVE_LENGTH_MIN,
+        le=DRIVE_LENGTH_MAX,
+        description="pitch radius r6 of gears 6 and 11 on the driven members; the impeller gears "
+        "7 and 8 have u r6 (1 mm <= r6 <= 1 m)",
+    )
+    face_width: Length = Field(
+        "20 mm",
+        ge=FACE_WIDTH_MIN,
+        le=FACE_WIDTH_MAX,
+        description="face width of every gear, for the Hertz pressure of the meshes "
+        "(1 mm <= b <= 500 mm)",
+    )
+    pressure_angle: Angle = Field(
+        "20 deg",
+        ge=PRESSURE_ANGLE_MIN,
+        le=PRESSURE_ANGLE_MAX,
+        description="pressure angle alpha of the involute spur gears "
+        "(10 deg <= pressure_angle <= 35 deg)",
     )
 
 

@@ -10,7 +10,9 @@ Config keys (SI, defaults filled by :mod:`rotorkin.io.config`; a key missing fro
 ``loads.impeller_torque_1``, ``loads.impeller_torque_2`` (the paper's constant
 torques, ``input_torque_*`` keys), ``loads.suction_pressure``,
 ``loads.discharge_pressure`` (the pump, :mod:`rotorkin.machines.vane_pump`);
-``run.points``, ``run.speed``.
+``run.points``, ``run.speed``; for the forces in the pairs (:mod:`.forces`)
+``drive.crank_length``, ``drive.input_pitch_radius``, ``drive.output_pitch_radius``,
+``drive.face_width``, ``drive.pressure_angle`` and the ``[contact]`` section.
 
 Torque sign of the pump keys (``shaft_torque_*``, ``mean_torque_Nm``,
 ``indicated_work_J``): positive when the machine drives the input shaft, so a
@@ -27,11 +29,13 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.analysis import flywheel as fw
+from rotorkin.analysis import pairs as pr
 from rotorkin.analysis import torque as tq
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.errors import ParameterError
-from rotorkin.core.schema import RunSection
+from rotorkin.core.schema import ContactSection, RunSection
 from rotorkin.drives.guide_bar import figures as figures_guide_bar
+from rotorkin.drives.guide_bar import forces as gb_forces
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar import pump as gb_pump
 from rotorkin.drives.guide_bar import summary as closed_forms
@@ -41,7 +45,7 @@ from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 from rotorkin.vane import RotaryLaw
 
-__all__ = ["evaluate", "drive_params", "pump_params", "pump_state", "HEADLINE"]
+__all__ = ["evaluate", "drive_params", "pump_params", "pump_state", "pair_forces", "HEADLINE"]
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {
@@ -59,6 +63,15 @@ HEADLINE = {
     "mean_torque_Nm": "ideal ports: mean torque on the shaft (- : the motor drives)",
     "torque_ripple": "ideal ports: (max - min) / |mean| of the shaft torque",
     "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+    "peak_slider_force_N": "largest force of a guide bar on its slider block, at speed",
+    "peak_input_mesh1_tangential_force_N": "largest tangential force of gear 1 on gear 2",
+    "peak_impeller_mesh1_tangential_force_N": "largest tangential force of gear 6 on gear 7",
+    "load_reversals_per_period": "times an impeller's load reverses (slot wall, tooth flank)",
+    "peak_contact_stress_MPa": "largest Hertz pressure of a gear mesh (pitch point)",
+    "contact_safety_factor": "allowable contact pressure over the largest",
+    "peak_bearing_load_N": "largest load of a pin or bearing",
+    "friction_loss_W": "power lost to friction in the pairs at the run speed",
+    "mechanical_efficiency": "hydraulic work over shaft work, friction in the pairs included",
 }
 
 #: Samples per period used for extremes and peaks (independent of run.points).
@@ -286,6 +299,42 @@ def _pump_columns(drive, pump, ports, inertia, speed, theta) -> tuple[dict, dict
     return cols, {**_PUMP_DOCS, **tdocs}
 
 
+def pair_forces(cfg: dict, params: gb.GuideBar, state: dict, theta, inertia):
+    """Forces in the pairs at the input angles ``theta``, from a :func:`pump_state` on them.
+
+    The impellers' load is the pump's torque (ideal ports) and their inertia at the run
+    speed (:func:`rotorkin.drives.guide_bar.forces.drive_torques`).
+
+    Returns
+    -------
+    (Forces, list of Pair)
+    """
+    size = gb_forces.gearing(cfg["drive"])
+    D = gb_forces.drive_torques(params, theta, state["M"], inertia[1], state["omega"],
+                                state["omega_dot"])  # fmt: skip
+    forces = gb_forces.solve(params, size, theta, D)
+    contact = {**ContactSection().model_dump(), **(cfg.get("contact") or {})}
+    return forces, gb_forces.pairs(params, size, forces, float(contact["bearing_radius"]))
+
+
+def _forces_summary(cfg, params, pump, ports, inertia, speed, work_per_turn) -> dict:
+    fine = np.linspace(0.0, gb.period(params), _PEAK_SAMPLES)
+    st = pump_state(params, pump, ports, inertia, speed, fine)
+    forces, pairs = pair_forces(cfg, params, st, fine, inertia)
+    model = pr.ContactModel.from_config(cfg)
+    out = pr.summary(pairs, fine, work_per_turn, model, st["omega"])
+    out.update(gb_forces.own_summary(forces, st["omega"]))
+    return out
+
+
+def _forces_columns(cfg, params, pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
+    st = pump_state(params, pump, ports, inertia, speed, theta)
+    forces, pairs = pair_forces(cfg, params, st, theta, inertia)
+    cols, docs = pr.columns(pairs, pr.ContactModel.from_config(cfg), st["shaft"])
+    cols.update(gb_forces.signed_columns(forces))
+    return cols, {**docs, **gb_forces.SIGNED_DOCS}
+
+
 def drive_params(cfg: dict) -> gb.GuideBar:
     """The drive's parameters from a validated config (SI); errors name the config keys."""
     d = cfg["drive"]
@@ -357,13 +406,18 @@ def evaluate(cfg: dict) -> StudyResult:
     theta = angle_grid(gb.period(params), run["points"])
     pump_cols, pump_docs = _pump_columns(params, pump, ports, inertia, speed, theta)
     columns.update(pump_cols)
+    summary.update(_forces_summary(cfg, params, pump, ports, inertia, speed,
+                                   summary["indicated_work_J"]))  # fmt: skip
+    force_cols, force_docs = _forces_columns(cfg, params, pump, ports, inertia, speed, theta)
+    columns.update(force_cols)
 
     def plot(outdir: Path) -> list[Path]:
         grid = angle_grid(gb.period(params), 1441)
         state = pump_state(params, pump, ports, inertia, speed, grid)
+        pairs = pair_forces(cfg, params, state, grid, inertia)[1]
         return figures_guide_bar.plot_all(
             params, m7, m8, Path(outdir), pump=pump, ports=ports, theta=grid, state=state,
-            summary=summary,
+            summary=summary, pairs=pairs, contact=pr.ContactModel.from_config(cfg),
         )  # fmt: skip
 
     return StudyResult(
@@ -371,7 +425,7 @@ def evaluate(cfg: dict) -> StudyResult:
         title="Differential vane pump, rotating guide-bar + gear drive",
         summary=summary,
         columns=columns,
-        column_docs={**_DOCS, **pump_docs},
+        column_docs={**_DOCS, **pump_docs, **force_docs},
         headline=HEADLINE,
         write_figures=plot,
         motion=gb.motion(params, theta),
