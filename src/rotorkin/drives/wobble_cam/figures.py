@@ -13,10 +13,10 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.analysis import engine_cycle as ec
+from rotorkin.analysis import pairs as pr
 from rotorkin.analysis.engine_cycle import STROKE_NAMES, IdealCycle
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.analysis.torque import inertia_torque
-from rotorkin.analysis import pairs as pr
 from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import forces as fo
 from rotorkin.drives.wobble_cam import kinematics as wc
@@ -509,7 +509,7 @@ def fig_forces(f: fo.Forces, plist, fp: fo.ForceParams, model, outdir: Path) -> 
     fig, axes = plt.subplots(4, 1, figsize=(10, 13), sharex=True)
     by = {p.slug: p for p in plist}
     ax = axes[0]
-    for j, (name, slug) in enumerate(zip(fo._NAMES, fo._SLUGS, strict=True)):
+    for j, name in enumerate(fo._NAMES):
         ax.plot(t, f.groove_force[j], color=f"C{j}", lw=1.3, label=f"groove, roller {name} (N)")
         ax.plot(
             t, f.rail_force[j], color=f"C{j}", lw=1.0, ls="--", label=f"rail, roller {name} (F)"

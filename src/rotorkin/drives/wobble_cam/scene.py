@@ -36,8 +36,10 @@ from rotorkin.render.scenes import (
     Check,
     Plot,
     SceneBuilder,
+    contact_checks,
     flywheel_checks,
     fmt,
+    force_plot,
     frame_angles,
     join,
     lines_plot,
@@ -408,6 +410,11 @@ def plots(result, cfg) -> list[Plot]:
             "the turning cam, in the cam frame (Fig. 9). Drag to rotate, scroll to zoom.",
         )
     )
+    forces = force_plot(
+        cols, th, x_lab, f"Forces in the pairs at {rpm} rpm (rotor and plate inertia)", 360.0
+    )
+    if forces is not None:
+        out.append(forces)
     return out
 
 
@@ -567,6 +574,31 @@ def checks(result, cfg) -> list[Check]:
                 f"The ideal cycle peaks at {fmt(s['peak_pressure_bar'])} bar (compression "
                 f"ends at {fmt(s['compression_end_pressure_bar'])} bar); the gas pushes "
                 f"the rotors apart with up to {fmt(s['rotor_gas_torque_peak_Nm'])} N*m.",
+            )
+        )
+    out += contact_checks(s, cfg)
+    if s.get("groove_crossing_force_max_N", 0.0) > 0.0:
+        out.append(
+            Check(
+                "warning",
+                "Rollers loaded through the groove crossings",
+                f"A roller carries up to {fmt(s['groove_crossing_force_max_N'])} N while it "
+                "runs through a crossing of groove branches, where a plain cylindrical roller "
+                "has no wall (with the paper's grooves the other pair then stands near 90 deg "
+                "pressure angle and cannot hold the plate's spin). The crossings need a "
+                "follower that bridges them (e.g. an elongated boat follower).",
+            )
+        )
+    if "cam_shell_torque_share" in s:
+        out.append(
+            Check(
+                "note",
+                "Torque split between the Z-shaft and the cam shell",
+                f"The cam shell delivers {fmt(100 * s['cam_shell_torque_share'])} % of the "
+                f"output torque (drive.output); the grooves alone would hand it "
+                f"{fmt(100 * s['cam_shell_natural_torque_share'])} %, the bevel gearbox "
+                f"carries the rest (up to {fmt(s['gearbox_torque_max_Nm'])} N*m, mesh force "
+                f"{fmt(s['bevel_mesh_force_max_N'])} N).",
             )
         )
     return out + flywheel_checks(s, "the rotors")

@@ -62,7 +62,7 @@ HEADLINE = {
     "indicated_power_kW": "indicated power at the run speed",
     "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
     "cam_shell_torque_share": "share of the output torque taken at the cam shell (drive.output)",
-    "cam_shell_natural_torque_share": "share the grooves alone hand to the cam shell (gearbox idle)",
+    "cam_shell_natural_torque_share": "share the grooves hand the cam shell (gearbox idle)",
     "groove_roller_force_max_N": "largest normal force of a roller on its groove wall, at speed",
     "groove_contact_stress_max_MPa": "largest Hertz pressure of a roller on its groove wall",
     "rail_roller_force_max_N": "largest force of a roller on its rotor's slider rail",
