@@ -85,7 +85,7 @@ def test_power_balance_at_every_angle(seed):
 
 @pytest.mark.parametrize("seed", range(4))
 def test_plate_inertia_power_is_the_rate_of_its_kinetic_energy(seed):
-    """P_plate = d/dt (1/2 w.Hw) with KE = 1/2 omega^2 (J_a (cos phi + varphi')^2 + J_t sin^2 phi)."""
+    """P_plate = dKE/dt, KE = 1/2 omega^2 (J_a (cos phi + varphi')^2 + J_t sin^2 phi)."""
     drive, scam, fp, theta, m, jr, w, wd = _random_case(2 * seed + 1)  # corrected spin law
     f = fo.solve(drive, scam, fp, theta, m, jr, w, wd)
     _, v1, v2, _ = wc.spin_law(drive, theta)
