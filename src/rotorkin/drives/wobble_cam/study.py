@@ -476,7 +476,7 @@ def evaluate(cfg: dict) -> StudyResult:
         summary=summary,
         columns=columns,
         column_docs=docs,
-        headline=HEADLINE,
+        headline={k: v for k, v in HEADLINE.items() if k in summary},
         write_figures=plot,
         motion=wc.motion(params, theta),
         warnings=(*_warnings(cycle, summary), *_cam_warnings(cfg), *force_warnings),
