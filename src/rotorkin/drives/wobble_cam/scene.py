@@ -296,6 +296,30 @@ def scene(result, cfg, frames: int = 120):
     return b.build(layout, "theta, Z-shaft angle", readouts, caption)
 
 
+def _distinct(cols) -> dict:
+    """Force and stress columns with equal values merged into one (named for all of them).
+
+    Opposite rollers carry equal loads, and so do the two bevel meshes: drawn apart, one
+    curve would hide the other.
+    """
+    out = {}
+    for suffix in ("_force_N", "_contact_stress_MPa"):
+        kept = []  # [stems, values]
+        for k, v in cols.items():
+            if not k.endswith(suffix):
+                continue
+            stem = k[: -len(suffix)]
+            same = next((e for e in kept if np.allclose(e[1], v, equal_nan=True)), None)
+            if same is None:
+                kept.append([[stem], v])
+            else:
+                same[0].append(stem)
+        out.update({"_and_".join(stems) + suffix: v for stems, v in kept})
+    out.update({k: v for k, v in cols.items() if k not in out and "_force_N" not in k
+                and "_contact_stress_MPa" not in k})  # fmt: skip
+    return out
+
+
 def plots(result, cfg) -> list[Plot]:
     """SVAJ of the rotors, chambers, pressures, torque, p-V, rollers and grooves (3D)."""
     cols, s = result.columns, result.summary
@@ -411,7 +435,12 @@ def plots(result, cfg) -> list[Plot]:
         )
     )
     forces = force_plot(
-        cols, th, x_lab, f"Forces in the pairs at {rpm} rpm (rotor and plate inertia)", 360.0
+        _distinct(cols),
+        th,
+        x_lab,
+        f"Forces in the pairs at {rpm} rpm (rotor and plate inertia; pairs that carry the "
+        "same load share a curve)",
+        360.0,
     )
     if forces is not None:
         out.append(forces)
