@@ -13,10 +13,12 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.analysis import engine_cycle as ec
+from rotorkin.analysis import pairs as pr
 from rotorkin.analysis.engine_cycle import STROKE_NAMES, IdealCycle
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.analysis.torque import inertia_torque
 from rotorkin.drives.wobble_cam import engine as eng
+from rotorkin.drives.wobble_cam import forces as fo
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.render.figures import pyplot, save_in
 
@@ -498,6 +500,62 @@ def fig_four_stroke(params, layout, machine, cycle, outdir: Path, points: int = 
     fig.suptitle("Four-stroke assignment\n" + _engine_tag(params, machine, cycle), fontsize=10)
     fig.tight_layout()
     return save_in(fig, outdir, "fig_four_stroke.png")
+
+
+def fig_forces(f: fo.Forces, plist, fp: fo.ForceParams, model, outdir: Path) -> Path:
+    """Forces over the turn: grooves and rails, bearings, gearbox; groove contact stress."""
+    plt = pyplot()
+    t = np.degrees(f.theta)
+    fig, axes = plt.subplots(4, 1, figsize=(10, 13), sharex=True)
+    by = {p.slug: p for p in plist}
+    ax = axes[0]
+    for j, name in enumerate(fo._NAMES):
+        ax.plot(t, f.groove_force[j], color=f"C{j}", lw=1.3, label=f"groove, roller {name} (N)")
+        ax.plot(
+            t, f.rail_force[j], color=f"C{j}", lw=1.0, ls="--", label=f"rail, roller {name} (F)"
+        )
+    ax.axhline(0, color="0.3", lw=0.6)
+    ax.set_ylabel("force [N]")
+    ax.set_title("(a) rollers: groove force N (+: cam pushes along +n, -n wall) and rail force F "
+                 "(+: drives the rotor)", fontsize=9)  # fmt: skip
+    ax.legend(loc="upper right", fontsize=7, ncol=4)
+    _xaxis(ax, 360, label=False)
+    ax = axes[1]
+    for slug in _BEARINGS:
+        ax.plot(t, by[slug].force, lw=1.2, label=by[slug].name)
+    ax.set_ylabel("force [N]")
+    ax.set_title("(b) bearing loads (the plate's couple includes its gyroscopic one)", fontsize=9)
+    ax.legend(loc="upper right", fontsize=7)
+    _xaxis(ax, 360, label=False)
+    ax = axes[2]
+    ax.plot(t, f.torque_shaft_plate, color="C0", lw=1.4, label="plate on Z-shaft, T_Z")
+    ax.plot(t, f.torque_cam_grooves, color="C3", lw=1.4, label="grooves on cam shell, T_C")
+    ax.plot(t, f.output_shaft, color="C0", lw=1.0, ls="--", label="Z-shaft output")
+    ax.plot(t, f.output_cam, color="C3", lw=1.0, ls="--", label="cam shell output")
+    ax.plot(t, f.gearbox_torque, color="C2", lw=1.0, ls=":", label="gearbox on cam shell, G")
+    ax.axhline(0, color="0.3", lw=0.6)
+    ax.set_ylabel("torque [N m]")
+    ax.set_title(f"(c) torque split, drive.output = {fp.output!r}; bevel mesh force peaks at "
+                 f"{np.max(f.mesh_force):.0f} N", fontsize=9)  # fmt: skip
+    ax.legend(loc="upper right", fontsize=7, ncol=3)
+    _xaxis(ax, 360, label=False)
+    ax = axes[3]
+    for j, slug in enumerate(fo._SLUGS):
+        for stem, ls in (("groove", "-"), ("rail", "--")):
+            s = pr.stress(by[f"{stem}{slug}"], model)
+            ax.plot(t, s / 1e6, color=f"C{j}", lw=1.1, ls=ls, label=f"{stem} {fo._NAMES[j]}")
+    ax.axhline(model.allowable_stress / 1e6, color="k", lw=0.8, ls="-.", label="allowable")
+    ax.set_ylabel("Hertz pressure [MPa]")
+    ax.set_title("(d) contact stress of the rollers on the groove walls and rails", fontsize=9)
+    ax.legend(loc="upper right", fontsize=7, ncol=5)
+    _xaxis(ax, 360)
+    fig.suptitle("Forces in the pairs of the wobble-cam drive over one turn", fontsize=10)
+    fig.tight_layout()
+    return save_in(fig, outdir, "forces.png")
+
+
+_BEARINGS = ("plate_bearing_a", "plate_bearing_b", "cam_bearing_a", "cam_bearing_b",
+             "bevel_idler_bearing")  # fmt: skip
 
 
 def plot_all(params, layout, outdir: Path, machine=None, cycle=None, speed=None) -> list[Path]:

@@ -36,8 +36,10 @@ from rotorkin.render.scenes import (
     Check,
     Plot,
     SceneBuilder,
+    contact_checks,
     flywheel_checks,
     fmt,
+    force_plot,
     frame_angles,
     join,
     lines_plot,
@@ -294,6 +296,30 @@ def scene(result, cfg, frames: int = 120):
     return b.build(layout, "theta, Z-shaft angle", readouts, caption)
 
 
+def _distinct(cols) -> dict:
+    """Force and stress columns with equal values merged into one (named for all of them).
+
+    Opposite rollers carry equal loads, and so do the two bevel meshes: drawn apart, one
+    curve would hide the other.
+    """
+    out = {}
+    for suffix in ("_force_N", "_contact_stress_MPa"):
+        kept = []  # [stems, values]
+        for k, v in cols.items():
+            if not k.endswith(suffix):
+                continue
+            stem = k[: -len(suffix)]
+            same = next((e for e in kept if np.allclose(e[1], v, equal_nan=True)), None)
+            if same is None:
+                kept.append([[stem], v])
+            else:
+                same[0].append(stem)
+        out.update({"_and_".join(stems) + suffix: v for stems, v in kept})
+    out.update({k: v for k, v in cols.items() if k not in out and "_force_N" not in k
+                and "_contact_stress_MPa" not in k})  # fmt: skip
+    return out
+
+
 def plots(result, cfg) -> list[Plot]:
     """SVAJ of the rotors, chambers, pressures, torque, p-V, rollers and grooves (3D)."""
     cols, s = result.columns, result.summary
@@ -408,6 +434,16 @@ def plots(result, cfg) -> list[Plot]:
             "the turning cam, in the cam frame (Fig. 9). Drag to rotate, scroll to zoom.",
         )
     )
+    forces = force_plot(
+        _distinct(cols),
+        th,
+        x_lab,
+        f"Forces in the pairs at {rpm} rpm (rotor and plate inertia; pairs that carry the "
+        "same load share a curve)",
+        360.0,
+    )
+    if forces is not None:
+        out.append(forces)
     return out
 
 
@@ -567,6 +603,31 @@ def checks(result, cfg) -> list[Check]:
                 f"The ideal cycle peaks at {fmt(s['peak_pressure_bar'])} bar (compression "
                 f"ends at {fmt(s['compression_end_pressure_bar'])} bar); the gas pushes "
                 f"the rotors apart with up to {fmt(s['rotor_gas_torque_peak_Nm'])} N*m.",
+            )
+        )
+    out += contact_checks(s, cfg)
+    if s.get("groove_crossing_force_max_N", 0.0) > 0.0:
+        out.append(
+            Check(
+                "warning",
+                "Rollers loaded through the groove crossings",
+                f"A roller carries up to {fmt(s['groove_crossing_force_max_N'])} N while it "
+                "runs through a crossing of groove branches, where a plain cylindrical roller "
+                "has no wall (with the paper's grooves the other pair then stands near 90 deg "
+                "pressure angle and cannot hold the plate's spin). The crossings need a "
+                "follower that bridges them (e.g. an elongated boat follower).",
+            )
+        )
+    if "cam_shell_torque_share" in s:
+        out.append(
+            Check(
+                "note",
+                "Torque split between the Z-shaft and the cam shell",
+                f"The cam shell delivers {fmt(100 * s['cam_shell_torque_share'])} % of the "
+                f"output torque (drive.output); the grooves alone would hand it "
+                f"{fmt(100 * s['cam_shell_natural_torque_share'])} %, the bevel gearbox "
+                f"carries the rest (up to {fmt(s['gearbox_torque_max_Nm'])} N*m, mesh force "
+                f"{fmt(s['bevel_mesh_force_max_N'])} N).",
             )
         )
     return out + flywheel_checks(s, "the rotors")

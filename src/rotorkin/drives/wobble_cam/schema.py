@@ -103,6 +103,84 @@ class WobbleDrive(Section):
         description="sine coefficients of harmonics 1, 2, ... of the spin-law correction [rad] "
         "(at most 256, each -10 <= c <= 10 rad, spin kept monotone)",
     )
+    # --- kinetostatics: outputs, bevel gearbox, rails, bearings, plate inertia -------------
+    output: Literal["shaft", "cam", "both"] = Field(
+        "shaft",
+        description="which output the load is taken from: 'shaft' (the Z-shaft; the cam shell "
+        "only turns, driven through the bevel gearbox), 'cam' (the cam shell; the Z-shaft "
+        "only turns) or 'both' (counter-rotating outputs sharing the torque, "
+        "cam_torque_share at the cam shell)",
+    )
+    cam_torque_share: float = Field(
+        0.5,
+        ge=0.0,
+        le=1.0,
+        description="with output = 'both': fraction of the output torque taken at the cam "
+        "shell, the rest at the Z-shaft (0.5: equal and opposite torques, no reaction on the "
+        "housing; 0 <= share <= 1)",
+    )
+    bevel_ratio: float = Field(
+        2.0,
+        ge=1.0,
+        le=10.0,
+        description="tooth ratio of the gearbox's large bevel gears (on the Z-shaft and the cam "
+        "shaft) to its two small idler bevels; the outputs always turn equal and opposite "
+        "(1 <= ratio <= 10)",
+    )
+    bevel_pitch_radius: Length = Field(
+        "40 mm",
+        ge=0.001,
+        le=10.0,
+        description="mean pitch radius of the large bevel gears (1 mm <= r <= 10 m)",
+    )
+    bevel_pressure_angle: Angle = Field(
+        "20 deg",
+        ge=0.17453292519943295,
+        le=0.6108652381980153,
+        description="pressure angle of the bevel gear teeth (10 deg <= angle <= 35 deg)",
+    )
+    rail_radius: Length = Field(
+        "80 mm",
+        ge=0.001,
+        le=10.0,
+        description="distance from the plate centre to the centres of the rail rollers, along "
+        "the roller shafts (outside the cam shell: rail_radius > sphere_radius + "
+        "shell_thickness/2 + rail_roller_radius; at most 10 m)",
+    )
+    rail_roller_radius: Length = Field(
+        "6 mm",
+        gt=0.0,
+        le=0.1,
+        description="radius of the rollers in the rotors' slider rails (0 < r <= 100 mm)",
+    )
+    plate_bearing_span: Length = Field(
+        "40 mm",
+        ge=0.001,
+        le=10.0,
+        description="axial distance between the two bearings of the wobble plate on the "
+        "inclined section of the Z-shaft (1 mm <= span <= 10 m)",
+    )
+    cam_bearing_span: Length = Field(
+        "100 mm",
+        ge=0.001,
+        le=10.0,
+        description="axial distance between the two bearings of the cam shell, centred on "
+        "the plate centre (1 mm <= span <= 10 m)",
+    )
+    plate_inertia_axial: Inertia = Field(
+        "0.002 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="moment of inertia of the wobble plate with its rollers about its own axis "
+        "(for the plate's gyroscopic couple; 0 <= J <= 1e5 kg*m^2)",
+    )
+    plate_inertia_transverse: Inertia = Field(
+        "0.001 kg*m^2",
+        ge=0.0,
+        le=INERTIA_MAX,
+        description="moment of inertia of the wobble plate with its rollers about a diameter "
+        "(0 <= J <= 1e5 kg*m^2)",
+    )
 
 
 class WobbleMachine(TwinRotorMachine):

@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.analysis import engine_cycle as ec
+from rotorkin.analysis import pairs as pr
 from rotorkin.analysis.flywheel import energy_fluctuation, flywheel_inertia
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.analysis.torque import (
@@ -32,6 +33,7 @@ from rotorkin.drives.wobble_cam import cam as cs
 from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import figures as figures_wobble_cam
 from rotorkin.drives.wobble_cam import figures_cam as figures_spherical_cam
+from rotorkin.drives.wobble_cam import forces as fo
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.machines import twin_rotor as tr
 from rotorkin.studies import StudyResult
@@ -59,6 +61,17 @@ HEADLINE = {
     "torque_ripple": "(max - min) / mean of the gas torque on the shaft",
     "indicated_power_kW": "indicated power at the run speed",
     "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+    "cam_shell_torque_share": "share of the output torque taken at the cam shell (drive.output)",
+    "cam_shell_natural_torque_share": "share the grooves hand the cam shell (gearbox idle)",
+    "groove_roller_force_max_N": "largest normal force of a roller on its groove wall, at speed",
+    "groove_contact_stress_max_MPa": "largest Hertz pressure of a roller on its groove wall",
+    "rail_roller_force_max_N": "largest force of a roller on its rotor's slider rail",
+    "plate_bearing_load_max_N": "largest load of a wobble-plate bearing on the inclined crank",
+    "cam_bearing_load_max_N": "largest radial load of a cam-shell bearing (the grooves' couple)",
+    "bevel_mesh_force_max_N": "largest normal tooth force of a bevel mesh of the gearbox",
+    "peak_contact_stress_MPa": "largest Hertz pressure of any contact over the turn",
+    "contact_safety_factor": "allowable contact pressure over the largest",
+    "mechanical_efficiency": "output over indicated work, friction of every pair counted",
 }
 
 #: Samples per shaft turn used for the peaks of the rotor derivatives (independent of run.points).
@@ -420,12 +433,36 @@ def evaluate(cfg: dict) -> StudyResult:
     columns.update(engine_cols)
     docs.update(engine_docs)
     summary.update(time_summary)
+    force_warnings = ()
+    try:
+        _, scam = cs.from_config(cfg)
+    except ParameterError as exc:  # a shell that does not fit this sphere: no pair forces
+        scam = None
+        force_warnings = (f"{exc.name} = {exc.value}: {exc.admissible}; the pair forces "
+                          "(grooves, rails, bearings, gearbox) are not computed",)  # fmt: skip
+    if scam is not None:
+        fp = fo.force_params(cfg, scam)
+        model = pr.ContactModel.from_config(cfg)
+        fine = np.linspace(0.0, wc.period(params), _PEAK_SAMPLES)
+        f_fine = _forces(params, scam, fp, machine, cycle, speed, fine)
+        p_fine = fo.pairs(f_fine, scam, fp, model)
+        omega = shaft_speed(fine, speed, wc.period(params))[0]
+        summary.update(pr.summary(p_fine, fine, summary["indicated_work_J"], model, omega))
+        summary.update(fo.summary(f_fine, p_fine, model, cs.guided(params, scam, fine)))
+        f_cols = _forces(params, scam, fp, machine, cycle, speed, theta)
+        p_cols = fo.pairs(f_cols, scam, fp, model)
+        gas = eng.engine_state(params, machine, cycle, theta).shaft_torque
+        for c, d in (pr.columns(p_cols, model, gas), fo.columns(f_cols)):
+            columns.update(c)
+            docs.update(d)
     summary = {k: v.item() if isinstance(v, np.generic) else v for k, v in summary.items()}
 
     def plot(outdir: Path) -> list[Path]:
         paths = figures_wobble_cam.plot_all(
             params, layout, Path(outdir), machine=machine, cycle=cycle, speed=speed
         )
+        if scam is not None:
+            paths.append(figures_wobble_cam.fig_forces(f_cols, p_cols, fp, model, Path(outdir)))
         if "cam" in cfg:  # the cam's own figure, when its roller fits the grooves
             try:
                 paths += figures_spherical_cam.plot_spherical_cam(cfg, Path(outdir))
@@ -439,11 +476,19 @@ def evaluate(cfg: dict) -> StudyResult:
         summary=summary,
         columns=columns,
         column_docs=docs,
-        headline=HEADLINE,
+        headline={k: v for k, v in HEADLINE.items() if k in summary},
         write_figures=plot,
         motion=wc.motion(params, theta),
-        warnings=(*_warnings(cycle, summary), *_cam_warnings(cfg)),
+        warnings=(*_warnings(cycle, summary), *_cam_warnings(cfg), *force_warnings),
     )
+
+
+def _forces(params, scam, fp, machine, cycle, speed, theta) -> fo.Forces:
+    """Pair forces at the angles, from the gas torques on the rotors and the run speed."""
+    state = eng.engine_state(params, machine, cycle, theta)
+    omega, omega_dot, _ = shaft_speed(theta, speed, wc.period(params))
+    return fo.solve(params, scam, fp, theta, state.member_torque, machine.member_inertias,
+                    omega, omega_dot)  # fmt: skip
 
 
 def _cam_warnings(cfg: dict) -> tuple[str, ...]:
