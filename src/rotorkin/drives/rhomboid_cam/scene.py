@@ -30,8 +30,10 @@ from rotorkin.render.scenes import (
     Plot,
     SceneBuilder,
     circle,
+    contact_checks,
     flywheel_checks,
     fmt,
+    force_plot,
     frame_angles,
     join,
     lines_plot,
@@ -258,7 +260,7 @@ def scene(result, cfg, frames: int = 120):
 
 
 def plots(result, cfg) -> list[Plot]:
-    """SVAJ of the blade pairs, chambers, torque, p-V or work loop, cam profile and curvature."""
+    """SVAJ of the blade pairs, chambers, torque, p-V or work loop, cam, curvature, forces."""
     cols, s = result.columns, result.summary
     params, _, roller = _models(cfg)
     al, x_lab = cols["alpha_deg"], "output-shaft angle alpha [deg]"
@@ -390,11 +392,15 @@ def plots(result, cfg) -> list[Plot]:
             per,
         )
     )
+    forces = force_plot(cols, al, x_lab, f"Forces in the converter's pairs at {rpm} rpm "
+                        "(blade loads and inertia)", per)  # fmt: skip
+    if forces is not None:
+        out.append(forces)
     return out
 
 
 def checks(result, cfg) -> list[Check]:
-    """Cam curvature vs roller, law monotony, blade thickness, flywheel."""
+    """Cam curvature vs roller, law monotony, blade thickness, flywheel, contact stress."""
     s = result.summary
     params, machine, roller = _models(cfg)
     out = []
@@ -457,4 +463,4 @@ def checks(result, cfg) -> list[Check]:
                 + (": they stop and reverse." if stops else ", never stopping."),
             )
         )
-    return out + flywheel_checks(s, "the blades")
+    return out + flywheel_checks(s, "the blades") + contact_checks(s, cfg)
