@@ -392,10 +392,35 @@ def plots(result, cfg) -> list[Plot]:
             per,
         )
     )
-    forces = force_plot(cols, al, x_lab, f"Forces in the converter's pairs at {rpm} rpm "
-                        "(blade loads and inertia)", per)  # fmt: skip
+    forces = force_plot(_distinct_forces(cols), al, x_lab, f"Forces in the converter's pairs "
+                        f"at {rpm} rpm (blade loads and inertia)", per)  # fmt: skip
     if forces is not None:
         out.append(forces)
+    return out
+
+
+def _distinct_forces(cols) -> dict:
+    """The pairs' force and stress columns, identical curves merged into one named for all.
+
+    The half-turn symmetry makes the pairs at C, D copies of those at A, B (and a roller's
+    pin carries its cam force): drawn one over the other they would hide each other.
+    """
+    out = {}
+    for suffix in ("_force_N", "_contact_stress_MPa"):
+        groups: list[list] = []
+        for key, y in cols.items():
+            if not key.endswith(suffix):
+                continue
+            y = np.asarray(y, dtype=float)
+            for g in groups:
+                if g[1].shape == y.shape and np.allclose(g[1], y, rtol=1e-9, atol=1e-9):
+                    g[0].append(key[: -len(suffix)])
+                    break
+            else:
+                groups.append([[key[: -len(suffix)]], y])
+        out.update({"_=_".join(names) + suffix: y for names, y in groups})
+    if "friction_torque_Nm" in cols:
+        out["friction_torque_Nm"] = cols["friction_torque_Nm"]
     return out
 
 
