@@ -90,16 +90,6 @@ HEADLINE = {
     "mechanical_efficiency": "work delivered over indicated work, converter friction included",
 }
 
-#: The converter's own force keys, with what each means.
-FORCE_KEYS = {
-    "peak_roller_force_N": "largest force of the cam on a roller",
-    "peak_guide_force_N": "largest force between a vertex block and the shaft's guide",
-    "peak_link_force_N": "largest |axial force| in a half of a rhombus link",
-    "peak_link_bending_Nm": "largest bending moment of a link (at its midpoint)",
-    "peak_arm_force_N": "largest force of a blade arm on a link midpoint",
-    "roller_pair_BD_share": "share of the turn during which rollers B and D carry the load",
-}
-
 #: Samples per period used for the peaks of the kinematic coefficients (independent of run.points).
 _PEAK_SAMPLES = 20_001
 
@@ -310,7 +300,7 @@ def _pairs(params, machine, loads, forces_cfg, alpha, st, drive_torque):
 
 
 def _force_summary(fo) -> dict:
-    """The converter's own keys (:data:`FORCE_KEYS`) from :func:`~.forces.solve`."""
+    """The converter's own keys (``docs/drives/rhomboid_cam.md``) from :func:`~.forces.solve`."""
     return {
         "peak_roller_force_N": float(np.max(fo.roller)),
         "peak_guide_force_N": float(np.max(np.abs(fo.guide))),
