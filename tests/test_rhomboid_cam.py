@@ -543,9 +543,10 @@ def test_study_errors_name_the_config_key():
 @pytest.mark.parametrize("drive", [{}, {"a": [0.4]}, {"a": [0.05], "b": [0.02]}])
 def test_study_plot_writes_pngs(tmp_path, drive):
     paths = evaluate(_cfg(**drive)).write_figures(tmp_path)
-    # fig01-fig04 of the drive, fig05, fig07, fig08 of the engine (fig06, p-V, needs pressures)
+    # fig01-fig04 of the drive, fig05, fig07, fig08 of the engine (fig06, p-V, needs pressures),
+    # fig09 the converter's forces
     assert [p.name[:5] for p in paths] == ["fig01", "fig02", "fig03", "fig04", "fig05", "fig07",
-                                           "fig08"]  # fmt: skip
+                                           "fig08", "fig09"]  # fmt: skip
     for p in paths:
         assert p.suffix == ".png" and p.parent == tmp_path
         assert p.stat().st_size > 10_000

@@ -26,6 +26,7 @@ __all__ = [
     "fig_pv_diagram",
     "fig_shaft_torque",
     "fig_blade_layout",
+    "fig_forces",
 ]
 
 _COLOURS = ("C0", "C1", "C2", "C3")
@@ -433,6 +434,54 @@ def fig_blade_layout(params, machine, loads, state, outdir: Path,
     return save_in(fig, outdir, "fig08_blade_layout.png")
 
 
+def fig_forces(machine, loads, curves, summary, outdir: Path) -> Path:
+    """Forces in the converter over a period: rollers, guides, links; the rollers' Hertz pressure.
+
+    ``curves["forces"]`` is :class:`rotorkin.drives.rhomboid_cam.forces.Forces` and
+    ``curves["pairs"]`` its pairs on ``curves["alpha"]``; ``curves["contact"]`` the
+    :class:`rotorkin.analysis.pairs.ContactModel`.
+    """
+    from rotorkin.analysis.pairs import stress
+
+    plt = pyplot()
+    ad = np.degrees(curves["alpha"])
+    fo = curves["forces"]
+    fig, axes = plt.subplots(4, 1, figsize=(9.5, 12), sharex=True)
+    ax, bx, cx, dx = axes
+    for k, v in enumerate("AB"):
+        ax.plot(ad, fo.roller[k], _COLOURS[k], lw=1.8, label=f"roller {v} (and {'CD'[k]})")
+    ax.set_ylabel("cam on roller [N]")
+    ax.set_title(f"peak roller force {summary['peak_roller_force_N']:.4g} N at "
+                 f"{summary['shaft_speed_mean_rpm']:.5g} rpm; A, C carry while the blades' "
+                 "loads open psi, B, D while they close it", fontsize=9)  # fmt: skip
+    for k, v in enumerate("AB"):
+        bx.plot(ad, fo.guide[k], _COLOURS[k], lw=1.6, label=f"guide {v} (and {'CD'[k]})")
+    bx.axhline(0.0, color="0.3", lw=0.6)
+    bx.set_ylabel("guide on block [N]\n(+ shaft drives)")
+    for j, name in enumerate(("AB", "BC")):
+        for half in (0, 1):
+            cx.plot(ad, fo.tension[j, half], _COLOURS[2 + j], lw=1.4, ls=("-", "--")[half],
+                    label=f"link {name}, half at {name[half]}")  # fmt: skip
+    cx.axhline(0.0, color="0.3", lw=0.6)
+    cx.set_ylabel("link axial force [N]\n(+ tension)")
+    model = curves["contact"]
+    for k, pair in enumerate(curves["pairs"][:2]):
+        p = stress(pair, model)
+        if p is not None:
+            dx.plot(ad, p / 1e6, _COLOURS[k], lw=1.6, label=f"{pair.name} (and {'CD'[k]})")
+    dx.axhline(model.allowable_stress / 1e6, color="C3", ls=":", lw=1.2,
+               label=f"allowable {model.allowable_stress / 1e6:.4g} MPa")  # fmt: skip
+    dx.set_ylabel("Hertz pressure [MPa]")
+    dx.set_xlabel("output-shaft angle alpha [deg] (one period of the machine)")
+    dx.set_xticks(np.arange(0, 181, 30))
+    for a in axes:
+        a.grid(True, alpha=0.4)
+        a.legend(fontsize=8, loc="upper right")
+    fig.suptitle(f"Forces in the converter (blade loads and inertia at the run speed)\n"
+                 f"{_machine_tag(machine, loads)}", fontsize=9)  # fmt: skip
+    return save(fig, Path(outdir) / "fig09_forces.png")
+
+
 def plot_machine(params, machine, loads, state, curves, summary, outdir: Path) -> list[Path]:
     """Write the engine's figures (fig05-fig08; fig06, the p-V diagram, needs pressures).
 
@@ -442,7 +491,8 @@ def plot_machine(params, machine, loads, state, curves, summary, outdir: Path) -
         ``state(alpha) -> rotorkin.drives.rhomboid_cam.study.State``.
     curves : dict
         The study's fine samples over one period (``alpha``, ``state``,
-        ``inertia_torque``, ``steady``, ``equivalent_inertia``).
+        ``inertia_torque``, ``steady``, ``equivalent_inertia``; ``forces``, ``pairs``,
+        ``contact`` for :func:`fig_forces`).
     summary : dict
         The study's summary.
     """
@@ -453,4 +503,6 @@ def plot_machine(params, machine, loads, state, curves, summary, outdir: Path) -
         paths.append(fig_pv_diagram(machine, loads, state, summary, outdir))
     paths.append(fig_shaft_torque(machine, loads, curves, summary, outdir))
     paths.append(fig_blade_layout(params, machine, loads, state, outdir))
+    if "forces" in curves:
+        paths.append(fig_forces(machine, loads, curves, summary, outdir))
     return paths

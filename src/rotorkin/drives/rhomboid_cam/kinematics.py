@@ -53,6 +53,7 @@ __all__ = [
     "blade_arm_points",
     "blade_torque",
     "check_law",
+    "check_psi_range",
     "first_harmonic",
     "indicator_work",
     "indicator_work_closed_form",
@@ -70,6 +71,7 @@ __all__ = [
     "psi_extremes",
     "psi_is_monotone",
     "psi_law",
+    "psi_range_violation",
     "psi_stationary_points",
     "psi_total_variation",
     "radius_from_psi",
@@ -83,6 +85,9 @@ __all__ = [
 MAX_HARMONICS = 20
 #: Parameters of :class:`RhomboidCam` in the order :func:`violation` checks them.
 CHECKS = ("link_length", "psi_min")
+#: How far [rad] psi may leave ``[psi_min, psi_max]`` before the linear torque model refuses
+#: the law (eq. 2; rounding of the extremes of a law monotone between them is far smaller).
+PSI_RANGE_TOL = 1e-8
 #: Stationary points of the first-harmonic law (eq. 16) in one period [rad].
 _FIRST_HARMONIC_STATIONARY = np.array([0.0, 0.5 * np.pi, np.pi])
 
@@ -507,6 +512,60 @@ def check_law(psi_min, a=(), b=()):
         "[" + ", ".join(f"{float(c):.6g}" for c in coeffs) + "] rad",
         f"harmonics a, b keeping 0 deg < psi(alpha) < 180 deg for every alpha (eq. 10, 13, 15); "
         f"this law reaches psi = {fmt_deg(value)} at alpha = {fmt_deg(where)}",
+    )
+
+
+def psi_range_violation(psi_min, a=(), b=(), tol=PSI_RANGE_TOL):
+    """Where ``psi`` leaves ``psi_min <= psi <= psi_max = pi - psi_min`` (eq. 2).
+
+    The linear torque model (eq. 29) is defined on that range only. The first-harmonic
+    law never leaves it; higher harmonics may (``a = [1.0]`` with ``psi_min = 40 deg``
+    swings psi over 29 .. 151 deg).
+
+    Parameters
+    ----------
+    psi_min : array_like
+        [rad], any shape (with harmonics, each distinct value is checked on its own).
+    a, b : sequence of float
+        Higher harmonics [rad].
+    tol : float
+        Allowed excursion [rad].
+
+    Returns
+    -------
+    ndarray of bool or bool
+        Shape of ``psi_min``: True where the law leaves the range.
+    """
+    pm = np.asarray(psi_min, dtype=float)
+    if not _higher(a, b)[0].size:
+        lo, _, hi, _ = psi_extremes(pm)
+    else:
+        values, inverse = np.unique(pm, return_inverse=True)
+        ext = np.array([psi_extremes(v, a, b)[::2] if np.isfinite(v) else (np.nan, np.nan)
+                        for v in values]).reshape(-1, 2)  # fmt: skip
+        lo, hi = ext[inverse.reshape(pm.shape), 0], ext[inverse.reshape(pm.shape), 1]
+    with np.errstate(invalid="ignore"):
+        out = (np.asarray(lo) < pm - tol) | (np.asarray(hi) > np.pi - pm + tol)
+    return bool(out) if out.ndim == 0 else out
+
+
+def check_psi_range(psi_min, a=(), b=(), tol=PSI_RANGE_TOL):
+    """Raise :class:`ParameterError` unless ``psi_min <= psi <= psi_max`` for all alpha (eq. 2).
+
+    For the linear torque model (eq. 29), which is defined on that range only. The
+    error names ``a`` (or ``b`` when ``a`` is empty), the range and what the law reaches.
+    """
+    psi_min = float(psi_min)
+    if not psi_range_violation(psi_min, a, b, tol):
+        return
+    lo, _, hi, _ = psi_extremes(psi_min, a, b)
+    name, coeffs = ("a", a) if len(a) else ("b", b)
+    raise ParameterError(
+        name,
+        str([float(c) for c in coeffs]),
+        f"psi must stay within psi_min = {fmt_deg(psi_min)} ... psi_max = "
+        f"{fmt_deg(np.pi - psi_min)} for the linear torque model (eq. 2); this law reaches "
+        f"{np.degrees(lo):.1f} deg ... {np.degrees(hi):.1f} deg",
     )
 
 

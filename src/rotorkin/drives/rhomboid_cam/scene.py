@@ -30,8 +30,10 @@ from rotorkin.render.scenes import (
     Plot,
     SceneBuilder,
     circle,
+    contact_checks,
     flywheel_checks,
     fmt,
+    force_plot,
     frame_angles,
     join,
     lines_plot,
@@ -258,7 +260,7 @@ def scene(result, cfg, frames: int = 120):
 
 
 def plots(result, cfg) -> list[Plot]:
-    """SVAJ of the blade pairs, chambers, torque, p-V or work loop, cam profile and curvature."""
+    """SVAJ of the blade pairs, chambers, torque, p-V or work loop, cam, curvature, forces."""
     cols, s = result.columns, result.summary
     params, _, roller = _models(cfg)
     al, x_lab = cols["alpha_deg"], "output-shaft angle alpha [deg]"
@@ -390,11 +392,40 @@ def plots(result, cfg) -> list[Plot]:
             per,
         )
     )
+    forces = force_plot(_distinct_forces(cols), al, x_lab, f"Forces in the converter's pairs "
+                        f"at {rpm} rpm (blade loads and inertia)", per)  # fmt: skip
+    if forces is not None:
+        out.append(forces)
+    return out
+
+
+def _distinct_forces(cols) -> dict:
+    """The pairs' force and stress columns, identical curves merged into one named for all.
+
+    The half-turn symmetry makes the pairs at C, D copies of those at A, B (and a roller's
+    pin carries its cam force): drawn one over the other they would hide each other.
+    """
+    out = {}
+    for suffix in ("_force_N", "_contact_stress_MPa"):
+        groups: list[list] = []
+        for key, y in cols.items():
+            if not key.endswith(suffix):
+                continue
+            y = np.asarray(y, dtype=float)
+            for g in groups:
+                if g[1].shape == y.shape and np.allclose(g[1], y, rtol=1e-9, atol=1e-9):
+                    g[0].append(key[: -len(suffix)])
+                    break
+            else:
+                groups.append([[key[: -len(suffix)]], y])
+        out.update({"_=_".join(names) + suffix: y for names, y in groups})
+    if "friction_torque_Nm" in cols:
+        out["friction_torque_Nm"] = cols["friction_torque_Nm"]
     return out
 
 
 def checks(result, cfg) -> list[Check]:
-    """Cam curvature vs roller, law monotony, blade thickness, flywheel."""
+    """Cam curvature vs roller, law monotony, blade thickness, flywheel, contact stress."""
     s = result.summary
     params, machine, roller = _models(cfg)
     out = []
@@ -457,4 +488,4 @@ def checks(result, cfg) -> list[Check]:
                 + (": they stop and reverse." if stops else ", never stopping."),
             )
         )
-    return out + flywheel_checks(s, "the blades")
+    return out + flywheel_checks(s, "the blades") + contact_checks(s, cfg)

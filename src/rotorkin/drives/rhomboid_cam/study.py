@@ -10,7 +10,15 @@ hand-built ``cfg`` take the same defaults):
 * ``loads.torque_high``, ``loads.torque_low`` [N m] (the paper's linear model, eq. 29),
   ``loads.pressure_model`` (``"linear"`` or ``"isothermal"``), ``loads.charge_pressure``
   [Pa], ``loads.hot_temperature``, ``loads.cold_temperature`` [K];
-* ``run.points``, ``run.speed`` [rad/s] (constant or a profile over one period, pi).
+* ``run.points``, ``run.speed`` [rad/s] (constant or a profile over one period, pi);
+* ``cam.roller_radius`` [m] and ``contact.*`` for the forces in the converter's pairs
+  (:mod:`rotorkin.drives.rhomboid_cam.forces`).
+
+The linear torque model (eq. 29) is defined for ``psi_min <= psi <= psi_max`` (eq. 2)
+only: a law whose higher harmonics take psi outside is refused with it. The isothermal
+model runs such a law (its torques follow the chamber volumes over the law's own swing,
+which the blades must fit); the summary keys of the paper's linear model are then
+left undefined.
 
 The drive's outputs (psi law, cam, the paper's indicator work per *half* turn
 ``indicator_work_J``) are kept as they were; the machine adds chamber volumes,
@@ -27,13 +35,19 @@ from typing import NamedTuple
 import numpy as np
 
 from rotorkin.analysis import flywheel as fw
+from rotorkin.analysis import pairs as ap
 from rotorkin.analysis import torque as at
 from rotorkin.core.errors import ParameterError
-from rotorkin.core.schema import RunSection
+from rotorkin.core.schema import ContactSection, RunSection
 from rotorkin.drives.rhomboid_cam import figures as figures_rhomboid_cam
+from rotorkin.drives.rhomboid_cam import forces as rf
 from rotorkin.drives.rhomboid_cam import kinematics as rc
 from rotorkin.drives.rhomboid_cam import summary as rs
-from rotorkin.drives.rhomboid_cam.schema import RhomboidLoads, RotaryBladeMachine
+from rotorkin.drives.rhomboid_cam.schema import (
+    PlanarCamSection,
+    RhomboidLoads,
+    RotaryBladeMachine,
+)
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
@@ -66,6 +80,14 @@ HEADLINE = {
     "mean_torque_Nm": "pressure model above: mean output-shaft torque",
     "torque_ripple": "pressure model above: (max - min) / mean shaft torque",
     "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
+    "peak_contact_force_N": "largest roller force on the cam, at the run speed",
+    "peak_contact_stress_MPa": "largest Hertz pressure of a roller on the cam",
+    "contact_safety_factor": "contact.allowable_stress over the largest Hertz pressure",
+    "peak_bearing_load_N": "largest load on a pin or bearing of the linkage",
+    "peak_link_force_N": "largest axial force (tension or compression) in a rhombus link",
+    "peak_guide_force_N": "largest force of a vertex block on the shaft's guide",
+    "friction_loss_W": "power lost to friction in the converter at the run speed",
+    "mechanical_efficiency": "work delivered over indicated work, converter friction included",
 }
 
 #: Samples per period used for the peaks of the kinematic coefficients (independent of run.points).
@@ -256,7 +278,65 @@ def _machine_setup(cfg, params):
     return machine, loads, (lo, hi, v_min, v_max)
 
 
-def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tuple[dict, dict]:
+def _drive_torque(machine, st, omega):
+    """``D_i = J_i qdd_i - M_i``: what the drive must put on blade pair ``i`` [N m], (2, n).
+
+    ``qdd_i = q_i'' w^2 + q_i' w_dot`` at the shaft speed ``omega = (w, w_dot, ...)``.
+    """
+    mo = st.motion
+    J = np.asarray(machine.member_inertias, dtype=float)[:, None]
+    qdd = mo.d2q * omega[0] ** 2 + mo.dq * omega[1]
+    return J * qdd - st.members
+
+
+def _pairs(params, machine, loads, forces_cfg, alpha, st, drive_torque):
+    """The converter's pairs and forces at ``alpha`` (:mod:`~.forces`)."""
+    fo = rf.solve(params, alpha, drive_torque)
+    hub = rf.blade_hub_force(st.members, machine.blades_per_pair, machine.inner_radius,
+                             machine.outer_radius)  # fmt: skip
+    found = rf.pairs(params, alpha, drive_torque, forces_cfg["roller_radius"],
+                     forces_cfg["bearing_radius"], hub, forces=fo)  # fmt: skip
+    return found, fo
+
+
+def _force_summary(fo) -> dict:
+    """The converter's own keys (``docs/drives/rhomboid_cam.md``) from :func:`~.forces.solve`."""
+    return {
+        "peak_roller_force_N": float(np.max(fo.roller)),
+        "peak_guide_force_N": float(np.max(np.abs(fo.guide))),
+        "peak_link_force_N": float(np.max(np.abs(fo.tension))),
+        "peak_link_bending_Nm": float(np.max(fo.bending)),
+        "peak_arm_force_N": float(np.max(np.hypot(fo.arm[:, 0], fo.arm[:, 1]))),
+        "roller_pair_BD_share": float(np.mean(fo.loaded[:-1])),
+    }
+
+
+def _force_columns(fo, alpha) -> tuple[dict, dict]:
+    cols, docs = {}, {}
+    for j, name in enumerate(rf.LINKS):
+        t = fo.tension[j]
+        key = f"link_{name.lower()}_axial_N"
+        cols[key] = np.where(np.abs(t[0]) >= np.abs(t[1]), t[0], t[1])
+        docs[key] = (f"Axial force of link {name} (tension +), in its more loaded half (the "
+                     "halves differ by the blade arm's force along the link).")  # fmt: skip
+    for k, v in enumerate("ABCD"):
+        key = f"guide_{v.lower()}_tangential_N"
+        cols[key] = fo.guide[k]
+        docs[key] = (f"Force of the shaft's guide on vertex block {v}, along the shaft's "
+                     "rotation (+: the shaft drives the rhombus, -: the rhombus drives "
+                     "it).")  # fmt: skip
+    cols["roller_pair_loaded"] = fo.loaded.astype(float)
+    docs["roller_pair_loaded"] = "0: rollers A and C carry the load, 1: rollers B and D."
+    cols["converter_shaft_torque_Nm"] = fo.shaft_torque
+    docs["converter_shaft_torque_Nm"] = (
+        "Torque the guides put on the output shaft, -sum rho_k G_k: the machine's torque less "
+        "the blade pairs' inertia torque (shaft_torque_Nm less their part of inertia_torque_Nm)."
+    )
+    return cols, docs
+
+
+def _machine_summary(params, machine, loads, extremes, speed, coefficient,
+                     forces_cfg) -> tuple[dict, dict]:  # fmt: skip
     """Engine summary on a fine grid over one period, and the curves the figures draw."""
     law = (params.psi_min, params.a, params.b)
     lo, hi, _, _ = extremes
@@ -277,6 +357,12 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tu
     revs = 2.0 * np.pi / period  # periods per output-shaft revolution
     work_rev = revs * work_period
     with_inertia = st.torque - t_inertia
+    drive_torque = _drive_torque(machine, st, omega)
+    pairs, fo = _pairs(params, machine, loads, forces_cfg, alpha, st, drive_torque)
+    force_summary = {
+        **ap.summary(pairs, alpha, work_rev, forces_cfg["model"], omega[0]),
+        **_force_summary(fo),
+    }
     geometry = rs.engine_geometry_summary(machine, lo, hi, revs * rc.psi_total_variation(*law))
     s = {
         "pressure_model": loads.model,
@@ -317,7 +403,9 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tu
         s["hot_temperature_K"] = loads.gas.hot_temperature
         s["cold_temperature_K"] = loads.gas.cold_temperature
     s.update(td_summary)
-    return s, {"alpha": alpha, "state": st, "inertia_torque": t_inertia, "steady": steady,
+    s.update(force_summary)
+    return s, {"alpha": alpha, "forces": fo, "pairs": pairs, "contact": forces_cfg["model"],
+               "state": st, "inertia_torque": t_inertia, "steady": steady,
                "equivalent_inertia": j_eq, "omega_mean": w_mean, "work_rev": work_rev,
                "energy_fluctuation": d_e, "flywheel": flywheel}  # fmt: skip
 
@@ -325,7 +413,7 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient) -> tu
 _SLUGS = ("blade_pair_1", "blade_pair_2")
 
 
-def _machine_columns(params, machine, loads, points, speed):
+def _machine_columns(params, machine, loads, points, speed, forces_cfg):
     period = rc.period(params)
     alpha = angle_grid(period, points)
     st = machine_state(params, machine, loads, alpha)
@@ -370,6 +458,21 @@ def _machine_columns(params, machine, loads, points, speed):
     )
     out["equivalent_inertia_kgm2"] = at.equivalent_inertia(machine.inertia_shaft, J, mo.dq)
     out_docs["equivalent_inertia_kgm2"] = "J_eq = J_shaft + J_1 phi_1'^2 + J_2 phi_2'^2."
+    drive_torque = _drive_torque(machine, st, omega)
+    for i in (0, 1):
+        key = f"blade_pair_{i + 1}_drive_torque_Nm"
+        out[key] = drive_torque[i]
+        out_docs[key] = (
+            f"Torque the converter must put on blade pair {i + 1} at the run speed, "
+            f"D = J qdd - M (counter-clockwise +): what its pairs carry."
+        )
+    pairs, fo = _pairs(params, machine, loads, forces_cfg, alpha, st, drive_torque)
+    pcols, pdocs = ap.columns(pairs, forces_cfg["model"], st.torque)
+    fcols, fdocs = _force_columns(fo, alpha)
+    out.update(pcols)
+    out_docs.update(pdocs)
+    out.update(fcols)
+    out_docs.update(fdocs)
     out.update(cols)
     out_docs.update(docs)
     return out, out_docs
@@ -379,7 +482,8 @@ def _defaults(cfg: dict) -> dict:
     """``cfg`` with the machine, loads and run keys it lacks filled from the config schema."""
     out = dict(cfg)
     for name, model in (("machine", RotaryBladeMachine), ("loads", RhomboidLoads),
-                        ("run", RunSection)):  # fmt: skip
+                        ("run", RunSection), ("cam", PlanarCamSection),
+                        ("contact", ContactSection)):  # fmt: skip
         out[name] = {**model().model_dump(), **cfg.get(name, {})}
     return out
 
@@ -424,18 +528,27 @@ def evaluate(cfg: dict) -> StudyResult:
     """
     cfg = _defaults(cfg)
     params = drive_params(cfg)
+    outside = check_linear_range(cfg, params)
+    forces_cfg = {
+        "roller_radius": rf.check_roller(cfg["cam"]["roller_radius"]),
+        "bearing_radius": float(cfg["contact"]["bearing_radius"]),
+        "model": ap.ContactModel.from_config(cfg),
+    }
     m1 = float(cfg["loads"]["torque_high"])
     m2 = float(cfg["loads"]["torque_low"])
     machine, loads, extremes = _machine_setup(cfg, params)
     speed = cfg["run"]["speed"]
     summary = _summary(params, m1, m2)
+    if outside:
+        summary.update({k: float("nan") for k in _LINEAR_KEYS})
     msum, curves = _machine_summary(
-        params, machine, loads, extremes, speed, cfg["machine"]["speed_fluctuation"]
+        params, machine, loads, extremes, speed, cfg["machine"]["speed_fluctuation"], forces_cfg
     )
     summary.update(msum)
     columns = _columns(params, m1, m2, cfg["run"]["points"])
     docs = dict(_DOCS)
-    mcols, mdocs = _machine_columns(params, machine, loads, cfg["run"]["points"], speed)
+    mcols, mdocs = _machine_columns(params, machine, loads, cfg["run"]["points"], speed,
+                                    forces_cfg)  # fmt: skip
     columns.update(mcols)
     docs.update(mdocs)
 
@@ -457,16 +570,46 @@ def evaluate(cfg: dict) -> StudyResult:
         headline=HEADLINE,
         write_figures=plot,
         motion=rc.motion(params, angle_grid(rc.period(params), cfg["run"]["points"])),
-        warnings=_warnings(loads, summary),
+        warnings=_warnings(loads, summary, outside),
     )
 
 
-def _warnings(loads, summary: dict) -> tuple[str, ...]:
+#: Summary keys of the paper's linear torque model, undefined where psi leaves its range.
+_LINEAR_KEYS = ("indicator_work_J", "indicator_work_closed_form_J", "mean_shaft_torque_Nm")
+
+
+def check_linear_range(cfg: dict, params) -> str:
+    """Refuse a law leaving ``psi_min <= psi <= psi_max`` under the linear torque model (eq. 2).
+
+    Raises :class:`ParameterError` named ``drive.a`` (or ``drive.b``) for the linear model.
+    For the isothermal model returns the config key of the harmonics when the law leaves
+    the range (the linear model's keys are then undefined), else ``""``.
+    """
+    law = (params.psi_min, params.a, params.b)
+    if not rc.psi_range_violation(*law):
+        return ""
+    key = "drive.a" if params.a else "drive.b"
+    if cfg["loads"]["pressure_model"] == "linear":
+        try:
+            rc.check_psi_range(*law)
+        except ParameterError as exc:
+            raise ParameterError(key, exc.value, exc.admissible) from None
+    return key
+
+
+def _warnings(loads, summary: dict, outside: str = "") -> tuple[str, ...]:
     """Inputs that leave summary numbers without meaning, one line each."""
     out = []
+    because = {}
+    if outside:
+        because = {
+            k: f"{outside} takes psi outside psi_min ... psi_max, where the paper's linear "
+            "torque model (eq. 29) is defined; the isothermal keys stand"
+            for k in _LINEAR_KEYS
+        }
     if loads.model == "linear" and loads.torque_high == loads.torque_low:
         out.append(
             "loads.torque_high = loads.torque_low: the linear blade model does no work, so the "
             "indicated work and mean torque are 0"
         )
-    return (*out, *undefined_warnings(summary))
+    return (*out, *undefined_warnings(summary, because))

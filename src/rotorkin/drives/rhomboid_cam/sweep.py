@@ -74,14 +74,21 @@ def period(p) -> float:
 def reasons(p, code: dict) -> np.ndarray:
     """Reason code per design (0: admissible), in the order of the study's checks.
 
-    The drive's :func:`~rotorkin.drives.rhomboid_cam.kinematics.violation`, the
-    machine's :func:`~rotorkin.machines.rotary_blade.violation` and, for the drive's
-    swing of ``psi``, :func:`~rotorkin.machines.rotary_blade.swing_violation`.
+    The drive's :func:`~rotorkin.drives.rhomboid_cam.kinematics.violation`; under the
+    linear torque model, a law leaving ``psi_min <= psi <= psi_max`` (eq. 2,
+    :func:`~rotorkin.drives.rhomboid_cam.kinematics.psi_range_violation`) flagged
+    ``drive.a`` (``drive.b`` when ``a`` is empty) as the study refuses it; the machine's
+    :func:`~rotorkin.machines.rotary_blade.violation` and, for the drive's swing of
+    ``psi``, :func:`~rotorkin.machines.rotary_blade.swing_violation`.
     """
     r = np.zeros(p.n, dtype=np.int16)
     with np.errstate(all="ignore"):
         pm = p.float("drive.psi_min")
         _report(r, rc.violation(p.float("drive.link_length"), pm), rc.CHECKS, "drive", code)
+        a, b = tuple(p["drive.a"] or ()), tuple(p["drive.b"] or ())
+        if p["loads.pressure_model"] in (None, "linear"):
+            key = "drive.a" if a else "drive.b"
+            flag(r, rc.psi_range_violation(pm, a, b), code[key])
         m = {k: p[f"machine.{k}"] for k in _MACHINE}
         _report(r, rb.violation(**m), rb.CHECKS, "machine", code)
         lo, _, hi, _ = rc.psi_extremes(pm)
