@@ -716,7 +716,8 @@ def test_study_with_clearance_pistons_and_speed_profile():
     v0, vc = s["chamber_volume_min_cm3"] - 2.0, 2.0
     assert eps == pytest.approx((s["swept_volume_cm3"] + v0 + vc) / (v0 + vc), rel=1e-10)
     assert s["indicated_efficiency"] == pytest.approx(1 - eps**-0.35, rel=1e-10)
-    assert len(res.columns) == 37 + 2 * 12 and "chamber12_stroke" in res.columns
+    per_chamber = [k for k in res.columns if k.startswith("chamber") and k[7].isdigit()]
+    assert len(per_chamber) == 2 * 12 and "chamber12_stroke" in res.columns
 
 
 def test_study_n2_admits_large_tilt_and_n6_refuses_with_its_limit():

@@ -61,11 +61,12 @@ class EccentricDrive(Section):
         description="roller radius r (follower = roller) (0 <= r <= 10 m; > 0 for a roller)",
     )
     tip_radius: Length = Field(
-        "0 mm",
+        "2 mm",
         ge=0.0,
         le=LENGTH_MAX,
-        description="tip radius of a knife-edge follower, for its contact stress only (0: a "
-        "sharp edge, no contact stress; the travel takes the tip as a point, eq. 1)",
+        description="tip radius of a knife-edge follower, for its contact stress only "
+        "(0 <= tip_radius <= 10 m; 0: a sharp edge, no contact stress; the travel takes the "
+        "tip as a point, eq. 1)",
     )
     inclination: Angle = Field(
         "0 deg",
@@ -80,7 +81,8 @@ class EccentricDrive(Section):
         gt=0.0,
         le=LENGTH_MAX,
         description="adjuster: axial distance s of the piston plane from the point where the "
-        "disc's axis crosses the shaft axis; sets e = s tan(inclination) (needs inclination > 0; "
+        "disc's axis crosses the shaft axis; sets e = s tan(inclination) (0 < slide <= 10 m; "
+        "needs inclination > 0; "
         "leave eccentricity out or give the same value)",
     )
 

@@ -38,8 +38,10 @@ class NoncircularDrive(Section):
     )
     phase: Angle | None = Field(
         None,
-        description="angle between the two driving gears on the shaft; default 180 deg / n "
-        "(the two speed ratios in antiphase: the largest swing)",
+        ge=-6.283185307179586,
+        le=6.283185307179586,
+        description="angle between the two driving gears on the shaft (-360 deg <= phase <= "
+        "360 deg); default 180 deg / n (the two speed ratios in antiphase: the largest swing)",
     )
     pressure_angle: Angle = Field(
         "20 deg",

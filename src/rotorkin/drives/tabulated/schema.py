@@ -40,7 +40,11 @@ class TabulatedDrive(Section):
         "data); default: the exact trigonometric interpolation of the table",
     )
     period: Angle | None = Field(
-        None, description="Fourier law instead of a table: its period (360 deg / k)"
+        None,
+        gt=0.0,
+        le=6.283185307179587,
+        description="Fourier law instead of a table: its period, 360 deg / k "
+        "(0 deg < period <= 360 deg)",
     )
     mean_ratio: list[float] | None = Field(
         None,

@@ -40,9 +40,9 @@ Coefficient = Annotated[float, Field(ge=-10.0, le=10.0)]
 class WobbleCamSection(Section):
     roller_radius: Length = Field(
         "4 mm",
-        gt=0.0,
+        ge=1e-4,
         le=0.1,
-        description="radius of the rollers in the grooves (0 < roller_radius <= 100 mm; "
+        description="radius of the rollers in the grooves (0.1 mm <= roller_radius <= 100 mm; "
         "below the groove curvature radius, checked as by `rotorkin export`)",
     )
     shell_thickness: Length = Field(
@@ -144,14 +144,14 @@ class WobbleDrive(Section):
         ge=0.001,
         le=10.0,
         description="distance from the plate centre to the centres of the rail rollers, along "
-        "the roller shafts (outside the cam shell: rail_radius > sphere_radius + "
-        "shell_thickness/2 + rail_roller_radius; at most 10 m)",
+        "the roller shafts, outside the cam shell (sphere_radius + shell_thickness/2 + "
+        "rail_roller_radius < rail_radius <= 10 m)",
     )
     rail_roller_radius: Length = Field(
         "6 mm",
-        gt=0.0,
+        ge=1e-4,
         le=0.1,
-        description="radius of the rollers in the rotors' slider rails (0 < r <= 100 mm)",
+        description="radius of the rollers in the rotors' slider rails (0.1 mm <= r <= 100 mm)",
     )
     plate_bearing_span: Length = Field(
         "40 mm",
