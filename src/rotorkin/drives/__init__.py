@@ -30,7 +30,7 @@ from rotorkin.drives._spec import DriveSpec
 from rotorkin.synthesis import SynthesisResult
 from rotorkin.vane import MACHINES
 from rotorkin.vane import evaluate as evaluate_vane_machine
-from rotorkin.vane.study import HEADLINES
+from rotorkin.vane.study import CONTACT_HEADLINE, HEADLINES
 
 __all__ = [
     "REGISTRY",
@@ -200,7 +200,12 @@ def evaluate(cfg: dict):
     spec = spec_of(cfg)
     if spec.check_cam is not None:
         spec.check_cam(cfg)  # what export refuses, every command refuses
-    return spec.study(cfg)
+    result = spec.study(cfg)
+    if isinstance(result.headline, dict):  # every drive prints its pairs' peaks the same way
+        extra = {k: v for k, v in CONTACT_HEADLINE.items()
+                 if k in result.summary and k not in result.headline}  # fmt: skip
+        result.headline = {**result.headline, **extra}
+    return result
 
 
 def synthesize(
