@@ -228,3 +228,20 @@ def test_drive_torques_on_the_members_balance_the_shaft_at_constant_speed(drive)
     assert r.summary["drive_torque_peak_Nm"] == pytest.approx(
         np.max(np.abs([c["member1_drive_torque_Nm"], c["member2_drive_torque_Nm"]])), rel=1e-3
     )
+
+
+@pytest.mark.parametrize(
+    ("drive", "machine"),
+    [("wobble_cam", "vane_pump"), ("guide_bar", "rotary_blade"), ("rhomboid_cam", "twin_rotor"),
+     ("noncircular_gears", "vane_pump")],
+)  # fmt: skip
+def test_a_machine_on_another_drive_loads_the_drives_pairs(drive, machine):
+    cfg = _cfg(drive, machine)
+    s = drives.evaluate(cfg).summary
+    for key in ("peak_contact_force_N", "peak_bearing_load_N", "friction_loss_W",
+                "mechanical_efficiency"):  # fmt: skip
+        assert key in s and np.isfinite(s[key]) and s[key] >= 0, key
+    assert 0.0 < s["mechanical_efficiency"] < 1.0
+    off = {f"friction_{k}": 0.0 for k in ("rolling", "sliding", "mesh", "bearing")}
+    idle = {**cfg, "contact": {**cfg["contact"], **off}}
+    assert drives.evaluate(idle).summary["mechanical_efficiency"] == pytest.approx(1.0)

@@ -168,6 +168,7 @@ def _carrying(spec: DriveSpec, kind: str) -> DriveSpec:
             spec.law(cfg),
             drive_type=spec.name,
             title=f"{kind.replace('_', ' ')} on drive {spec.name}",
+            drive_pairs=spec.pairs(cfg) if spec.pairs is not None else None,
         )
 
     return dataclasses.replace(

@@ -91,6 +91,11 @@ class DriveSpec:
         members: it then carries any vane machine (``[machine] type``,
         :mod:`rotorkin.vane`), its own one through ``study``, the others through
         :func:`rotorkin.vane.evaluate`.
+    pairs : callable, optional
+        ``pairs(cfg) -> f`` with ``f(theta, drive_torque, motion) -> list[Pair]``: the
+        drive's load-carrying pairs (:mod:`rotorkin.analysis.pairs`) from the torques it
+        puts on its two members, for the vane machines it carries that are not its own
+        (its own study reports its pairs itself).
     carries_any : bool
         ``study`` itself runs every vane machine (it adds the drive's own numbers to
         :func:`rotorkin.vane.evaluate`'s); ``headline`` then starts with the drive's
@@ -120,6 +125,7 @@ class DriveSpec:
     check_rows: Callable | None = None
     machine: str = ""
     law: Callable | None = None
+    pairs: Callable | None = None
     carries_any: bool = False
 
     def __post_init__(self):

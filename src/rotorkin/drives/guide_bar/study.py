@@ -358,6 +358,20 @@ def pump_params(cfg: dict, params: gb.GuideBar | None = None) -> vp.VanePump:
     )
 
 
+def pairs_of(cfg: dict):
+    """``f(theta, drive_torque, motion) -> list[Pair]`` for a machine that is not the pump."""
+    params = drive_params(cfg)
+    size = gb_forces.gearing(cfg["drive"])
+    radius = float({**ContactSection().model_dump(), **(cfg.get("contact") or {})}
+                   ["bearing_radius"])  # fmt: skip
+
+    def f(theta, drive_torque, motion):
+        return gb_forces.pairs(params, size, gb_forces.solve(params, size, theta, drive_torque),
+                               radius)  # fmt: skip
+
+    return f
+
+
 def law(cfg: dict) -> RotaryLaw:
     """The two members' motion for any vane machine on this drive (:mod:`rotorkin.vane`)."""
     params = drive_params(cfg)

@@ -32,4 +32,5 @@ SPEC = DriveSpec(
     check_cam=cad.check_cam,
     machine="rotary_blade",
     law=study.law,
+    pairs=study.pairs_of,
 )

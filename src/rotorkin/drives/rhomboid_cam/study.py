@@ -504,6 +504,19 @@ def drive_params(cfg: dict) -> rc.RhomboidCam:
     return params
 
 
+def pairs_of(cfg: dict):
+    """``f(alpha, drive_torque, motion) -> list[Pair]`` for a machine that is not its own."""
+    params = drive_params(cfg)
+    roller = rf.check_roller(float((cfg.get("cam") or {}).get("roller_radius", 0.01)))
+    radius = float({**ContactSection().model_dump(), **(cfg.get("contact") or {})}
+                   ["bearing_radius"])  # fmt: skip
+
+    def f(alpha, drive_torque, motion):
+        return rf.pairs(params, alpha, drive_torque, roller, radius)
+
+    return f
+
+
 def law(cfg: dict) -> RotaryLaw:
     """The two members' motion for any vane machine on this drive (:mod:`rotorkin.vane`)."""
     params = drive_params(cfg)

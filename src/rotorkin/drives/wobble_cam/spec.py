@@ -43,4 +43,5 @@ SPEC = DriveSpec(
     check_rows=cad.check_rows,
     machine="twin_rotor",
     law=study.law,
+    pairs=study.pairs_of,
 )

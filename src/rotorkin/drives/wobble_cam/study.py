@@ -392,6 +392,26 @@ def models(cfg: dict) -> tuple[wc.WobbleCam, tr.TwinRotor, ec.IdealCycle]:
     return params, machine, cycle
 
 
+def pairs_of(cfg: dict):
+    """``f(theta, drive_torque, motion) -> list[Pair]`` for a machine that is not the engine.
+
+    The torques the drive puts on the rotors stand for the machine's and the rotors'
+    inertia together (``M = -D``, no rotor inertia left); the plate's own inertia is taken
+    at the run speed.
+    """
+    drive, cam, fp = fo.from_config(cfg)
+    model = pr.ContactModel.from_config(cfg)
+    speed = (cfg.get("run") or {}).get("speed", _DEFAULT_SPEED)
+
+    def f(theta, drive_torque, motion):
+        omega, omega_dot, _ = shaft_speed(theta, speed, wc.period(drive))
+        forces = fo.solve(drive, cam, fp, theta, -np.asarray(drive_torque), (0.0, 0.0), omega,
+                          omega_dot)  # fmt: skip
+        return fo.pairs(forces, cam, fp, model)
+
+    return f
+
+
 def law(cfg: dict) -> RotaryLaw:
     """The rotors' motion for any vane machine on this drive (:mod:`rotorkin.vane`).
 
