@@ -397,7 +397,7 @@ def test_study_errors_name_config_keys():
 def test_study_plot_writes_pngs(tmp_path):
     res = evaluate(_cfg(follower="roller", roller_radius=0.01))
     paths = res.write_figures(tmp_path)
-    assert len(paths) == 7  # 4 of the drive (paper) + 3 of the reactor
+    assert len(paths) == 8  # 4 of the drive (paper) + 3 of the reactor + the forces
     for p in paths:
         assert p.exists() and p.suffix == ".png" and p.stat().st_size > 1000
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -521,7 +521,7 @@ def test_study_plot_writes_pngs(tmp_path):
     cfg = _cfg(driver="guide", phase=np.radians(120.0))
     cfg["loads"] = {"impeller_torque_1": 0.0, "impeller_torque_2": 0.0}
     paths = evaluate(cfg).write_figures(tmp_path)
-    assert len(paths) == 10  # 6 of the drive (paper) + 4 of the pump
+    assert len(paths) == 11  # 6 of the drive (paper) + 4 of the pump + the forces
     for p in paths:
         assert p.exists() and p.suffix == ".png" and p.stat().st_size > 1000
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -500,7 +500,7 @@ def test_study_fills_missing_machine_and_loads_keys():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(("model", "count"), [("linear", 7), ("isothermal", 8)])
+@pytest.mark.parametrize(("model", "count"), [("linear", 8), ("isothermal", 9)])
 def test_plots(tmp_path, model, count):
     paths = evaluate(cfg(model)).write_figures(tmp_path)
     assert len(paths) == count
@@ -517,7 +517,7 @@ def test_plots_other_blade_counts(tmp_path):
                 machine_keys={"blades_per_pair": B, "blade_thickness": t})  # fmt: skip
         out = tmp_path / str(B)
         out.mkdir()
-        assert len(evaluate(c).write_figures(out)) == 8
+        assert len(evaluate(c).write_figures(out)) == 9  # with the forces
 
 
 # --- bad input ----------------------------------------------------------------------------

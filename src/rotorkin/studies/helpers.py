@@ -87,6 +87,8 @@ def time_domain(motion, speed, slugs, period):
 UNDEFINED_BECAUSE = {
     "torque_ripple": "the mean shaft torque is 0, so (max - min) / mean has no value",
     "torque_ripple_with_inertia": "the mean shaft torque is 0, so (max - min) / mean has no value",
+    "mechanical_efficiency": "the machine does no net work on the shaft, so work delivered "
+    "over work put in has no value",
     "speed_fluctuation_without_flywheel": "every inertia of [machine] is 0 (inertia_shaft and "
     "the members'), so nothing bounds the speed",
 }
