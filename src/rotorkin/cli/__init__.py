@@ -32,7 +32,7 @@ from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, out_fo
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import REGISTRY, evaluate
 from rotorkin.io.config import example_names, example_path, glossary, load_config, read_toml
-from rotorkin.io.output import write_outputs
+from rotorkin.io.output import check_out, write_outputs
 from rotorkin.report.html import write_report
 
 app = typer.Typer(
@@ -78,14 +78,15 @@ def run(
     """Evaluate a drive over one period; write summary.json, motion.csv and figures."""
 
     cfg, raw, name = load_config(config, example, set_ or [])
-    result = evaluate(cfg)
     outdir = out if out is not None else Path("rotorkin-out") / name
+    check_out(outdir)  # before any work
+    result = evaluate(cfg)
     meta = {"name": name, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
-    for line in result.warnings:
-        print(f"rotorkin: warning: {_one_line(line)}", file=sys.stderr)
     written = write_outputs(result, outdir, raw, meta)
     if report:
         written = [*written, write_report(result, cfg, raw, meta, outdir / "report.html")]
+    for line in result.warnings:  # once the outputs stand: a failure stays one line
+        print(f"rotorkin: warning: {_one_line(line)}", file=sys.stderr)
     if not quiet:
         _print_summary(result, name, outdir, written)
 
