@@ -619,8 +619,11 @@ def leakage_conductances(pump: VanePump, gaps: Gaps) -> dict:
     rh, rc, w, g = (np.asarray(v, dtype=float) for v in (pump.hub_radius, pump.casing_radius,
                                                          pump.axial_width, pump.vane_angle))  # fmt: skip
     mu = gaps.fluid_viscosity
-    side = 2.0 * np.asarray(gaps.side_clearance, dtype=float) ** 3 * np.log(rc / rh) / (
-        12.0 * np.asarray(mu, dtype=float) * g
+    side = (
+        2.0
+        * np.asarray(gaps.side_clearance, dtype=float) ** 3
+        * np.log(rc / rh)
+        / (12.0 * np.asarray(mu, dtype=float) * g)
     )
     return {
         "tip": gap_flow(w, gaps.tip_clearance, g * rc, 1.0, mu),
