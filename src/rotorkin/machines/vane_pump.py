@@ -616,8 +616,10 @@ def leakage_conductances(pump: VanePump, gaps: Gaps) -> dict:
     ``"tip"``: ``w h_t^3 / (12 mu gamma R_c)``; ``"hub"``: ``w h_h^3 / (12 mu gamma R_h)``;
     ``"side"``: both faces, ``2 h_s^3 ln(R_c/R_h) / (12 mu gamma)`` (module docstring).
     """
-    rh, rc, w, g = (np.asarray(v, dtype=float) for v in (pump.hub_radius, pump.casing_radius,
-                                                         pump.axial_width, pump.vane_angle))  # fmt: skip
+    rh, rc, w, g = (
+        np.asarray(v, dtype=float)
+        for v in (pump.hub_radius, pump.casing_radius, pump.axial_width, pump.vane_angle)
+    )
     mu = gaps.fluid_viscosity
     side = (
         2.0
