@@ -34,10 +34,12 @@ liquid under a pressure drop larger than ``p0`` would be in tension: the model
 then gives a negative absolute pressure, which in practice means cavitation
 (flagged by the study, not modelled).
 
-Forces: the absolute chamber pressure acts on each inner face (the outer faces
-are taken at zero pressure; an ambient pressure ``p_a`` there would add
-``+p_a A`` to each piston force and ``-p_a dV/dbeta`` to the shaft torque, zero
-over a turn).
+Forces: the absolute chamber pressure ``p`` acts on each inner face, the back
+pressure ``p_b`` (``back_pressure``, default 0: vacuum behind the pistons, the
+model of the published numbers) on each outer face, so the net force on a piston
+is ``(p - p_b) A`` and the shaft torque ``sum_i (p - p_b) dV/dq_i dq_i/dbeta =
+(p - p_b) dV/dbeta``: the back pressure adds ``-p_b dV/dbeta`` to the vacuum
+torque, zero over a turn (:func:`net_pressure`).
 
 Every parameter may be a float or an array; arrays broadcast against each other
 and against the angles of the motion (parameters of shape ``(n, 1)`` against
@@ -63,6 +65,7 @@ __all__ = [
     "volume_derivatives_dq",
     "pressure_from_volume",
     "pressure",
+    "net_pressure",
     "volume_extremes",
 ]
 
@@ -78,6 +81,7 @@ _ADMISSIBLE = {
     "polytropic_exponent": "polytropic_exponent > 0 (1 isothermal, 1.4 adiabatic air)",
     "bulk_modulus": "bulk_modulus > 0 GPa",
     "gap_change_min": "gap_change_min <= 0 mm",
+    "back_pressure": "back_pressure >= 0 bar (absolute)",
 }
 
 
@@ -85,7 +89,7 @@ def _shown(name: str, value) -> str:
     if name == "fluid":
         return repr(str(value))
     v = float(value)
-    if name == "initial_pressure":
+    if name in ("initial_pressure", "back_pressure"):
         return f"{v / 1e5:.4g} bar"
     if name == "bulk_modulus":
         return f"{v / 1e9:.4g} GPa"
@@ -96,7 +100,7 @@ def _shown(name: str, value) -> str:
 
 def invalid_parameter(
     device_length, bore, fluid, initial_pressure, polytropic_exponent, bulk_modulus,
-    gap_change_min, piston_stroke=0.0,
+    gap_change_min, piston_stroke=0.0, back_pressure=0.0,
 ):  # fmt: skip
     """The first violated parameter of each design, ``""`` where all are admissible.
 
@@ -119,6 +123,7 @@ def invalid_parameter(
             return ~(np.isfinite(x) & (x > 0.0))
 
     dmin = np.asarray(gap_change_min, dtype=float)
+    pb = np.asarray(back_pressure, dtype=float)
     with np.errstate(invalid="ignore"):
         checks = (
             (
@@ -132,6 +137,7 @@ def invalid_parameter(
             ("polytropic_exponent", positive(polytropic_exponent)),
             ("bulk_modulus", positive(bulk_modulus)),
             ("gap_change_min", ~(np.isfinite(dmin) & (dmin <= 0.0))),
+            ("back_pressure", ~(np.isfinite(pb) & (pb >= 0.0))),
         )
     shape = np.broadcast_shapes(*(bad.shape for _, bad in checks))
     out = np.full(shape, "", dtype=f"<U{max(len(n) for n, _ in checks)}")
@@ -167,6 +173,9 @@ class OpposedPiston:
     piston_stroke : float, optional
         Stroke of each piston [m] (``2 e``), ``device_length >= piston_stroke``
         (default 0: no bound).
+    back_pressure : float, optional
+        ``p_b``, absolute pressure on the outer faces of the pistons [Pa], ``>= 0``
+        (default 0: vacuum, the published model; 1 bar for pistons open to the air).
 
     Raises
     ------
@@ -182,10 +191,11 @@ class OpposedPiston:
     bulk_modulus: float = 1.5e9
     gap_change_min: float = 0.0
     piston_stroke: float = 0.0
+    back_pressure: float = 0.0
 
     def __post_init__(self):
         names = ("device_length", "bore", "fluid", "initial_pressure", "polytropic_exponent",
-                 "bulk_modulus", "gap_change_min", "piston_stroke")  # fmt: skip
+                 "bulk_modulus", "gap_change_min", "piston_stroke", "back_pressure")  # fmt: skip
         bad = invalid_parameter(*(getattr(self, n) for n in names))
         if not bad.any():
             return
@@ -280,6 +290,15 @@ def pressure(reactor: OpposedPiston, motion: Motion):
     K = np.asarray(reactor.bulk_modulus, dtype=float)
     slope = np.where(gas, -n * p / v, -K / v)
     return p, slope * dv
+
+
+def net_pressure(reactor: OpposedPiston, pressure):
+    """``p - p_b``: the pressure that loads the pistons, chamber less back pressure [Pa].
+
+    Times ``dV/dq_i`` it gives the piston forces, times ``dV/dbeta`` the shaft torque
+    (module docstring). Broadcasts.
+    """
+    return np.asarray(pressure, dtype=float) - np.asarray(reactor.back_pressure, dtype=float)
 
 
 def volume_extremes(reactor: OpposedPiston):

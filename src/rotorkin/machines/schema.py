@@ -26,6 +26,7 @@ from rotorkin.core.schema import (
     Inertia,
     InertialSection,
     Length,
+    Modulus,
     Pressure,
     Section,
     Temperature,
@@ -208,6 +209,27 @@ class VanePumpSection(InertialSection):
         le=INERTIA_MAX,
         description="inertia of impeller 2 (0 <= J <= 1e5 kg*m^2)",
     )
+    tip_clearance: Length = Field(
+        "0 mm",
+        ge=0.0,
+        le=1.0e-3,
+        description="radial gap between a vane tip and the casing, for the laminar leakage; "
+        "0: no leakage (0 mm <= tip_clearance <= 1 mm)",
+    )
+    side_clearance: Length = Field(
+        "0 mm",
+        ge=0.0,
+        le=1.0e-3,
+        description="axial gap between each side face of a vane and its end cover, for the "
+        "laminar leakage; 0: no leakage (0 mm <= side_clearance <= 1 mm)",
+    )
+    hub_clearance: Length = Field(
+        "0 mm",
+        ge=0.0,
+        le=1.0e-3,
+        description="radial gap between a vane root and the other impeller's hub, for the "
+        "laminar leakage; 0: no leakage (0 mm <= hub_clearance <= 1 mm)",
+    )
 
 
 class PumpPorts(Section):
@@ -222,6 +244,20 @@ class PumpPorts(Section):
         ge=PRESSURE_MIN,
         le=PRESSURE_MAX,
         description="pressure at the outlet port (0.01 bar <= p <= 1000 bar, absolute)",
+    )
+    fluid_viscosity: float = Field(
+        0.03,
+        ge=1.0e-4,
+        le=10.0,
+        description="dynamic viscosity of the fluid in Pa*s, for the leakage through the vane "
+        "clearances; 0.03: mineral oil ISO VG 32 at 40 C (0.0001 <= mu <= 10 Pa*s)",
+    )
+    bulk_modulus: Modulus = Field(
+        "1.5 GPa",
+        ge=1.0e7,
+        le=1.0e11,
+        description="bulk modulus of the fluid, for the flow lost compressing a chamber at the "
+        "switch to the outlet; 1.5 GPa: mineral oil (0.01 GPa <= K <= 100 GPa)",
     )
 
 

@@ -44,8 +44,31 @@ Geometry (a cross-section normal to the common axis of the impellers):
   dead volume.
 
 Ports are ideal: a chamber whose volume shrinks is connected to the discharge
-port (pressure ``p_d``), a growing one to the suction port (``p_s``); there is no
-leakage, no compressibility and no trapped volume at the switch-over.
+port (pressure ``p_d``), a growing one to the suction port (``p_s``); the chamber
+pressures, and so the torques, are those of ideal ports.
+
+Flow losses (:class:`Gaps`, all zero by default but the compressibility): the
+flow delivered is the geometric flow less
+
+* the leakage through the clearances of every vane, laminar plane Poiseuille flow
+  ``Q = b h^3 dp / (12 mu L)`` (pressure-driven only: the Couette flow of the
+  moving wall, ``b h U / 2``, is left out). Every vane parts a chamber at ``p_d``
+  from one at ``p_s`` (all A chambers discharge while all B chambers suck, and
+  the other way round), so each of the ``2 Z`` vanes leaks with ``dp = p_d - p_s``
+  through
+  - its tip (clearance ``h_t`` to the casing): ``b = w``, ``L = gamma R_c``;
+  - its root (clearance ``h_h`` to the hub of the other impeller): ``b = w``,
+    ``L = gamma R_h``;
+  - its two side faces (clearance ``h_s`` each, to the end covers): a sector land
+    whose length grows with the radius, ``L = gamma rho``; integrating
+    ``dQ = h_s^3 dp d rho / (12 mu gamma rho)`` from ``R_h`` to ``R_c`` gives
+    ``Q = h_s^3 dp ln(R_c/R_h) / (12 mu gamma)`` per face;
+* the compression loss: a chamber switched from suction to discharge at its
+  largest volume ``V_max = k phi_max`` holds fluid at ``p_s``; bringing it to
+  ``p_d`` takes back ``V_max (p_d - p_s) / K`` from the discharge port (``K`` the
+  bulk modulus; first order in ``dp / K``). Each of the ``2 Z`` chambers does so
+  once per period. The re-expansion of the smallest volume at the other
+  switch-over is a loss on the suction side only, the same mass.
 """
 
 from __future__ import annotations
@@ -75,6 +98,13 @@ __all__ = [
     "displacement",
     "flow_rate",
     "flow_ripple",
+    "GAP_FIELDS",
+    "gaps_inadmissible",
+    "Gaps",
+    "gap_flow",
+    "leakage_conductances",
+    "leakage_flow",
+    "compression_loss",
 ]
 
 
@@ -493,3 +523,143 @@ def flow_ripple(flow, time_weights=None):
     mean = np.trapezoid(q * wts) / np.trapezoid(wts)
     with np.errstate(divide="ignore", invalid="ignore"):
         return float((np.max(q) - np.min(q)) / mean) if mean > 0 else float("nan")
+
+
+# --------------------------------------------------------------------------------------------
+# flow losses: leakage through the vane clearances, compression at the switch-over
+# --------------------------------------------------------------------------------------------
+#: Fields of :class:`Gaps`, in the order they are checked (codes index + 1).
+GAP_FIELDS = ("tip_clearance", "side_clearance", "hub_clearance", "fluid_viscosity",
+              "bulk_modulus")  # fmt: skip
+
+
+def gaps_inadmissible(tip_clearance, side_clearance, hub_clearance, fluid_viscosity,
+                      bulk_modulus):  # fmt: skip
+    """The first field of :data:`GAP_FIELDS` each design gets wrong, index + 1 (0: admissible).
+
+    Clearances finite and ``>= 0``; viscosity and bulk modulus finite and ``> 0``.
+    """
+    values = [np.asarray(v, dtype=float) for v in (tip_clearance, side_clearance, hub_clearance,
+                                                   fluid_viscosity, bulk_modulus)]  # fmt: skip
+    with np.errstate(invalid="ignore"):
+        bad = [~(np.isfinite(v) & (v >= 0.0)) for v in values[:3]]
+        bad += [~(np.isfinite(v) & (v > 0.0)) for v in values[3:]]
+    bad = np.broadcast_arrays(*bad)
+    reason = np.zeros(bad[0].shape, dtype=np.int16)
+    for k in range(len(bad) - 1, -1, -1):
+        reason[bad[k]] = k + 1
+    return reason
+
+
+@dataclass(frozen=True)
+class Gaps:
+    """Clearances of the vanes and the fluid (SI): what the flow losses need.
+
+    Parameters
+    ----------
+    tip_clearance : float, optional
+        Radial gap ``h_t`` between a vane tip and the casing [m] (default 0: no leakage).
+    side_clearance : float, optional
+        Axial gap ``h_s`` between each side face of a vane and its end cover [m] (default 0).
+    hub_clearance : float, optional
+        Radial gap ``h_h`` between a vane root and the other impeller's hub [m] (default 0).
+    fluid_viscosity : float, optional
+        Dynamic viscosity ``mu`` [Pa*s], ``> 0`` (default 0.03: mineral oil ISO VG 32 at 40 C).
+    bulk_modulus : float, optional
+        Bulk modulus ``K`` of the fluid [Pa], ``> 0`` (default 1.5 GPa: mineral oil).
+    """
+
+    tip_clearance: float = 0.0
+    side_clearance: float = 0.0
+    hub_clearance: float = 0.0
+    fluid_viscosity: float = 0.03
+    bulk_modulus: float = 1.5e9
+
+    def __post_init__(self):
+        values = [getattr(self, f) for f in GAP_FIELDS]
+        reason = gaps_inadmissible(*values)
+        if reason.any():
+            i = int(np.flatnonzero(reason)[0])
+            k = int(reason.flat[i]) - 1
+            name = GAP_FIELDS[k]
+            v = float(np.broadcast_to(np.asarray(values[k], dtype=float), reason.shape).flat[i])
+            if k < 3:
+                raise ParameterError(name, fmt_mm(v), f"{name} >= 0 mm")
+            unit = "Pa*s" if name == "fluid_viscosity" else "Pa"
+            raise ParameterError(name, f"{v:.4g} {unit}", f"{name} > 0 {unit}")
+
+
+def gap_flow(width, gap, length, pressure_drop, viscosity):
+    """Laminar flow through a plane gap, ``Q = b h^3 dp / (12 mu L)`` [m^3/s] (plane Poiseuille).
+
+    Parameters
+    ----------
+    width : array_like
+        Width ``b`` of the gap across the flow [m].
+    gap : array_like
+        Height ``h`` of the gap [m].
+    length : array_like
+        Length ``L`` of the gap along the flow [m], ``> 0``.
+    pressure_drop : array_like
+        ``dp`` [Pa]; the flow runs from the high to the low pressure.
+    viscosity : array_like
+        Dynamic viscosity ``mu`` [Pa*s].
+    """
+    b, h, n, dp, mu = (np.asarray(v, dtype=float) for v in (width, gap, length, pressure_drop,
+                                                            viscosity))  # fmt: skip
+    return _scalar(b * h**3 * dp / (12.0 * mu * n))
+
+
+def leakage_conductances(pump: VanePump, gaps: Gaps) -> dict:
+    """Leakage per vane and per pascal of pressure difference, by path [m^3/(s Pa)].
+
+    ``"tip"``: ``w h_t^3 / (12 mu gamma R_c)``; ``"hub"``: ``w h_h^3 / (12 mu gamma R_h)``;
+    ``"side"``: both faces, ``2 h_s^3 ln(R_c/R_h) / (12 mu gamma)`` (module docstring).
+    """
+    rh, rc, w, g = (
+        np.asarray(v, dtype=float)
+        for v in (pump.hub_radius, pump.casing_radius, pump.axial_width, pump.vane_angle)
+    )
+    mu = gaps.fluid_viscosity
+    side = (
+        2.0
+        * np.asarray(gaps.side_clearance, dtype=float) ** 3
+        * np.log(rc / rh)
+        / (12.0 * np.asarray(mu, dtype=float) * g)
+    )
+    return {
+        "tip": gap_flow(w, gaps.tip_clearance, g * rc, 1.0, mu),
+        "side": _scalar(side),
+        "hub": gap_flow(w, gaps.hub_clearance, g * rh, 1.0, mu),
+    }
+
+
+def leakage_flow(pump: VanePump, gaps: Gaps, ports: PortPressures) -> dict:
+    """Leakage from the discharge to the suction chambers, by path and ``"total"`` [m^3/s].
+
+    ``2 Z G (p_d - p_s)`` with ``G`` a path's :func:`leakage_conductances`: every
+    vane parts a discharging chamber from a sucking one. The same at every angle
+    (only at the switch-over instants, a set of measure zero, are both sides at
+    ``p_s``); negative when ``p_d < p_s`` (a motor: the leakage then adds to the
+    flow it takes).
+    """
+    dp = np.asarray(ports.discharge_pressure, dtype=float) - np.asarray(
+        ports.suction_pressure, dtype=float)  # fmt: skip
+    n = np.asarray(pump.n_chambers, dtype=float)
+    out = {k: _scalar(n * g * dp) for k, g in leakage_conductances(pump, gaps).items()}
+    out["total"] = _scalar(out["tip"] + out["side"] + out["hub"])
+    return out
+
+
+def compression_loss(pump: VanePump, gaps: Gaps, ports: PortPressures):
+    """Volume taken back from the discharge port per period to compress the chambers [m^3].
+
+    ``2 Z k phi_max (p_d - p_s) / K``: each chamber switches to the discharge port
+    once per period at its largest volume ``k phi_max``, full of fluid at ``p_s``
+    (module docstring; first order in ``dp / K``).
+    """
+    dp = np.asarray(ports.discharge_pressure, dtype=float) - np.asarray(
+        ports.suction_pressure, dtype=float)  # fmt: skip
+    v_max = np.asarray(pump.volume_per_angle, dtype=float) * pump.chamber_angle_range[1]
+    n = np.asarray(pump.n_chambers, dtype=float)
+    return _scalar(n * v_max * dp / np.asarray(gaps.bulk_modulus, dtype=float))

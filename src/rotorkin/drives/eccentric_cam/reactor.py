@@ -30,7 +30,8 @@ def opposed_piston(params: ec.EccentricCam, **machine) -> op.OpposedPiston:
     **machine
         :class:`~rotorkin.machines.opposed_piston.OpposedPiston` fields other than
         ``gap_change_min`` (``device_length`` [m], ``bore`` [m], ``fluid``,
-        ``initial_pressure`` [Pa], ``polytropic_exponent``, ``bulk_modulus`` [Pa]).
+        ``initial_pressure`` [Pa], ``polytropic_exponent``, ``bulk_modulus`` [Pa],
+        ``back_pressure`` [Pa]).
 
     Returns
     -------
@@ -67,7 +68,7 @@ def reactor_state(params: ec.EccentricCam, reactor: op.OpposedPiston, inertia, s
     m = ec.motion(params, beta)
     V, dV, _, _ = op.enclosed_volume(reactor, m)
     p, _ = op.pressure(reactor, m)
-    F = tq.member_torques(p, op.volume_derivatives_dq(reactor, m))
+    F = tq.member_torques(op.net_pressure(reactor, p), op.volume_derivatives_dq(reactor, m))
     shaft = tq.shaft_torque_from_members(F, m.dq)
     omega, omega_dot, _ = shaft_speed(beta, speed, ec.period(params))
     js, masses = inertia

@@ -127,6 +127,14 @@ class EccentricMachine(InertialSection):
         le=1e12,
         description="bulk modulus K of the liquid (1 MPa <= K <= 1000 GPa)",
     )
+    back_pressure: Pressure = Field(
+        "0 bar",
+        ge=0.0,
+        le=PRESSURE_MAX,
+        description="absolute pressure on the outer faces of the pistons; the net force on a "
+        "piston is (p - back_pressure) A. 0: vacuum, the model of the published numbers; "
+        "1 bar: pistons open to the air (0 bar <= back_pressure <= 1000 bar)",
+    )
     piston_mass: Mass = Field(
         "0.5 kg",
         ge=0.0,

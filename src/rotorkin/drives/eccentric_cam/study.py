@@ -175,6 +175,7 @@ def _reactor_summary(drive: ec.EccentricCam, reactor: op.OpposedPiston, inertia,
     cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
     work = float(tq.cycle_integral(st["shaft"], fine))
     out = {
+        "back_pressure_bar": float(reactor.back_pressure) / 1e5,
         "piston_force_peak_N": float(np.max(np.abs(st["F"]))),
         "indicated_work_J": work,
         "mean_torque_Nm": work / period,
@@ -372,7 +373,7 @@ def machine_params(params: ec.EccentricCam, machine: dict) -> op.OpposedPiston:
     """The reactor on the drive ``params`` from the machine section (SI, defaults filled);
     errors name the config keys."""
     keys = ("device_length", "bore", "fluid", "initial_pressure", "polytropic_exponent",
-            "bulk_modulus")  # fmt: skip
+            "bulk_modulus", "back_pressure")  # fmt: skip
     return build_params(
         lambda **kw: opposed_piston(params, **kw), "machine", {k: machine[k] for k in keys}
     )

@@ -45,7 +45,8 @@ from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 from rotorkin.vane import RotaryLaw
 
-__all__ = ["evaluate", "drive_params", "pump_params", "pump_state", "pair_forces", "HEADLINE"]
+__all__ = ["evaluate", "drive_params", "pump_params", "gap_params", "pump_state", "pair_forces",
+           "HEADLINE"]  # fmt: skip
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {
@@ -60,6 +61,8 @@ HEADLINE = {
     "displacement_cm3_per_rev": "volume delivered per input-shaft turn",
     "flow_mean_l_per_min": "mean delivered flow at the run speed",
     "flow_ripple": "(max - min) / mean of the delivered flow",
+    "flow_delivered_mean_l_per_min": "mean flow less leakage and compression loss",
+    "volumetric_efficiency": "delivered over geometric mean flow",
     "mean_torque_Nm": "ideal ports: mean torque on the shaft (- : the motor drives)",
     "torque_ripple": "ideal ports: (max - min) / |mean| of the shaft torque",
     "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
@@ -152,6 +155,9 @@ _PUMP_DOCS = {
     "chamber_b_pressure_bar": "Pressure in a chamber B, ideal ports.",
     "flow_l_per_min": "Delivered flow, sum over the shrinking chambers of -dV/dt at the shaft "
     "speed.",
+    "leakage_l_per_min": "Laminar leakage through the clearances of all vanes, "
+    "2 Z (G_tip + G_side + G_hub) (p_d - p_s) (docs/machines/vane_pump.md).",
+    "flow_delivered_l_per_min": "flow_l_per_min less leakage_l_per_min.",
     "impeller1_torque_Nm": "Torque of the chamber pressures on impeller 1, sum p_j dV_j/dq_1, "
     "positive in its sense of rotation.",
     "impeller2_torque_Nm": "Torque of the chamber pressures on impeller 2, sum p_j dV_j/dq_2.",
@@ -237,7 +243,33 @@ def pump_state(
     }
 
 
-def _pump_summary(drive, pump, ports, inertia, speed, coefficient) -> dict:
+def gap_params(machine: dict, loads: dict) -> vp.Gaps:
+    """The vane clearances (machine section) and the fluid (loads section), SI."""
+    values = {k: machine[k] for k in vp.GAP_FIELDS[:3]}
+    values |= {k: loads[k] for k in vp.GAP_FIELDS[3:]}
+    aliases = {k: f"loads.{k}" for k in vp.GAP_FIELDS[3:]}
+    return build_params(vp.Gaps, "machine", values, aliases)
+
+
+def _loss_summary(pump, ports, gaps, flow_mean, t_period) -> dict:
+    """Leakage, compression loss, delivered flow and volumetric efficiency (mean over time)."""
+    leak = vp.leakage_flow(pump, gaps, ports)
+    compression = vp.compression_loss(pump, gaps, ports) / t_period
+    delivered = flow_mean - leak["total"] - compression
+    dp = float(ports.discharge_pressure) - float(ports.suction_pressure)
+    return {
+        "leakage_l_per_min": leak["total"] * _M3_TO_L_PER_MIN,
+        "leakage_tip_l_per_min": leak["tip"] * _M3_TO_L_PER_MIN,
+        "leakage_side_l_per_min": leak["side"] * _M3_TO_L_PER_MIN,
+        "leakage_hub_l_per_min": leak["hub"] * _M3_TO_L_PER_MIN,
+        "compression_loss_l_per_min": compression * _M3_TO_L_PER_MIN,
+        "flow_delivered_mean_l_per_min": delivered * _M3_TO_L_PER_MIN,
+        "volumetric_efficiency": delivered / flow_mean if flow_mean > 0.0 else float("nan"),
+        "hydraulic_power_delivered_W": dp * delivered,
+    }
+
+
+def _pump_summary(drive, pump, ports, inertia, speed, coefficient, gaps=None) -> dict:
     period = gb.period(drive)
     fine = np.linspace(0.0, period, _PEAK_SAMPLES)
     st = pump_state(drive, pump, ports, inertia, speed, fine)
@@ -259,6 +291,7 @@ def _pump_summary(drive, pump, ports, inertia, speed, coefficient) -> dict:
         "flow_max_l_per_min": float(np.max(st["flow"])) * _M3_TO_L_PER_MIN,
         "flow_min_l_per_min": float(np.min(st["flow"])) * _M3_TO_L_PER_MIN,
         "flow_ripple": vp.flow_ripple(st["flow"], dt),
+        **_loss_summary(pump, ports, gaps or vp.Gaps(), flow_mean, t_period),
         **closed_forms.work_summary(drive, pump, ports, flow_mean),
         "shaft_torque_min_Nm": float(np.min(st["shaft"])),
         "shaft_torque_max_Nm": float(np.max(st["shaft"])),
@@ -279,14 +312,17 @@ def _pump_summary(drive, pump, ports, inertia, speed, coefficient) -> dict:
     return out
 
 
-def _pump_columns(drive, pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
+def _pump_columns(drive, pump, ports, inertia, speed, theta, gaps=None) -> tuple[dict, dict]:
     st = pump_state(drive, pump, ports, inertia, speed, theta)
+    leak = vp.leakage_flow(pump, gaps or vp.Gaps(), ports)["total"]
     cols = {}
     for j, tag in ((0, "a"), (1, "b")):
         cols[f"chamber_{tag}_volume_cm3"] = st["V"][j] * 1e6
         cols[f"chamber_{tag}_dvolume_cm3_per_rad"] = st["dV"][j] * 1e6
         cols[f"chamber_{tag}_pressure_bar"] = st["p"][j] / 1e5
     cols["flow_l_per_min"] = st["flow"] * _M3_TO_L_PER_MIN
+    cols["leakage_l_per_min"] = np.full(np.shape(st["flow"]), leak * _M3_TO_L_PER_MIN)
+    cols["flow_delivered_l_per_min"] = (st["flow"] - leak) * _M3_TO_L_PER_MIN
     cols["impeller1_torque_Nm"] = st["M"][0]
     cols["impeller2_torque_Nm"] = st["M"][1]
     cols["shaft_torque_Nm"] = st["shaft"]
@@ -410,15 +446,15 @@ def evaluate(cfg: dict) -> StudyResult:
             "discharge_pressure": loads["discharge_pressure"],
         },
     )
+    gaps = gap_params(machine, loads)
     inertia = _inertias(machine)
     speed = run["speed"]
     summary = _summary(params, m7, m8)
-    summary.update(
-        _pump_summary(params, pump, ports, inertia, speed, float(machine["speed_fluctuation"]))
-    )
+    summary.update(_pump_summary(params, pump, ports, inertia, speed,
+                                 float(machine["speed_fluctuation"]), gaps))  # fmt: skip
     columns = _columns(params, m7, m8, run["points"])
     theta = angle_grid(gb.period(params), run["points"])
-    pump_cols, pump_docs = _pump_columns(params, pump, ports, inertia, speed, theta)
+    pump_cols, pump_docs = _pump_columns(params, pump, ports, inertia, speed, theta, gaps)
     columns.update(pump_cols)
     summary.update(_forces_summary(cfg, params, pump, ports, inertia, speed,
                                    summary["indicated_work_J"]))  # fmt: skip
