@@ -313,6 +313,7 @@ def _empty(spec: SweepSpec) -> dict:
     flat = {
         "metrics": {m: np.full(spec.size, np.nan) for m in spec.metrics},
         "reason": np.zeros(spec.size, dtype=np.int16),
+        "violations": np.zeros(spec.size, dtype=np.int16),
         "count": np.zeros(spec.size, dtype=np.int8),
     }
     if spec.keep_curves:
@@ -327,6 +328,8 @@ def _place(flat: dict, res: dict) -> None:
     for m, values in res["metrics"].items():
         flat["metrics"][m][idx] = values
     flat["reason"][idx] = res["reason"]
+    if "violations" in res:
+        flat["violations"][idx] = res["violations"]
     flat["count"][idx] += 1
     if "curves" in res:
         for c, values in res["curves"].items():
