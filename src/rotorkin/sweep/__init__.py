@@ -149,8 +149,9 @@ def _chunk_size(n_metrics: int, curves: int, points: int, size: int, budget: int
 
 
 def result_bytes(size: int, n_metrics: int, n_curves: int = 0, points: int = 0) -> int:
-    """Estimated memory of a sweep's result [bytes]: float64 metrics and curves, the reasons."""
-    return size * (8 * n_metrics + 2 + 8 * n_curves * points) + (8 * points if n_curves else 0)
+    """Estimated memory of a sweep's result [bytes]: float64 metrics and curves, the reasons
+    and violations (int16)."""
+    return size * (8 * n_metrics + 4 + 8 * n_curves * points) + (8 * points if n_curves else 0)
 
 
 def _check_size(varies, size: int, n_metrics: int, n_curves: int, points: int) -> None:
