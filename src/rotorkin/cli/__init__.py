@@ -34,6 +34,7 @@ from rotorkin.drives import REGISTRY, evaluate
 from rotorkin.io.config import example_names, example_path, glossary, load_config, read_toml
 from rotorkin.io.output import check_out, write_outputs
 from rotorkin.report.html import write_report
+from rotorkin.studies.limits import refuse
 
 app = typer.Typer(
     name="rotorkin",
@@ -74,6 +75,12 @@ def run(
     report: Annotated[
         bool, typer.Option("--report", help="Also write report.html (interactive, offline).")
     ] = False,
+    strict: Annotated[
+        bool,
+        typer.Option(
+            "--strict", help="Refuse a design past a plausibility limit ([limits]), exit 2."
+        ),
+    ] = False,
 ):
     """Evaluate a drive over one period; write summary.json, motion.csv and figures."""
 
@@ -81,6 +88,8 @@ def run(
     outdir = out if out is not None else Path("rotorkin-out") / name
     check_out(outdir)  # before any work
     result = evaluate(cfg)
+    if strict:
+        refuse(result)  # before anything is written
     meta = {"name": name, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
     written = write_outputs(result, outdir, raw, meta)
     if report:

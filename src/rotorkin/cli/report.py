@@ -7,6 +7,7 @@ writes the same page next to the other outputs.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Annotated
 
 import typer
 
@@ -16,6 +17,7 @@ from rotorkin.core.errors import ConfigError
 from rotorkin.drives import evaluate
 from rotorkin.io.config import load_config
 from rotorkin.report.html import write_report
+from rotorkin.studies.limits import refuse
 
 
 def register(app) -> None:
@@ -27,6 +29,12 @@ def register(app) -> None:
         example: ExampleOpt = None,
         set_: SetOpt = None,
         out: out_option("./rotorkin-out/<name>") = None,
+        strict: Annotated[
+            bool,
+            typer.Option(
+                "--strict", help="Refuse a design past a plausibility limit ([limits]), exit 2."
+            ),
+        ] = False,
     ):
         """Write report.html: summary vs the paper, checks, animated mechanism, plots (offline)."""
 
@@ -37,6 +45,8 @@ def register(app) -> None:
                 f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder"
             )
         result = evaluate(cfg)
+        if strict:
+            refuse(result)  # before anything is written
         meta = {"name": name, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
         path = write_report(result, cfg, raw, meta, outdir / "report.html")
         typer.echo(str(path))

@@ -37,6 +37,7 @@ __all__ = [
     "ExportSection",
     "InertialSection",
     "ContactSection",
+    "LimitsSection",
     "validate_model",
 ]
 
@@ -192,6 +193,37 @@ class ContactSection(Section):
         0.9, ge=0.0, le=1.0,
         description="mechanical efficiency below which the report flags the drive (0 <= eta <= 1)",
     )  # fmt: skip
+
+
+class LimitsSection(Section):
+    """Plausibility limits: a design past one is admissible but its numbers are not believable.
+
+    ``rotorkin run`` warns in one line per limit passed (``--strict`` refuses the design);
+    a sweep marks such designs in its ``violations`` variable. The contact pressure's
+    limit is ``contact.allowable_stress``.
+    """
+
+    peak_pressure: Pressure = Field(
+        "250 bar",
+        gt=0.0,
+        le=1e9,
+        description="highest plausible chamber (gas or fluid) pressure; above it the cycle's "
+        "numbers are not believable for these machines (0 < p <= 10000 bar)",
+    )
+    peak_temperature: Temperature = Field(
+        "3000 K",
+        gt=0.0,
+        le=1e5,
+        description="highest plausible gas temperature, about the adiabatic flame temperature "
+        "of fuels in air (0 K < T <= 100000 K)",
+    )
+    pressure_angle: Angle = Field(
+        "60 deg",
+        gt=0.0,
+        lt=1.5707963267948966,
+        description="largest plausible cam, groove or mesh pressure angle; past it the drive "
+        "jams or wears rather than drives (0 deg < angle < 90 deg)",
+    )
 
 
 class InertialSection(Section):

@@ -27,6 +27,7 @@ from rotorkin.drives import (
     wobble_cam,
 )
 from rotorkin.drives._spec import DriveSpec
+from rotorkin.studies.limits import violations
 from rotorkin.synthesis import SynthesisResult
 from rotorkin.vane import MACHINES
 from rotorkin.vane import evaluate as evaluate_vane_machine
@@ -206,15 +207,10 @@ def evaluate(cfg: dict):
         extra = {k: v for k, v in CONTACT_HEADLINE.items()
                  if k in result.summary and k not in result.headline}  # fmt: skip
         result.headline = {**result.headline, **extra}
-    sf = result.summary.get("contact_safety_factor")
-    if isinstance(sf, float) and sf < 1.0:
-        where = result.summary.get("peak_contact_stress_pair", "a contact")
-        peak = result.summary.get("peak_contact_stress_MPa", float("nan"))
-        allowable = (cfg.get("contact") or {}).get("allowable_stress", 1.5e9) / 1e6
-        line = (f"{where} reaches a contact pressure of {peak:.0f} MPa, above "
-                f"contact.allowable_stress = {allowable:.0f} MPa (safety factor {sf:.2f}): the "
-                "parts would not hold at this speed and load")  # fmt: skip
-        result.warnings = (*result.warnings, line)
+    lines = violations(result.summary, cfg, result.columns)
+    # plausibility limits passed (rotorkin.studies.limits): one warning line each
+    result.summary["violations"] = [line.split(":", 1)[0] for line in lines]
+    result.warnings = (*result.warnings, *lines)
     return result
 
 

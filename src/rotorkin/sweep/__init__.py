@@ -149,8 +149,9 @@ def _chunk_size(n_metrics: int, curves: int, points: int, size: int, budget: int
 
 
 def result_bytes(size: int, n_metrics: int, n_curves: int = 0, points: int = 0) -> int:
-    """Estimated memory of a sweep's result [bytes]: float64 metrics and curves, the reasons."""
-    return size * (8 * n_metrics + 2 + 8 * n_curves * points) + (8 * points if n_curves else 0)
+    """Estimated memory of a sweep's result [bytes]: float64 metrics and curves, the reasons
+    and violations (int16)."""
+    return size * (8 * n_metrics + 4 + 8 * n_curves * points) + (8 * points if n_curves else 0)
 
 
 def _check_size(varies, size: int, n_metrics: int, n_curves: int, points: int) -> None:
@@ -313,6 +314,7 @@ def _empty(spec: SweepSpec) -> dict:
     flat = {
         "metrics": {m: np.full(spec.size, np.nan) for m in spec.metrics},
         "reason": np.zeros(spec.size, dtype=np.int16),
+        "violations": np.zeros(spec.size, dtype=np.int16),
         "count": np.zeros(spec.size, dtype=np.int8),
     }
     if spec.keep_curves:
@@ -327,6 +329,8 @@ def _place(flat: dict, res: dict) -> None:
     for m, values in res["metrics"].items():
         flat["metrics"][m][idx] = values
     flat["reason"][idx] = res["reason"]
+    if "violations" in res:
+        flat["violations"][idx] = res["violations"]
     flat["count"][idx] += 1
     if "curves" in res:
         for c, values in res["curves"].items():

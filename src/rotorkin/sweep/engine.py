@@ -20,6 +20,7 @@ from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, sample_grid
 from rotorkin.core.errors import ParameterError, RotorkinError, shown
 from rotorkin.core.units import metric_units
 from rotorkin.io.config import glossary
+from rotorkin.studies import limits
 from rotorkin.sweep.spec import display
 
 __all__ = [
@@ -246,11 +247,16 @@ def evaluate_designs(p: Designs, metrics, samples: int = DEFAULT_SAMPLES, thread
                 curve_out[c][ok] = cv[c]
     else:
         reason = np.zeros(n, dtype=np.int16)
+    # plausibility limits: from the metrics at hand (every design), or from the whole
+    # summary of the scalar study (the designs that went through it)
+    flags = limits.violation_codes(out, p.cfg, n, {k: v for k, v in p.table.items()
+                                                   if k in limits.LIMITS})  # fmt: skip
     if slow or not kernel_ok:
         scalar_curves = curve_out if curves and not kernel_ok else None
         for i in np.flatnonzero(reason == 0):
-            _fallback(p, int(i), slow, out, reason, code, scalar_curves)
-    result = {"metrics": out, "reason": reason}
+            _fallback(p, int(i), slow, out, reason, code, scalar_curves, flags)
+    flags[reason != 0] = 0
+    result = {"metrics": out, "reason": reason, "violations": flags}
     if curves:
         period = np.asarray(kern.period(p), dtype=float)
         result["curves"] = curve_out
@@ -258,7 +264,7 @@ def evaluate_designs(p: Designs, metrics, samples: int = DEFAULT_SAMPLES, thread
     return result
 
 
-def _fallback(p, i, names, out, reason, code, curve_out) -> None:
+def _fallback(p, i, names, out, reason, code, curve_out, flags=None) -> None:
     """One design through :func:`rotorkin.drives.evaluate` (the scalar study)."""
 
     try:
@@ -274,6 +280,9 @@ def _fallback(p, i, names, out, reason, code, curve_out) -> None:
     for m in names:
         value = res.summary.get(m, np.nan)
         out[m][i] = float(value) if isinstance(value, (int, float, np.number)) else np.nan
+    if flags is not None:
+        for key in res.summary.get("violations", ()):
+            flags[i] |= limits.BITS.get(key, 0)
     if curve_out:
         for c in curve_out:
             curve_out[c][i] = res.columns[c]
@@ -331,6 +340,18 @@ def to_dataset(spec: SweepSpec, flat: dict):
                      "range it violates (flag_meanings); its metrics are NaN",
         "flag_values": np.arange(len(reasons), dtype=np.int16),
         "flag_meanings": " ".join(reasons)})  # fmt: skip
+    violations = flat.get("violations")
+    if violations is None:
+        violations = np.zeros(spec.size, dtype=np.int16)
+    data["violations"] = xr.Variable(dims, violations.reshape(shape).astype(np.int16), attrs={
+        "long_name": "plausibility limits the design passes: a bit mask, 0 none (flag_masks, "
+                     "flag_meanings: the config keys of the limits)",
+        "flag_masks": np.array(list(limits.BITS.values()), dtype=np.int16),
+        "flag_meanings": " ".join(limits.BITS),
+        "comment": "checked on the swept metrics that measure a limit (peak_pressure_bar, "
+                   "pressure_max_bar, *pressure_angle*max_deg, *contact_stress*_MPa, "
+                   "*temperature*_K); a design evaluated by the scalar study is checked on its "
+                   "whole summary and motion"})  # fmt: skip
     if spec.keep_curves:
         angle_name, angle_doc = kern.ANGLE
         angle = np.degrees(np.asarray(flat["angle"], dtype=float))
@@ -354,6 +375,7 @@ def to_dataset(spec: SweepSpec, flat: dict):
         "rotorkin_version": __version__,
         "designs": spec.size,
         "inadmissible_designs": inadmissible,
+        "implausible_designs": int(np.count_nonzero(violations)),
         "samples_per_period": spec.samples,
         "spec": json.dumps(spec.manifest(), sort_keys=True),
         "conventions": "coordinates in the units of their 'units' attribute; metrics are the "

@@ -4,7 +4,7 @@ Layout of a sweep folder ``DIR``::
 
     DIR/sweep.nc                          the assembled result (written last, atomically)
     DIR/.chunks/HASH/manifest.json        the sweep's spec and its hash (HASH: its first 16)
-    DIR/.chunks/HASH/chunk_000017.nc      chunk 17: its designs' metrics and reasons
+    DIR/.chunks/HASH/chunk_000017.nc      chunk 17: its designs' metrics, reasons, violations
 
 A chunk file is written under a temporary name and renamed (``os.replace``)
 when complete, so a chunk file that exists is complete: a sweep killed at any
@@ -130,6 +130,8 @@ class ChunkStore:
             v[:] = np.asarray(res["design"], dtype=np.int32)
             v = f.createVariable("reason", "h", ("design",))
             v[:] = np.asarray(res["reason"], dtype=np.int16)
+            v = f.createVariable("violations", "h", ("design",))
+            v[:] = np.asarray(res.get("violations", np.zeros(n)), dtype=np.int16)
             for name, values in res["metrics"].items():
                 f.createVariable(f"m:{name}", "d", ("design",))[:] = values
             if "curves" in res:
@@ -153,6 +155,9 @@ class ChunkStore:
                 "stop": int(f.stop),
                 "design": np.array(var["design"][:], dtype=np.int64),
                 "reason": np.array(var["reason"][:], dtype=np.int16),
+                "violations": np.array(var["violations"][:], dtype=np.int16)
+                if "violations" in var
+                else np.zeros(int(f.stop) - int(f.start), dtype=np.int16),
                 "metrics": {k[2:]: np.array(v[:]) for k, v in var.items() if k.startswith("m:")},
             }
             if "angle" in var:

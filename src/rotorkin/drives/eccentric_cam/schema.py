@@ -20,6 +20,7 @@ from rotorkin.core.schema import (
     Inertia,
     InertialSection,
     Length,
+    LimitsSection,
     Mass,
     Modulus,
     Pressure,
@@ -157,5 +158,6 @@ class EccentricConfig(Section):
     loads: EmptySection = Field(default_factory=EmptySection)
     cam: DiscCamSection = Field(default_factory=DiscCamSection)
     contact: ContactSection = Field(default_factory=ContactSection)
+    limits: LimitsSection = Field(default_factory=LimitsSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: Run = Field(default_factory=Run)

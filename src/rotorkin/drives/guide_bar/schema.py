@@ -16,6 +16,7 @@ from rotorkin.core.schema import (
     ExportSection,
     Inertia,
     Length,
+    LimitsSection,
     RunSection,
     Section,
     Speed,
@@ -150,5 +151,6 @@ class GuideBarConfig(Section):
     machine: VanePumpMachine = Field(default_factory=VanePumpMachine)
     loads: GuideBarLoads = Field(default_factory=GuideBarLoads)
     contact: ContactSection = Field(default_factory=ContactSection)
+    limits: LimitsSection = Field(default_factory=LimitsSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: Run = Field(default_factory=Run)

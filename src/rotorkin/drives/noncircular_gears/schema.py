@@ -7,7 +7,15 @@ from typing import Literal
 from pydantic import Field
 
 from rotorkin.core.bounds import LENGTH_MAX
-from rotorkin.core.schema import Angle, ContactSection, ExportSection, Length, RunSection, Section
+from rotorkin.core.schema import (
+    Angle,
+    ContactSection,
+    ExportSection,
+    Length,
+    LimitsSection,
+    RunSection,
+    Section,
+)
 from rotorkin.machines.schema import EngineLoads, TwinRotorMachine
 
 
@@ -65,5 +73,6 @@ class NoncircularConfig(Section):
     machine: TwinRotorMachine = Field(default_factory=TwinRotorMachine)
     loads: EngineLoads = Field(default_factory=EngineLoads)
     contact: ContactSection = Field(default_factory=ContactSection)
+    limits: LimitsSection = Field(default_factory=LimitsSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: RunSection = Field(default_factory=RunSection)

@@ -15,6 +15,7 @@ from rotorkin.core.schema import (
     ContactSection,
     ExportSection,
     Length,
+    LimitsSection,
     RunSection,
     Section,
     Speed,
@@ -108,5 +109,6 @@ class RhomboidConfig(Section):
     loads: RhomboidLoads = Field(default_factory=RhomboidLoads)
     cam: PlanarCamSection = Field(default_factory=PlanarCamSection)
     contact: ContactSection = Field(default_factory=ContactSection)
+    limits: LimitsSection = Field(default_factory=LimitsSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: Run = Field(default_factory=Run)

@@ -7,7 +7,14 @@ from typing import Annotated, Literal
 from pydantic import Field, model_validator
 from pydantic_core import PydanticCustomError
 
-from rotorkin.core.schema import Angle, ContactSection, ExportSection, RunSection, Section
+from rotorkin.core.schema import (
+    Angle,
+    ContactSection,
+    ExportSection,
+    LimitsSection,
+    RunSection,
+    Section,
+)
 from rotorkin.machines.schema import EngineLoads, TwinRotorMachine
 
 #: Most harmonics of a Fourier law or of a table's fit.
@@ -101,5 +108,6 @@ class TabulatedConfig(Section):
     machine: TwinRotorMachine = Field(default_factory=TwinRotorMachine)
     loads: EngineLoads = Field(default_factory=EngineLoads)
     contact: ContactSection = Field(default_factory=ContactSection)
+    limits: LimitsSection = Field(default_factory=LimitsSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: RunSection = Field(default_factory=RunSection)

@@ -14,6 +14,7 @@ from rotorkin.core.schema import (
     ExportSection,
     Inertia,
     Length,
+    LimitsSection,
     RunSection,
     Section,
 )
@@ -208,5 +209,6 @@ class WobbleConfig(Section):
     loads: EngineLoads = Field(default_factory=EngineLoads)
     cam: WobbleCamSection = Field(default_factory=WobbleCamSection)
     contact: ContactSection = Field(default_factory=ContactSection)
+    limits: LimitsSection = Field(default_factory=LimitsSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: RunSection = Field(default_factory=RunSection)  # 3000 rpm
