@@ -209,7 +209,8 @@ def evaluate(cfg: dict):
         result.headline = {**result.headline, **extra}
     lines = violations(result.summary, cfg, result.columns)
     # plausibility limits passed (rotorkin.studies.limits): one warning line each
-    result.summary["violations"] = [line.split(":", 1)[0] for line in lines]
+    # the limits passed, comma-separated ("" when none): a summary value stays a plain string
+    result.summary["violations"] = ", ".join(line.split(":", 1)[0] for line in lines)
     result.warnings = (*result.warnings, *lines)
     return result
 

@@ -174,10 +174,10 @@ class VanePumpSection(InertialSection):
     )
     vane_angle: Angle | None = Field(
         None,
-        gt=0.0,
+        ge=0.0017453292519943296,
         lt=3.141592653589793,
         description="angular width of a vane; default: the widest that fits the drive's swing "
-        "(0 deg < vane_angle < 180 deg, and Z (2 vane_angle + swing) <= 360 deg)",
+        "(0.1 deg <= vane_angle < 180 deg, and Z (2 vane_angle + swing) <= 360 deg)",
     )
     hub_radius: Length = Field(
         "30 mm",

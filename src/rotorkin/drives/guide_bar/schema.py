@@ -131,10 +131,10 @@ class VanePumpMachine(VanePumpSection):
     )
     vane_angle: Angle | None = Field(
         None,
-        gt=0.0,
+        ge=0.0017453292519943296,
         lt=3.141592653589793,
         description="angular width of a vane; default: the drive's gamma_0 "
-        "(0 deg < vane_angle < 180 deg, and Z (2 vane_angle + swing) <= 360 deg)",
+        "(0.1 deg <= vane_angle < 180 deg, and Z (2 vane_angle + swing) <= 360 deg)",
     )
 
 
