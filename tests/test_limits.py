@@ -56,7 +56,7 @@ def test_past_a_limit_warns_in_one_line(capsys, tmp_path, example, sets, key):
     assert len(lines) == 1, err
     assert " is above " in lines[0]
     summary = json.loads((out / "summary.json").read_text())
-    assert key in summary["violations"]
+    assert key in summary["limits_passed"]
 
 
 @pytest.mark.parametrize(("example", "sets", "key"), PAST)
@@ -77,17 +77,17 @@ def test_strict_passes_a_plausible_design(capsys, tmp_path):
     out = tmp_path / "out"
     assert main(["run", "-e", "elliptic-gear-engine", "-q", "-o", str(out), "--strict"]) == 0
     assert "summary.json" in _files(out)
-    assert json.loads((out / "summary.json").read_text())["violations"] == ""
+    assert json.loads((out / "summary.json").read_text())["limits_passed"] == ""
 
 
 @pytest.mark.parametrize("example", sorted(example_names()))
 def test_examples_flag_only_what_is_past_a_limit(example):
     cfg = load_config(None, example, ["run.points=145"])[0]
     result = drives.evaluate(cfg)
-    assert result.summary["violations"] == ", ".join(EXPECTED.get(example, []))
+    assert result.summary["limits_passed"] == ", ".join(EXPECTED.get(example, []))
     # the contact stress is said once, as a limit
     said = [w for w in result.warnings if "contact pressure" in w or "allowable" in w]
-    assert len(said) == len([k for k in result.summary["violations"].split(", ") if k])
+    assert len(said) == len([k for k in result.summary["limits_passed"].split(", ") if k])
 
 
 def test_every_drive_has_the_limits_section():

@@ -210,7 +210,7 @@ def evaluate(cfg: dict):
     lines = violations(result.summary, cfg, result.columns)
     # plausibility limits passed (rotorkin.studies.limits): one warning line each
     # the limits passed, comma-separated ("" when none): a summary value stays a plain string
-    result.summary["violations"] = ", ".join(line.split(":", 1)[0] for line in lines)
+    result.summary["limits_passed"] = ", ".join(line.split(":", 1)[0] for line in lines)
     result.warnings = (*result.warnings, *lines)
     return result
 

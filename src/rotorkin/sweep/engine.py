@@ -281,7 +281,7 @@ def _fallback(p, i, names, out, reason, code, curve_out, flags=None) -> None:
         value = res.summary.get(m, np.nan)
         out[m][i] = float(value) if isinstance(value, (int, float, np.number)) else np.nan
     if flags is not None:
-        for key in filter(None, res.summary.get("violations", "").split(", ")):
+        for key in filter(None, res.summary.get("limits_passed", "").split(", ")):
             flags[i] |= limits.BITS.get(key, 0)
     if curve_out:
         for c in curve_out:
