@@ -60,7 +60,8 @@ def machine_type(name: str):
         name,
         description="the machine the drive moves: "
         + ", ".join(VANE_MACHINES)
-        + " (any rotary drive carries any of them), or opposed_piston on the eccentric discs",
+        + " (any drive that turns two coaxial members carries any of them); a drive of "
+        "pistons carries its own machine (opposed_piston)",
     )
 
 

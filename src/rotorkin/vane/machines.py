@@ -5,9 +5,9 @@ Each machine is built from the ``[machine]`` and ``[loads]`` sections
 *mounts* its vanes on member 2 so that at mid-swing of the relative angle its two
 chamber kinds are alike (a twin-rotor engine's rails 90 deg apart, a pump's vanes
 ``pi/Z`` apart, a blade pair ``pi/B`` from the other): both kinds then reach the
-same smallest volume, the best a designer can do with a given swing. The papers'
-drives are already mounted that way (wobble cam at a roller axis angle of 90 deg,
-rhomboid cam, guide bars), so on them the numbers are the papers' machines'.
+same smallest volume, the best a designer can do with a given swing. A drive whose
+relative angle already swings about that middle keeps its own mounting (a shift of
+0): its machine's numbers are then those of its own study.
 
 Compatibility: what cannot fit is refused in one line naming the machine key:
 pistons, vanes or blades that would collide over the drive's swing, or a

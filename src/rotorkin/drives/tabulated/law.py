@@ -56,8 +56,8 @@ noise on measured data); and twice the change of ``J`` when estimated from every
 second sample (a kink's jump does not depend on the step, while the estimate's
 error for a smooth feature too narrow for the window grows eight-fold). Smooth
 periodic tables pass, coarse ones (8 rows) too, and narrow peaks at the ends as
-long as a peak spans a few steps; so do the wobble-cam rotors at any tilt (slope
-jump about 4e-5 of the largest slope at 721 rows) and noisy measurements. A kink
+long as a peak spans a few steps; so does a cam drive's rotor table at 721 rows
+(its slope jump about 4e-5 of the largest slope) and noisy measurements. A kink
 of 2 % of the largest slope at the ends is refused once every second sample
 still resolves the motion (from 121 rows for a law of 7 harmonics), unless noise
 hides it.
