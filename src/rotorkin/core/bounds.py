@@ -18,6 +18,7 @@ __all__ = [
     "TEMPERATURE_MAX",
     "SPEED_FLUCTUATION_MIN",
     "speed_fluctuation",
+    "gear_pressure_angle",
 ]
 
 #: Largest inertia of any member [kg*m^2] (a ship engine's flywheel is about 1e4).
@@ -43,4 +44,14 @@ def speed_fluctuation():
         ge=SPEED_FLUCTUATION_MIN,
         lt=1.0,
         description="wanted coefficient of speed fluctuation, for the flywheel (0.0001 <= C_s < 1)",
+    )
+
+
+def gear_pressure_angle(what: str = "pressure angle of the gear teeth"):
+    """A fresh gear pressure-angle field: 20 deg, ``10 deg <= alpha <= 35 deg``."""
+    return Field(
+        "20 deg",
+        ge=0.17453292519943295,
+        le=0.6108652381980153,
+        description=f"{what} (10 deg <= pressure_angle <= 35 deg)",
     )

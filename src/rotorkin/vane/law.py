@@ -166,9 +166,9 @@ def stroke_counter(law: RotaryLaw, theta, points=None):
     if n == 0:
         raise ParameterError("drive", "a drive without relative motion",
                              "a drive that swings the members against each other")  # fmt: skip
-    q = law.motion(points).q
-    r = q[1] - q[0]
-    d2 = law.motion(points).d2q
+    at = law.motion(points)
+    r = at.q[1] - at.q[0]
+    d2 = at.d2q
     is_max = (d2[1] - d2[0]) < 0
     if not np.any(is_max):
         is_max = r >= np.max(r)

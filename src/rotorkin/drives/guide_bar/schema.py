@@ -9,6 +9,7 @@ from pydantic import Field
 from rotorkin.core.bounds import (
     INERTIA_MAX,
     TORQUE_MAX,
+    gear_pressure_angle,
 )
 from rotorkin.core.schema import (
     Angle,
@@ -35,6 +36,7 @@ DRIVE_LENGTH_MIN, DRIVE_LENGTH_MAX = 1e-3, 1.0
 #: Admissible gear face width [m].
 FACE_WIDTH_MIN, FACE_WIDTH_MAX = 1e-3, 0.5
 #: Admissible pressure angle [rad]: 10 deg to 35 deg (involute spur gears; standard 20 deg).
+#: The gears' pressure angle range [rad] (:func:`rotorkin.core.bounds.gear_pressure_angle`).
 PRESSURE_ANGLE_MIN, PRESSURE_ANGLE_MAX = 0.17453292519943295, 0.6108652381980153
 
 
@@ -98,13 +100,7 @@ class GuideBarDrive(Section):
         description="face width of every gear, for the Hertz pressure of the meshes "
         "(1 mm <= b <= 500 mm)",
     )
-    pressure_angle: Angle = Field(
-        "20 deg",
-        ge=PRESSURE_ANGLE_MIN,
-        le=PRESSURE_ANGLE_MAX,
-        description="pressure angle alpha of the involute spur gears "
-        "(10 deg <= pressure_angle <= 35 deg)",
-    )
+    pressure_angle: Angle = gear_pressure_angle("pressure angle alpha of the involute spur gears")
 
 
 class GuideBarLoads(PumpPorts):

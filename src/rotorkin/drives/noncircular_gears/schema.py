@@ -6,7 +6,7 @@ from typing import Literal
 
 from pydantic import Field
 
-from rotorkin.core.bounds import LENGTH_MAX
+from rotorkin.core.bounds import LENGTH_MAX, gear_pressure_angle
 from rotorkin.core.schema import (
     Angle,
     ContactSection,
@@ -51,12 +51,8 @@ class NoncircularDrive(Section):
         description="angle between the two driving gears on the shaft (-360 deg <= phase <= "
         "360 deg); default 180 deg / n (the two speed ratios in antiphase: the largest swing)",
     )
-    pressure_angle: Angle = Field(
-        "20 deg",
-        ge=0.17453292519943295,
-        le=0.6108652381980153,
-        description="pressure angle of the gear-cutting tool (10 deg <= alpha_0 <= 35 deg); "
-        "the pitch curves' inclination adds to it",
+    pressure_angle: Angle = gear_pressure_angle(
+        "pressure angle of the gear-cutting tool; the pitch curves' inclination adds to it"
     )
     face_width: Length = Field(
         "20 mm",

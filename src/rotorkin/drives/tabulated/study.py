@@ -29,11 +29,21 @@ HEADLINE = {
 }
 
 
-def fourier_law(cfg: dict) -> tl.FourierLaw:
-    """The drive's :class:`~rotorkin.drives.tabulated.law.FourierLaw` (table fitted, or given)."""
+def _table(cfg: dict):
+    """The table's rows ``(theta, q1, q2)`` [rad], or None for a Fourier law."""
+    d = cfg["drive"]
+    return tl.read_table(d["table"], d.get("columns")) if d.get("table") is not None else None
+
+
+def fourier_law(cfg: dict, table=None) -> tl.FourierLaw:
+    """The drive's :class:`~rotorkin.drives.tabulated.law.FourierLaw` (table fitted, or given).
+
+    ``table``: the rows already read (:func:`_table`), so that a study reads the file once.
+    """
     d = cfg["drive"]
     if d.get("table") is not None:
-        return tl.from_csv(d["table"], d.get("columns"), d.get("harmonics"))
+        rows = _table(cfg) if table is None else table
+        return tl.from_table(*rows, d.get("harmonics"))
     coefficients = []
     for a, b in (("a1", "b1"), ("a2", "b2")):  # a missing sine or cosine term is 0
         ca, cb = list(d.get(a, [])), list(d.get(b, []))
@@ -53,17 +63,16 @@ def law(cfg: dict) -> RotaryLaw:
     return RotaryLaw(functools.partial(tl.motion, fl, members=_members(cfg)), fl.period)
 
 
-def _summary(cfg: dict, fl: tl.FourierLaw) -> dict:
+def _summary(cfg: dict, fl: tl.FourierLaw, table) -> dict:
     out = {
         "law_harmonics": int(fl.harmonics),
         "law_period_deg": float(np.degrees(fl.period)),
         "member1_mean_ratio": float(fl.mean_ratio[0]),
         "member2_mean_ratio": float(fl.mean_ratio[1]),
     }
-    d = cfg["drive"]
-    if d.get("table") is not None:
-        theta, q1, q2 = tl.read_table(d["table"], d.get("columns"))
-        err = tl.fit_error(theta, q1, q2, d.get("harmonics"))
+    if table is not None:
+        theta, q1, q2 = table
+        err = tl.fit_error(theta, q1, q2, cfg["drive"].get("harmonics"))
         out["table_rows"] = int(np.size(theta))
         out["fit_error_q_deg"] = float(np.degrees(np.max(err.q)))
         out["fit_error_dq"] = float(np.max(err.dq))
@@ -75,7 +84,8 @@ def _summary(cfg: dict, fl: tl.FourierLaw) -> dict:
 
 def evaluate(cfg: dict) -> StudyResult:
     """Run ``machine.type`` on the tabulated drive of ``cfg`` (validated, SI)."""
-    fl = fourier_law(cfg)
+    table = _table(cfg)
+    fl = fourier_law(cfg, table)
     kind = cfg["machine"]["type"]
     source = "a table" if cfg["drive"].get("table") is not None else "a Fourier law"
     return evaluate_machine(
@@ -83,6 +93,6 @@ def evaluate(cfg: dict) -> StudyResult:
         RotaryLaw(functools.partial(tl.motion, fl, members=_members(cfg)), fl.period),
         drive_type="tabulated",
         title=f"{kind.replace('_', ' ')} on a tabulated drive ({source})",
-        drive_summary=_summary(cfg, fl),
+        drive_summary=_summary(cfg, fl, table),
         drive_headline=HEADLINE,
     )

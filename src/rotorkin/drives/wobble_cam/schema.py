@@ -7,7 +7,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field
 
-from rotorkin.core.bounds import INERTIA_MAX
+from rotorkin.core.bounds import INERTIA_MAX, gear_pressure_angle
 from rotorkin.core.schema import (
     Angle,
     ContactSection,
@@ -18,7 +18,7 @@ from rotorkin.core.schema import (
     RunSection,
     Section,
 )
-from rotorkin.machines.schema import COMPRESSION_RATIO_MAX, EngineLoads, TwinRotorMachine
+from rotorkin.machines.schema import EngineLoads, TwinRotorMachine
 
 #: Largest |spin_ratio| [-]: the plate turns at most 20 times per shaft turn.
 SPIN_RATIO_MAX = 20.0
@@ -134,12 +134,7 @@ class WobbleDrive(Section):
         le=10.0,
         description="mean pitch radius of the large bevel gears (1 mm <= r <= 10 m)",
     )
-    bevel_pressure_angle: Angle = Field(
-        "20 deg",
-        ge=0.17453292519943295,
-        le=0.6108652381980153,
-        description="pressure angle of the bevel gear teeth (10 deg <= angle <= 35 deg)",
-    )
+    bevel_pressure_angle: Angle = gear_pressure_angle("pressure angle of the bevel gear teeth")
     rail_radius: Length = Field(
         "80 mm",
         ge=0.001,
@@ -185,21 +180,7 @@ class WobbleDrive(Section):
 
 
 class WobbleMachine(TwinRotorMachine):
-    compression_ratio: float = Field(
-        10.0,
-        gt=1.0,
-        le=COMPRESSION_RATIO_MAX,
-        description="compression ratio eps = delta_max / delta_min of the chamber angles "
-        "(Table 1); the geometric volume ratio when there is no clearance volume "
-        "(1 < eps <= 1e6; eps = 1e6 stands for zero-width pistons, the drive alone; above the "
-        "zero-width ratio of plate_tilt and roller_axis_angle)",
-    )
-    inertia_shaft: Inertia = Field(
-        "0.004 kg*m^2",
-        ge=0.0,
-        le=INERTIA_MAX,
-        description="inertia of the input shaft with the plate and rollers (0 <= J <= 1e5 kg*m^2)",
-    )
+    """The twin-rotor engine of the paper (Table 1: compression ratio 10, 4 pistons)."""
 
 
 class WobbleConfig(Section):
