@@ -106,7 +106,7 @@ INSIDE = [
     ("wobble-cam-engine", "drive.spin_ratio=0.5"),
     ("wobble-cam-engine", "drive.plate_tilt=0.5 deg"),
     ("wobble-cam-engine", "drive.spin_ratio=-20"),
-    ("wobble-cam-engine", "machine.compression_ratio=1e6"),
+    ("wobble-cam-engine", ("machine.compression_ratio=1e6", "loads.model=ideal")),
     ("wobble-cam-engine", "loads.polytropic_exponent=1.6666"),
     ("wobble-cam-engine", "loads.ambient_pressure=100 bar"),
     ("wobble-cam-engine", "machine.speed_fluctuation=0.999"),

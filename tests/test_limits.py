@@ -20,7 +20,11 @@ from rotorkin.studies.limits import BITS, LIMITS, violation_codes, violations
 
 # (example, --set, the limit key named)
 PAST = [
-    ("elliptic-gear-engine", ["machine.compression_ratio=40"], "limits.peak_pressure"),
+    (
+        "elliptic-gear-engine",
+        ["machine.compression_ratio=40", "loads.intake_pressure=3 bar"],
+        "limits.peak_pressure",
+    ),
     ("elliptic-gear-engine", ["limits.peak_pressure=50 bar"], "limits.peak_pressure"),
     (
         "rhomboid-engine",
@@ -146,7 +150,7 @@ def test_violation_codes_are_a_bit_mask():
 def test_sweep_marks_the_designs_past_a_limit():
     from rotorkin.sweep import run_sweep
 
-    raw = load_config(None, "wobble-cam-engine", [])[1]
+    raw = load_config(None, "wobble-cam-engine", ["loads.intake_pressure=2 bar"])[1]
     ds = run_sweep(raw, {"machine.compression_ratio": "10,20,40,60"}, progress=False)
     assert ds["peak_pressure_bar"].values.tolist()[-1] > 250.0
     flags = ds["violations"].values
@@ -162,7 +166,8 @@ def test_sweep_marks_the_designs_past_a_limit():
 def test_sweep_fallback_marks_from_the_whole_summary():
     from rotorkin.sweep import run_sweep
 
-    raw = load_config(None, "wobble-cam-engine", ["run.points=73"])[1]
+    sets = ["run.points=73", "loads.intake_pressure=3 bar"]
+    raw = load_config(None, "wobble-cam-engine", sets)[1]
     with pytest.warns(Warning):
         ds = run_sweep(raw, {"machine.compression_ratio": "10,40"}, progress=False,
                        metrics=["peak_contact_stress_MPa"])  # fmt: skip

@@ -91,7 +91,8 @@ def test_sweep_equals_the_designs_run_one_by_one(example):
 
 def test_slider_angle_extremes_against_eq15_by_brute_force():
     # independent: the paper's eq. 15 (arccos form) maximised over the spin angle numerically
-    _, raw, _ = load_config(None, "wobble-cam-engine", ["machine.compression_ratio=1e6"])
+    _, raw, _ = load_config(None, "wobble-cam-engine",
+                            ["machine.compression_ratio=1e6", "loads.model=ideal"])  # fmt: skip
     ds = run_sweep(
         raw,
         {
@@ -493,7 +494,8 @@ def test_sampled_extremes_of_a_corrected_spin_law_take_the_library_path():
     from rotorkin.drives.wobble_cam import kinematics as wc
     from rotorkin.drives.wobble_cam.sweep import SAMPLED_METRICS
 
-    sets = ["drive.spin_a=[0.05]", "drive.spin_b=[0.02]", "machine.compression_ratio=30"]
+    sets = ["drive.spin_a=[0.05]", "drive.spin_b=[0.02]", "machine.compression_ratio=30",
+            "loads.model=ideal"]  # the kinematics alone, in the batch kernel
     try:
         _, raw, _ = load_config(None, "wobble-cam-engine", sets)
     except ConfigError:

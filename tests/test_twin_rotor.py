@@ -24,6 +24,7 @@ from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam import study as study
 from rotorkin.io.config import load_config
+from rotorkin.machines import fuel_air as fa
 from rotorkin.machines import twin_rotor as tr
 
 D = np.pi / 180.0
@@ -516,7 +517,7 @@ def test_instantaneous_power_balance_with_a_speed_profile(seed):
 
 
 def test_flywheel_against_independent_energy_integral():
-    cfg, _, _ = load_config(example="wobble-cam-engine")
+    cfg, _, _ = load_config(example="wobble-cam-engine", sets=["loads.model=ideal"])
     s = study.evaluate(cfg).summary
     drive, machine, cycle = table1_engine(
         inertia_shaft=0.004, inertia_rotor_1=0.008, inertia_rotor_2=0.008
@@ -624,6 +625,8 @@ def test_inactive_section_sizes_are_not_checked():
 # study, CLI, figures
 # --------------------------------------------------------------------------------------------
 def example_cfg(**sets):
+    """The example engine with the ideal cycle (the closed forms these tests check)."""
+    sets = {"loads.model": '"ideal"', **sets}
     cfg, _, _ = load_config(example="wobble-cam-engine", sets=[f"{k}={v}" for k, v in sets.items()])
     return cfg
 
@@ -821,7 +824,8 @@ def test_every_config_key_reaches_a_dataclass_field():
     loads_keys = set(WobbleConfig.model_fields["loads"].annotation.model_fields)
     # machine.type chooses the machine; every other key is a field of it
     assert machine_keys == {f.name for f in fields(tr.TwinRotor)} | {"type"}
-    assert loads_keys == {f.name for f in fields(ec.IdealCycle)}
+    both = {f.name for f in fields(ec.IdealCycle)} | {f.name for f in fields(fa.FuelAirLoads)}
+    assert loads_keys == both | {"model"}
     # and the dataclass defaults are the config's defaults
     cfg, _, _ = load_config(example="wobble-cam-engine")
     defaults = tr.TwinRotor()

@@ -15,7 +15,7 @@ import numpy as np
 
 from rotorkin.core.errors import ParameterError
 
-__all__ = ["shaft_speed", "SPEED_MIN", "SPEED_MAX"]
+__all__ = ["shaft_speed", "mean_speed", "SPEED_MIN", "SPEED_MAX"]
 
 #: Admissible shaft speeds [rad/s]: 0.01 rpm to 100 000 rpm.
 SPEED_MIN, SPEED_MAX = 0.01 * np.pi / 30.0, 1e5 * np.pi / 30.0
@@ -73,6 +73,13 @@ def shaft_speed(theta, speed, period: float):
     w1 = spline(phase, 1)
     w2 = spline(phase, 2)
     return omega, omega * w1, omega * (w1**2 + omega * w2)
+
+
+def mean_speed(speed, period: float, samples: int = 20_001) -> float:
+    """Time-averaged shaft speed over one ``period`` of a speed (constant or profile) [rad/s]."""
+    theta = np.linspace(0.0, period, samples)
+    omega = shaft_speed(theta, speed, period)[0]
+    return float(period / np.trapezoid(1.0 / omega, theta))
 
 
 def _in_rpm(samples: np.ndarray) -> str:

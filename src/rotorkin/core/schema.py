@@ -30,6 +30,7 @@ __all__ = [
     "Energy",
     "Temperature",
     "Modulus",
+    "SpecificEnergy",
     "Speed",
     "Section",
     "RunSection",
@@ -63,6 +64,7 @@ Volume = Annotated[float, _unit("volume")]
 Energy = Annotated[float, _unit("energy")]
 Temperature = Annotated[float, _unit("temperature")]
 Modulus = Annotated[float, _unit("modulus")]
+SpecificEnergy = Annotated[float, _unit("specific_energy")]
 
 
 #: Most input angles of a run (run.points) and entries of a speed profile: 0.0036 deg apart.

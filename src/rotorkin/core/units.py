@@ -27,6 +27,7 @@ KINDS = {
     "energy": ("J", '"150 J"'),
     "temperature": ("K", '"600 K" or "25 degC"'),
     "modulus": ("Pa", '"2.2 GPa"'),
+    "specific_energy": ("J/kg", '"44 MJ/kg"'),
 }
 
 
@@ -221,6 +222,7 @@ def _suggest_unit(kind: str) -> str:
         "energy": "J",
         "temperature": "K",
         "modulus": "GPa",
+        "specific_energy": "MJ/kg",
     }[kind]
 
 
@@ -231,7 +233,8 @@ _UNITS = (
     ("_mm_per_rad3", "mm/rad^3"), ("_mm_per_rad2", "mm/rad^2"), ("_mm_per_rad", "mm/rad"),
     ("_per_rad2", "1/rad^2"), ("_per_rad", "1/rad"), ("_per_m", "1/m"), ("_deg", "deg"),
     ("_mm", "mm"), ("_cm3_per_rev", "cm^3/rev"), ("_cm3_per_rad", "cm^3/rad"), ("_cm3", "cm^3"),
-    ("_cm2", "cm^2"), ("_Nm", "N*m"), ("_J_per_rev", "J/rev"), ("_J", "J"), ("_bar", "bar"),
+    ("_cm2", "cm^2"), ("_mg", "mg"), ("_Nm", "N*m"), ("_J_per_rev", "J/rev"), ("_J", "J"),
+    ("_bar", "bar"),
     ("_kW", "kW"), ("_W", "W"), ("_l_per_min", "l/min"), ("_percent", "%"), ("_rad", "rad"),
     ("_kgm2", "kg*m^2"), ("_K", "K"),
 )  # fmt: skip

@@ -29,6 +29,7 @@ from rotorkin.core.schema import (
     Modulus,
     Pressure,
     Section,
+    SpecificEnergy,
     Temperature,
     Volume,
 )
@@ -141,24 +142,135 @@ class TwinRotorMachine(InertialSection):
 
 
 class EngineLoads(Section):
+    model: Literal["fuel_air", "ideal"] = Field(
+        "fuel_air",
+        description="cycle of the chambers: 'fuel_air' (the charge trapped at intake closure "
+        "burns by a Wiebe law, heat goes to the walls, properties vary with temperature) or "
+        "'ideal' (the air-standard Otto cycle: a fixed heat_per_cycle at the dead centre, "
+        "polytropic strokes; the papers' comparisons)",
+    )
     ambient_pressure: Pressure = Field(
         "1 bar",
         ge=1e3,
         le=1e7,
-        description="intake and exhaust pressure (0.01 bar <= p <= 100 bar, absolute)",
+        description="exhaust pressure; also the intake pressure of the ideal cycle "
+        "(0.01 bar <= p <= 100 bar, absolute)",
     )
     polytropic_exponent: float = Field(
         1.35,
         gt=1.0,
         le=5.0 / 3.0,
-        description="exponent n of compression and expansion, p V^n = const (1 < n <= 5/3)",
+        description="ideal cycle: exponent n of compression and expansion, p V^n = const "
+        "(1 < n <= 5/3)",
     )
     heat_per_cycle: Energy = Field(
         "90 J",
         ge=0.0,
         le=1e6,
-        description="heat added at minimum volume, per chamber and four-stroke cycle "
-        "(0 <= Q <= 1 MJ)",
+        description="ideal cycle: heat added at minimum volume, per chamber and four-stroke "
+        "cycle (0 <= Q <= 1 MJ)",
+    )
+    intake_pressure: Pressure = Field(
+        "1 bar",
+        ge=1e3,
+        le=1e7,
+        description="fuel-air cycle: pressure of the charge at intake closure; above ambient "
+        "for a supercharged engine (0.01 bar <= p <= 100 bar, absolute)",
+    )
+    intake_temperature: Temperature = Field(
+        "320 K",
+        ge=200.0,
+        le=1000.0,
+        description="fuel-air cycle: temperature of the charge at intake closure "
+        "(200 K <= T <= 1000 K)",
+    )
+    residual_fraction: float = Field(
+        0.05,
+        ge=0.0,
+        le=0.5,
+        description="fuel-air cycle: mass fraction of burnt gas left in the charge "
+        "(0 <= x_r <= 0.5)",
+    )
+    equivalence_ratio: float = Field(
+        1.0,
+        ge=0.2,
+        le=2.0,
+        description="fuel-air cycle: fuel-air ratio over the stoichiometric one; above 1 only "
+        "the fuel the air can burn releases heat (0.2 <= phi <= 2)",
+    )
+    fuel_heating_value: SpecificEnergy = Field(
+        "44 MJ/kg",
+        ge=1e6,
+        le=1.5e8,
+        description="fuel-air cycle: lower heating value of the fuel; gasoline 44 MJ/kg, "
+        "methanol 20 MJ/kg, hydrogen 120 MJ/kg (1 MJ/kg <= LHV <= 150 MJ/kg)",
+    )
+    stoichiometric_afr: float = Field(
+        14.6,
+        ge=1.0,
+        le=100.0,
+        description="fuel-air cycle: air-fuel mass ratio of the stoichiometric mixture; "
+        "gasoline 14.6, methanol 6.5, hydrogen 34.3 (1 <= AFR_s <= 100)",
+    )
+    fuel_hc_ratio: float = Field(
+        1.87,
+        ge=0.0,
+        le=4.0,
+        description="fuel-air cycle: hydrogen-to-carbon atom ratio of the fuel, for the burnt "
+        "gas's composition; gasoline 1.87, methane 4 (0 <= y <= 4)",
+    )
+    combustion_efficiency: float = Field(
+        0.97,
+        gt=0.0,
+        le=1.0,
+        description="fuel-air cycle: fraction of the fuel's energy released (0 < eta_c <= 1)",
+    )
+    burn_start: Angle = Field(
+        "-10 deg",
+        ge=-3.141592653589793,
+        le=3.141592653589793,
+        description="fuel-air cycle: start of the burn in the chamber's cycle angle (180 deg "
+        "per stroke), from the dead centre of smallest volume, negative before it "
+        "(-180 deg <= start <= 180 deg)",
+    )
+    burn_duration: Angle = Field(
+        "50 deg",
+        ge=0.0017453292519943296,
+        le=3.141592653589793,
+        description="fuel-air cycle: duration of the burn (Wiebe, 99.3 % burnt at a = 5) in the "
+        "chamber's cycle angle (0.1 deg <= duration <= 180 deg, start + duration <= 180 deg)",
+    )
+    wiebe_a: float = Field(
+        5.0, ge=0.1, le=20.0,
+        description="fuel-air cycle: Wiebe efficiency parameter a (0.1 <= a <= 20)",
+    )  # fmt: skip
+    wiebe_m: float = Field(
+        2.0, ge=0.0, le=10.0,
+        description="fuel-air cycle: Wiebe form factor m (0 <= m <= 10)",
+    )  # fmt: skip
+    heat_transfer: Literal["woschni", "none"] = Field(
+        "woschni",
+        description="fuel-air cycle: heat transfer to the walls, 'woschni' (Woschni's "
+        "correlation, wall area from the chamber) or 'none' (adiabatic)",
+    )
+    wall_temperature: Temperature = Field(
+        "450 K",
+        ge=250.0,
+        le=1500.0,
+        description="fuel-air cycle: temperature of the chamber walls (250 K <= T_w <= 1500 K)",
+    )
+    gas_properties: Literal["auto", "nasa", "constant"] = Field(
+        "auto",
+        description="fuel-air cycle: 'nasa' (NASA polynomials of air and the burnt gas "
+        "through Cantera, the thermo extra), 'constant' (one ratio of specific heats, "
+        "specific_heat_ratio) or 'auto' (nasa when Cantera is installed)",
+    )
+    specific_heat_ratio: float = Field(
+        1.3,
+        gt=1.0,
+        le=5.0 / 3.0,
+        description="fuel-air cycle with gas_properties = 'constant': c_p / c_v of the gas "
+        "(1 < gamma <= 5/3)",
     )
 
 

@@ -639,13 +639,16 @@ def strokes(machine: TwinRotor, count):
     return ec.stroke_from_count(stroke_counter(machine, count))
 
 
-def chamber_pressures(
-    cycle: ec.IdealCycle, machine: TwinRotor, angle_min, angle_max, stroke, volume
-):
+def chamber_pressures(cycle, machine: TwinRotor, angle_min, angle_max, stroke, volume, theta=None):
     """Pressures of all chambers from their strokes and volumes [Pa], shape (2N, ...).
 
     ``angle_min``, ``angle_max``: chamber angle extremes ``(delta_A, delta_B)`` [rad].
+    The ideal cycle's pressures depend on the stroke and the volume only; a fuel-air
+    cycle (:class:`rotorkin.machines.fuel_air.ChargeCycle`) reads its integrated
+    tables at the shaft angles ``theta``.
     """
+    if not isinstance(cycle, ec.IdealCycle):
+        return cycle.pressures(theta, stroke)
     v_min, v_max = volume_limits(machine, angle_min, angle_max)
     extra = (1,) * (np.ndim(volume) - 1)
     return ec.cycle_pressure(
@@ -686,7 +689,7 @@ def engine_state(
     """
     ch = chambers(machine, motion, piston_width)
     stroke = strokes(machine, count)
-    p = chamber_pressures(cycle, machine, angle_min, angle_max, stroke, ch.volume)
+    p = chamber_pressures(cycle, machine, angle_min, angle_max, stroke, ch.volume, ch.theta)
     grad = ch.dvolume_dq.reshape(ch.dvolume_dq.shape + (1,) * ch.theta.ndim)
     members = member_torques(p, grad)
     return EngineState(
@@ -706,5 +709,30 @@ def indicated_work_per_rev(
     ``sum_j cycles_per_rev Q (1 - eps_geo,j^(1-k))``
     (:func:`rotorkin.analysis.engine_cycle.indicated_work`).
     """
+    if not isinstance(cycle, ec.IdealCycle):  # a fuel-air cycle sums its integrated parts
+        return cycle.work_per_rev()
     v_min, v_max = volume_limits(machine, angle_min, angle_max)
     return float(np.sum(ec.indicated_work(cycle, v_max, v_min)) * cycles_per_rev)
+
+
+def cycle_summary(machine: TwinRotor, cycle, v_min, v_max, cycles_per_rev, displacement) -> dict:
+    """The cycle's per-turn numbers: work, heat, efficiency, mean effective and peak pressure.
+
+    ``cycle``: the ideal cycle (closed forms) or a fuel-air cycle integrated on the drive
+    (:class:`rotorkin.machines.fuel_air.ChargeCycle`, which sums its own parts).
+    """
+    if not isinstance(cycle, ec.IdealCycle):
+        return cycle.summary(displacement)
+    work = float(np.sum(ec.indicated_work(cycle, v_max, v_min)) * cycles_per_rev)
+    heat = cycle.heat_per_cycle * machine.chambers * cycles_per_rev
+    return {
+        "compression_end_pressure_bar": float(
+            np.max(ec.compression_end_pressure(cycle, v_max, v_min))) / 1e5,
+        "peak_pressure_bar": float(np.max(ec.peak_pressure(cycle, v_max, v_min))) / 1e5,
+        "indicated_work_J": work,
+        "heat_added_J_per_rev": float(heat),
+        "indicated_efficiency": work / heat if heat > 0 else float("nan"),
+        "otto_efficiency": float(np.max(ec.otto_efficiency(v_max / v_min,
+                                                           cycle.polytropic_exponent))),
+        "imep_bar": work / displacement / 1e5 if displacement > 0 else float("nan"),
+    }  # fmt: skip

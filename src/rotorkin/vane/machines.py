@@ -21,10 +21,11 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from rotorkin.analysis import engine_cycle as ec
+from rotorkin.analysis.timing import mean_speed
 from rotorkin.analysis.torque import member_torques, shaft_torque_from_members
 from rotorkin.core.angles import fmt_deg
 from rotorkin.core.errors import ParameterError
+from rotorkin.machines import fuel_air as fa
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.machines import twin_rotor as tr
 from rotorkin.machines import vane_pump as vp
@@ -43,6 +44,8 @@ from rotorkin.vane.law import strokes_per_turn as _strokes_per_turn
 __all__ = ["Setup", "State", "MACHINES", "setup", "state", "summary"]
 
 _TWO_PI = 2.0 * np.pi
+#: Shaft speed when the config gives none: 3000 rpm [rad/s].
+DEFAULT_SPEED = 3000.0 * np.pi / 30.0
 
 
 @dataclass(frozen=True)
@@ -115,12 +118,13 @@ def setup(kind: str, cfg: dict, law: RotaryLaw) -> Setup:
     lo, hi = relative_extremes(law, points)
     swing, mid = hi - lo, 0.5 * (lo + hi)
     per_turn = _strokes_per_turn(law, points)
-    return _SETUPS[kind](machine, loads, law, points, lo, hi, swing, mid, per_turn)
+    speed = (cfg.get("run") or {}).get("speed", DEFAULT_SPEED)
+    return _SETUPS[kind](machine, loads, law, points, lo, hi, swing, mid, per_turn, speed)
 
 
-def _twin_rotor(machine, loads, law, points, lo, hi, swing, mid, per_turn) -> Setup:
+def _twin_rotor(machine, loads, law, points, lo, hi, swing, mid, per_turn, speed) -> Setup:
     model = build_params(tr.TwinRotor, "machine", _fields(tr.TwinRotor, machine))
-    cycle = build_params(ec.IdealCycle, "loads", _fields(ec.IdealCycle, loads))
+    cycle = fa.loads_of(loads)
     n = model.pistons_per_rotor
     per_span = int(round(per_turn * law.span / _TWO_PI))
     if per_span % 4:
@@ -151,12 +155,19 @@ def _twin_rotor(machine, loads, law, points, lo, hi, swing, mid, per_turn) -> Se
             f"{n} pistons per rotor over the drive's swing of {fmt_deg(swing)}",
         )
     amin, amax = (g_lo - beta, g_lo - beta), (g_hi - beta, g_hi - beta)
+    shift = 0.5 * np.pi - mid
+    if isinstance(cycle, fa.FuelAirLoads):  # the closed parts of the law's period, integrated
+        cycle = fa.charge_cycle(
+            model, cycle, lambda t: tr.chambers(model, mounted(law.motion(t), shift), beta),
+            lambda t: stroke_counter(law, t, points), points, law.period,
+            mean_speed(speed, law.period),
+        )  # fmt: skip
     extra = {"piston_width": beta, "angle_min": amin, "angle_max": amax, "cycle": cycle}
-    return Setup("twin_rotor", law, model, cycle, points, lo, hi, 0.5 * np.pi - mid, per_turn,
+    return Setup("twin_rotor", law, model, cycle, points, lo, hi, shift, per_turn,
                  extra)  # fmt: skip
 
 
-def _vane_pump(machine, loads, law, points, lo, hi, swing, mid, per_turn) -> Setup:
+def _vane_pump(machine, loads, law, points, lo, hi, swing, mid, per_turn, speed) -> Setup:
     z = int(machine.get("vanes_per_impeller", 2))
     widest = float(vp.vane_angle_max(z, swing))
     if widest <= 0.0:
@@ -183,7 +194,7 @@ def _vane_pump(machine, loads, law, points, lo, hi, swing, mid, per_turn) -> Set
     return Setup("vane_pump", law, pump, ports, points, lo, hi, 0.0, per_turn, {})
 
 
-def _rotary_blade(machine, loads, law, points, lo, hi, swing, mid, per_turn) -> Setup:
+def _rotary_blade(machine, loads, law, points, lo, hi, swing, mid, per_turn, speed) -> Setup:
     keys = ("blade_thickness", "inner_radius", "outer_radius", "axial_width", "blades_per_pair",
             "inertia_shaft", "inertia_blade_pair_1", "inertia_blade_pair_2")  # fmt: skip
     model = build_params(rb.RotaryBlade, "machine", {k: machine[k] for k in keys if k in machine})
@@ -251,13 +262,11 @@ def summary(s: Setup) -> dict:
         "vane_mounting_deg": float(np.degrees(s.shift)),
     }
     if s.kind == "twin_rotor":
-        e, m, cycle = s.extra, s.model, s.loads
+        e, m = s.extra, s.model
         four = cycles / 2.0  # four-stroke cycles of each chamber per turn
         v_min, v_max = tr.volume_limits(m, e["angle_min"], e["angle_max"])
         eps = tr.compression_ratio_geometric(m, e["angle_min"], e["angle_max"])
-        work = tr.indicated_work_per_rev(m, cycle, e["angle_min"], e["angle_max"], four)
         disp = tr.displacement_per_rev(m, swing, four)
-        heat = cycle.heat_per_cycle * m.chambers * four
         out.update({
             "pistons_per_rotor": int(m.pistons_per_rotor),
             "piston_width_deg": float(np.degrees(e["piston_width"])),
@@ -268,12 +277,8 @@ def summary(s: Setup) -> dict:
             "chamber_volume_max_cm3": float(np.max(v_max)) * 1e6,
             "displacement_cm3_per_rev": float(disp) * 1e6,
             "compression_ratio_geometric": float(min(eps)),
-            "peak_pressure_bar": float(np.max(ec.peak_pressure(cycle, v_max, v_min))) / 1e5,
-            "indicated_work_J": float(work),
-            "heat_added_J_per_rev": float(heat),
-            "indicated_efficiency": float(work / heat) if heat > 0 else float("nan"),
-            "imep_bar": float(work / disp) / 1e5 if disp > 0 else float("nan"),
         })  # fmt: skip
+        out.update(tr.cycle_summary(m, e["cycle"], v_min, v_max, four, disp))
     elif s.kind == "vane_pump":
         pump, ports = s.model, s.loads
         disp = float(vp.displacement(pump)) * cycles  # per period of one swing, per turn

@@ -65,7 +65,9 @@ HEADLINES = {
         "power_strokes_per_rev": "power strokes of the engine per shaft turn",
         "piston_width_deg": "angular width of a piston for the compression ratio",
         "compression_ratio_geometric": "V_max / V_min of a chamber, with clearance",
-        "peak_pressure_bar": "highest chamber pressure of the ideal cycle",
+        "peak_pressure_bar": "highest chamber pressure of the cycle",
+        "imep_bar": "indicated mean effective pressure: work per turn over displacement",
+        "indicated_efficiency": "indicated work over the fuel's energy (ideal cycle: the heat)",
         **_TAIL,
     },
     "vane_pump": {
@@ -330,7 +332,7 @@ def evaluate(
 
 def _warnings(setup: vm.Setup, summary: dict) -> tuple[str, ...]:
     out = []
-    if setup.kind == "twin_rotor" and setup.loads.heat_per_cycle == 0.0:
+    if setup.kind == "twin_rotor" and getattr(setup.loads, "heat_per_cycle", None) == 0.0:
         out.append("loads.heat_per_cycle = 0: no heat is added, so the indicated work, mean "
                    "torque and power are those of a motored engine (about 0)")  # fmt: skip
     if setup.kind == "vane_pump" and setup.loads.discharge_pressure == setup.loads.suction_pressure:

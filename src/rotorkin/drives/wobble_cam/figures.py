@@ -258,7 +258,17 @@ def _engine_tag(params, machine, cycle) -> str:
     return (
         f"N = {machine.pistons_per_rotor} pistons/rotor, {sec}, "
         f"V_c = {machine.clearance_volume * 1e6:.3g} cm^3, eps = {machine.compression_ratio:g}, "
-        f"n = {cycle.polytropic_exponent:g}, Q = {cycle.heat_per_cycle:.4g} J"
+        + _cycle_tag(cycle)
+    )
+
+
+def _cycle_tag(cycle) -> str:
+    if isinstance(cycle, IdealCycle):
+        return f"n = {cycle.polytropic_exponent:g}, Q = {cycle.heat_per_cycle:.4g} J"
+    lo = cycle.loads
+    return (
+        f"fuel-air, phi = {lo.equivalence_ratio:g}, p_i = {lo.intake_pressure / 1e5:.3g} bar, "
+        f"burn {np.degrees(lo.burn_start):.3g}+{np.degrees(lo.burn_duration):.3g} deg"
     )
 
 
@@ -331,7 +341,10 @@ def fig_pv_diagram(params, layout, machine, cycle, outdir: Path, points: int = 4
     st = eng.engine_state(params, machine, cycle, theta)
     v_min, v_max = eng.volume_limits(machine, layout)
     eps_a, eps_b = eng.compression_ratio_geometric(machine, layout)
-    work = ec.indicated_work(cycle, v_max[:2], v_min[:2])
+    ideal = isinstance(cycle, IdealCycle)
+    work = (ec.indicated_work(cycle, v_max[:2], v_min[:2]) if ideal
+            else [cycle.work_of_kind(0), cycle.work_of_kind(1)])  # fmt: skip
+    exhaust = cycle.ambient_pressure if ideal else cycle.loads.ambient_pressure
     fig, axes = plt.subplots(1, 2, figsize=(12, 5.2))
     for ax, log in zip(axes, (False, True), strict=True):
         for j, style in (
@@ -347,37 +360,54 @@ def fig_pv_diagram(params, layout, machine, cycle, outdir: Path, points: int = 4
         if log:
             ax.set_xscale("log")
             ax.set_yscale("log")
-        ax.axhline(cycle.ambient_pressure / 1e5, color="0.5", lw=0.7, ls=":")
+        ax.axhline(exhaust / 1e5, color="0.5", lw=0.7, ls=":")
         ax.set_xlabel("chamber volume V [cm^3]")
         ax.set_ylabel("absolute pressure p [bar]")
         ax.grid(True, which="both" if log else "major", alpha=0.35)
     ax = axes[0]
-    p2 = ec.compression_end_pressure(cycle, v_max[0], v_min[0]) / 1e5
-    p3 = ec.peak_pressure(cycle, v_max[0], v_min[0]) / 1e5
-    p4 = ec.expansion_end_pressure(cycle, v_max[0], v_min[0]) / 1e5
-    for x, y, text in (
-        (v_min[0], p2, "2: end of compression"),
-        (v_min[0], p3, "3: after heat Q"),
-        (v_max[0], p4, "4: end of expansion"),
-        (v_max[0], cycle.ambient_pressure / 1e5, "1: BDC"),
-    ):
+    if ideal:
+        p2 = ec.compression_end_pressure(cycle, v_max[0], v_min[0]) / 1e5
+        p3 = ec.peak_pressure(cycle, v_max[0], v_min[0]) / 1e5
+        p4 = ec.expansion_end_pressure(cycle, v_max[0], v_min[0]) / 1e5
+        marks = (
+            (v_min[0], p2, "2: end of compression"),
+            (v_min[0], p3, "3: after heat Q"),
+            (v_max[0], p4, "4: end of expansion"),
+            (v_max[0], exhaust / 1e5, "1: BDC"),
+        )
+        text = (f"eps_geo A/B = {eps_a:.3g}/{eps_b:.3g}\np_peak = {p3:.1f} bar\n"
+                f"efficiency = {float(ec.otto_efficiency(eps_a, cycle.polytropic_exponent)):.3f} "
+                f"(Otto, n = {cycle.polytropic_exponent:g})")  # fmt: skip
+    else:
+        summ = cycle.summary(1.0)
+        j = int(np.argmax(st.pressure[0]))
+        p3 = summ["peak_pressure_bar"]
+        marks = ((st.chambers.volume[0, j], st.pressure[0, j] / 1e5,
+                  f"peak {summ['peak_pressure_angle_deg']:.3g} deg after TDC"),)  # fmt: skip
+        text = (f"eps_geo A/B = {eps_a:.3g}/{eps_b:.3g}\np_peak = {p3:.1f} bar, "
+                f"T_peak = {summ['peak_temperature_K']:.0f} K\n"
+                f"indicated efficiency = {summ['indicated_efficiency']:.3f}\n"
+                f"gas: {summ['gas_properties']}")  # fmt: skip
+    for x, y, label in marks:
         ax.plot([x * 1e6], [y], "ko", ms=4)
-        ax.annotate(text, (x * 1e6, y), textcoords="offset points", xytext=(8, 4), fontsize=8)
+        ax.annotate(label, (x * 1e6, y), textcoords="offset points", xytext=(8, 4), fontsize=8)
     ax.text(
         0.45,
-        0.75,
-        f"eps_geo A/B = {eps_a:.3g}/{eps_b:.3g}\np_peak = {p3:.1f} bar\n"
-        f"efficiency = {float(ec.otto_efficiency(eps_a, cycle.polytropic_exponent)):.3f} "
-        f"(Otto, n = {cycle.polytropic_exponent:g})",
+        0.62,
+        text,
         transform=ax.transAxes,
         fontsize=9,
         bbox={"facecolor": "white", "alpha": 0.85, "edgecolor": "0.7"},
     )
     ax.legend(loc="upper right", fontsize=8)
     ax.set_title("(a) linear axes")
-    axes[1].set_title("(b) logarithmic axes: polytropes are straight lines")
+    axes[1].set_title(
+        "(b) logarithmic axes: polytropes are straight lines" if ideal else "(b) logarithmic axes"
+    )
     fig.suptitle(
-        "p-V diagram, ideal four-stroke cycle\n" + _engine_tag(params, machine, cycle), fontsize=10
+        f"p-V diagram, {'ideal' if ideal else 'fuel-air'} four-stroke cycle\n"
+        + _engine_tag(params, machine, cycle),
+        fontsize=10,
     )
     fig.tight_layout()
     return save_in(fig, outdir, "fig_pv_diagram.png")

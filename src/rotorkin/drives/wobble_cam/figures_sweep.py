@@ -25,9 +25,9 @@ def sweep_recipes(cfg) -> list[Recipe]:
     d1 = max(5.0 * np.floor((90.0 - a_lo - 1.0) / 5.0), 0.5 * (90.0 - a_lo))
     d2 = 5.0 * np.floor(0.1 * d1 + 0.5) if d1 >= 10.0 else 0.5 * d1
     alphas = 90.0 + np.array([-d1, -d2, 0.0, d2, d1])  # symmetric pairs alpha, 180 - alpha
-    common = ("machine.compression_ratio=1e6",)
+    common = ("machine.compression_ratio=1e6", "loads.model=ideal")
     note = ("compression ratio set to 1e6 so that eq. 21 admits every design up to the eq. 20 "
-            "limit (the slider angle does not depend on it)")  # fmt: skip
+            "limit (the slider angle does not depend on it), with the ideal cycle")  # fmt: skip
     metrics = ("slider_angle_max_deg", "slider_angle_min_deg", "chamber_swing_deg")
     return [
         Recipe("fig11", common, ("drive.roller_axis_angle="

@@ -4,8 +4,9 @@ Config keys (SI, defaults filled by :mod:`rotorkin.io.config`):
 ``drive.plate_tilt``, ``drive.roller_axis_angle``, ``drive.spin_ratio``,
 ``drive.sphere_radius``; ``machine.*`` (:class:`rotorkin.machines.twin_rotor.TwinRotor`:
 compression ratio, pistons per rotor, cylinder section, clearance, inertias, speed
-fluctuation); ``loads.*`` (:class:`rotorkin.analysis.engine_cycle.IdealCycle`:
-ambient pressure, polytropic exponent, heat per cycle); ``run.points``, ``run.speed``.
+fluctuation); ``loads.*`` (the fuel-air cycle, :mod:`rotorkin.machines.fuel_air`, or with
+``model = "ideal"`` :class:`rotorkin.analysis.engine_cycle.IdealCycle`: ambient pressure,
+polytropic exponent, heat per cycle); ``run.points``, ``run.speed``.
 Keys missing from a hand-built cfg take the dataclasses' defaults (= the config's).
 """
 
@@ -21,7 +22,7 @@ import numpy as np
 from rotorkin.analysis import engine_cycle as ec
 from rotorkin.analysis import pairs as pr
 from rotorkin.analysis.flywheel import energy_fluctuation, flywheel_inertia
-from rotorkin.analysis.timing import shaft_speed
+from rotorkin.analysis.timing import mean_speed, shaft_speed
 from rotorkin.analysis.torque import (
     equivalent_inertia,
     inertia_torque,
@@ -35,10 +36,12 @@ from rotorkin.drives.wobble_cam import figures as figures_wobble_cam
 from rotorkin.drives.wobble_cam import figures_cam as figures_spherical_cam
 from rotorkin.drives.wobble_cam import forces as fo
 from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.machines import fuel_air as fa
 from rotorkin.machines import twin_rotor as tr
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 from rotorkin.vane import RotaryLaw
+from rotorkin.vane.law import turning_points
 
 __all__ = ["evaluate", "models", "law", "HEADLINE"]
 
@@ -55,7 +58,9 @@ HEADLINE = {
     "max_plate_tilt_deg": "largest admissible plate tilt, eq. 20 (Fig. 13)",
     "displacement_cm3_per_rev": "swept volume of all chambers per shaft turn",
     "compression_ratio_geometric": "V_max / V_min of a chamber, with clearance",
-    "peak_pressure_bar": "highest chamber pressure of the ideal cycle",
+    "peak_pressure_bar": "highest chamber pressure of the cycle",
+    "imep_bar": "indicated mean effective pressure: work per turn over displacement",
+    "indicated_efficiency": "indicated work over the fuel's energy (ideal cycle: the heat)",
     "indicated_work_J": "indicated work of all chambers per shaft turn",
     "mean_torque_Nm": "mean gas torque on the shaft (+ drives the shaft)",
     "torque_ripple": "(max - min) / mean of the gas torque on the shaft",
@@ -223,9 +228,15 @@ def _engine_summary(params, machine, cycle, layout, speed) -> dict:
     design = 0 if layout.design_kind == "A" else 1
     swept = eng.swept_volume(machine, layout)
     disp = eng.displacement_per_rev(params, machine, layout)
-    work_cycle = ec.indicated_work(cycle, v_max[:2], v_min[:2])  # kinds A, B
-    work_rev = eng.indicated_work_per_rev(params, machine, cycle, layout)
-    heat_rev = cycle.heat_per_cycle * machine.chambers * eng.cycles_per_rev(params)
+    per_rev = eng.cycles_per_rev(params)
+    cyc = tr.cycle_summary(machine, cycle, v_min, v_max, per_rev, disp)
+    work_rev = cyc["indicated_work_J"]
+    if isinstance(cycle, ec.IdealCycle):
+        work_cycle = ec.indicated_work(cycle, v_max[:2], v_min[:2])  # kinds A, B
+        otto = float(ec.otto_efficiency((eps_a, eps_b)[design], cycle.polytropic_exponent))
+    else:
+        work_cycle = (cycle.work_of_kind(0), cycle.work_of_kind(1))
+        otto = float(ec.otto_efficiency((eps_a, eps_b)[design], 1.4))
     fine = np.linspace(0.0, wc.period(params), _PEAK_SAMPLES)
     state = eng.engine_state(params, machine, cycle, fine)
     omega = shaft_speed(fine, speed, wc.period(params))
@@ -256,20 +267,10 @@ def _engine_summary(params, machine, cycle, layout, speed) -> dict:
         "compression_ratio_geometric": (eps_a, eps_b)[design],
         "compression_ratio_geometric_a": eps_a,
         "compression_ratio_geometric_b": eps_b,
-        "compression_end_pressure_bar": float(
-            np.max(ec.compression_end_pressure(cycle, v_max, v_min))
-        )
-        / 1e5,
-        "peak_pressure_bar": float(np.max(ec.peak_pressure(cycle, v_max, v_min))) / 1e5,
+        **{k: v for k, v in cyc.items() if k not in ("otto_efficiency",)},
         "indicated_work_per_cycle_a_J": float(work_cycle[0]),
         "indicated_work_per_cycle_b_J": float(work_cycle[1]),
-        "indicated_work_J": work_rev,
-        "heat_added_J_per_rev": heat_rev,
-        "indicated_efficiency": _ratio(work_rev, heat_rev),
-        "otto_efficiency": float(
-            ec.otto_efficiency((eps_a, eps_b)[design], cycle.polytropic_exponent)
-        ),
-        "imep_bar": _ratio(work_rev, disp) / 1e5,
+        "otto_efficiency": otto,
         "mean_torque_Nm": work_rev / wc.period(params),
         "torque_ripple": float(torque_ripple(state.shaft_torque)),
         "torque_ripple_with_inertia": float(torque_ripple(net)),
@@ -384,12 +385,31 @@ def _drive(cfg: dict, pistons) -> wc.WobbleCam:
     )
 
 
-def models(cfg: dict) -> tuple[wc.WobbleCam, tr.TwinRotor, ec.IdealCycle]:
-    """Drive, machine and cycle parameters from a validated config (SI); errors name the keys."""
+def models(cfg: dict) -> tuple[wc.WobbleCam, tr.TwinRotor, object]:
+    """Drive, machine and cycle from a validated config (SI); errors name the keys.
+
+    The cycle is the ideal one (``loads.model = "ideal"``) or the fuel-air cycle integrated
+    over the drive's strokes (:func:`rotorkin.machines.fuel_air.charge_cycle`).
+    """
     machine = build_params(tr.TwinRotor, "machine", _section(cfg, "machine", tr.TwinRotor))
     params = _drive(cfg, machine.pistons_per_rotor)
-    cycle = build_params(ec.IdealCycle, "loads", _section(cfg, "loads", ec.IdealCycle))
+    cycle = fa.loads_of(cfg.get("loads") or {})
+    if isinstance(cycle, fa.FuelAirLoads):
+        cycle = charge_cycle(
+            params, machine, cycle, (cfg.get("run") or {}).get("speed", _DEFAULT_SPEED)
+        )
     return params, machine, cycle
+
+
+def charge_cycle(params, machine, loads, speed) -> fa.ChargeCycle:
+    """The fuel-air cycle of the engine's chambers on this drive, over one turn."""
+    layout = _layout(params, machine)
+    per = wc.period(params)
+    points = turning_points(RotaryLaw(functools.partial(wc.motion, params), per))
+    return fa.charge_cycle(
+        machine, loads, lambda t: eng.chambers(params, machine, t, layout),
+        lambda t: eng.chamber_stroke_count(params, t), points, per, mean_speed(speed, per),
+    )  # fmt: skip
 
 
 def pairs_of(cfg: dict):
@@ -531,7 +551,7 @@ def _cam_warnings(cfg: dict) -> tuple[str, ...]:
 def _warnings(cycle, summary: dict) -> tuple[str, ...]:
     """Inputs that leave summary numbers without meaning, one line each."""
     out = []
-    if cycle.heat_per_cycle == 0.0:
+    if getattr(cycle, "heat_per_cycle", None) == 0.0:
         out.append(
             "loads.heat_per_cycle = 0: no heat is added, so the indicated work, mean torque "
             "and power are those of a motored engine (about 0)"

@@ -31,12 +31,14 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.analysis import combustion as cb
 from rotorkin.analysis import engine_cycle as ec
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.batch import Designs, flag, full, run_blocks, sample_grid
 from rotorkin.drives.wobble_cam import chambers as wch
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam.fast import rotor_kinematics
+from rotorkin.machines import fuel_air as fa
 from rotorkin.machines import twin_rotor as tr
 
 __all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "SAMPLED_METRICS", "OPTIONAL_METRICS",
@@ -163,11 +165,25 @@ ANGLE = ("theta_deg", "Output-shaft angle theta, positive from +z towards +y abo
 
 def unsupported(cfg: dict) -> str | None:
     """Why the kernel cannot evaluate designs on this base config (None: it can)."""
+    d = cfg["drive"]
+    if _fuel_air(cfg) and (d.get("spin_a") or d.get("spin_b")):
+        return "the fuel-air cycle on a corrected spin law (its strokes vary per design)"
     return None
+
+
+def _fuel_air(cfg: dict) -> bool:
+    return (cfg.get("loads") or {}).get("model", "fuel_air") != "ideal"
+
+
+#: Metrics of the fuel-air cycle only.
+_FUEL_AIR_METRICS = ("trapped_mass_mg", "peak_pressure_angle_deg", "peak_temperature_K",
+                     "fuel_energy_J_per_rev", "heat_to_walls_J_per_rev")  # fmt: skip
 
 
 def metric_names(cfg: dict) -> tuple[str, ...]:
     """Summary keys the kernel computes for this base config."""
+    if _fuel_air(cfg):
+        return _DRIVE_METRICS + _MACHINE_METRICS + _FUEL_AIR_METRICS
     return _DRIVE_METRICS + _MACHINE_METRICS
 
 
@@ -220,6 +236,14 @@ def reasons(p, code: dict) -> np.ndarray:
             gaps, m["compression_ratio"], p.extra.get("piston_width")
         )
         flag(r, bad, code["machine.compression_ratio"])
+        if _fuel_air(p.cfg):  # the fuel-air cycle's compression limit (geometric ratio)
+            beta = p.extra.get("piston_width")
+            beta = wch.piston_width(gaps, m["compression_ratio"]) if beta is None else beta
+            kvol, vc = _section(p), p.float("machine.clearance_volume")
+            ratio = np.maximum(*((kvol * (g[1] - beta) + vc) / (kvol * (g[0] - beta) + vc)
+                                 for g in gaps))  # fmt: skip
+            limit = fa.compression_limit(fa.loads_of(p.cfg.get("loads") or {}))
+            flag(r, ratio > limit, code["machine.compression_ratio"])
         # IdealCycle
         bad = ec.cycle_violation(*(p.float(f"loads.{key}") for key in ec.CYCLE_CHECKS))
         for i, key in enumerate(ec.CYCLE_CHECKS, start=1):
@@ -321,7 +345,7 @@ def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> di
         imep = np.where(disp > 0, work / np.where(disp > 0, disp, 1.0), np.nan) / 1e5
     omega_mean = _omega_mean(p)
     mm3 = 1e6
-    return {
+    out = {
         "pistons_per_rotor": n_f,
         "annulus_volume_cm3": 2.0 * np.pi * k * mm3,
         "clearance_volume_cm3": vc * mm3,
@@ -351,6 +375,72 @@ def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> di
         "mean_torque_Nm": work / (2.0 * np.pi),
         "indicated_power_kW": work * omega_mean / (2.0 * np.pi) / 1e3,
     }
+    if _fuel_air(p.cfg):  # the cycle's keys from the integrated fuel-air cycle instead
+        out.update(_fuel_air_cycle(p, n_f, per_rev, kind_a, beta, k, vc, (va_min, va_max),
+                                   (vb_min, vb_max), disp, omega_mean))  # fmt: skip
+    return out
+
+
+def _fuel_air_cycle(p, n_f, per_rev, kind_a, beta, kvol, vc, vol_a, vol_b, disp, omega) -> dict:
+    """The fuel-air cycle of every design: its two closed parts (kinds A and B) integrated.
+
+    With the linear spin law the turning points are equally spaced, ``pi / (2|n|)``
+    apart: chamber 1 (kind A) compresses from ``theta = 0`` on, chamber 2 (kind B) one
+    stroke later; every chamber of a kind runs that part (the study's
+    :func:`rotorkin.machines.fuel_air.charge_cycle`, which finds the parts of any law).
+    """
+    loads = fa.loads_of(p.cfg.get("loads") or {})
+    n = p.n
+    tilt, alpha = full(p.float("drive.plate_tilt"), n), full(p.float("drive.roller_axis_angle"), n)
+    spin = full(p.float("drive.spin_ratio"), n)
+    beta, kvol, vc, n_f = full(beta, n), full(kvol, n), full(vc, n), full(n_f, n)
+    per_rev, disp = full(per_rev, n), full(disp, n)
+    steps = fa.steps_per_stroke(loads)
+    half = np.linspace(-np.pi, np.pi, 4 * steps + 1)
+    stroke = np.pi / (2.0 * np.abs(spin))  # shaft angle per stroke
+    volume, dvolume = np.empty((n, 2, half.size)), np.empty((n, 2, half.size))
+    for n_spin, pistons in np.unique(np.stack([spin, n_f], axis=-1), axis=0):
+        rows = np.flatnonzero((spin == n_spin) & (n_f == pistons))
+        for part in (0, 1):  # kind A from theta = 0, kind B one stroke later
+            theta = ((half + np.pi) / np.pi + part) * stroke[rows, None]
+            rot, ch = rotor_kinematics(tilt[rows, None], alpha[rows, None], float(n_spin), theta,
+                                       chamber=(beta[rows, None], float(pistons)))  # fmt: skip
+            sign = 1.0 if part == 0 else -1.0  # delta_A = s - lo_a, delta_B = hi_b - s
+            volume[rows, part] = kvol[rows, None] * ch[part] + vc[rows, None]
+            dvolume[rows, part] = (sign * kvol[rows, None] * (rot[1, 1] - rot[1, 0])
+                                   * (stroke[rows, None] / np.pi))  # fmt: skip
+    gas, charge = loads.gas(), loads.charge()
+    v_max, v_min = volume[..., 0], volume[..., 2 * steps]
+    mass = cb.trapped_mass(charge, v_max, gas.gas_constant(0.0))
+    heat = cb.heat_of_charge(charge, mass)
+    wall = None
+    if loads.heat_transfer == "woschni":
+        keys = ("inner_radius", "outer_radius", "axial_width", "mean_radius", "section_diameter")
+        sizes = [full(p.float(f"machine.{k}"), n)[:, None] for k in keys]
+        section = np.broadcast_to(np.asarray(p["machine.section"]), (n,))[:, None]
+        rate = (v_max - v_min) / kvol[:, None] * omega / stroke[:, None]
+        wall = fa.walls_of(section, *sizes, vc[:, None], kvol[:, None], volume,
+                           np.broadcast_to((stroke / np.pi / omega)[:, None, None], volume.shape),
+                           rate, loads.wall_temperature)  # fmt: skip
+    with np.errstate(all="ignore"):
+        res = cb.closed_cycle(half, volume, dvolume, mass=mass, heat=heat, gas=gas,
+                              temperature=loads.intake_temperature, burn=loads.burn(),
+                              walls=wall)  # fmt: skip
+    res = {**res, "fuel": cb.fuel_energy(charge, mass), "mass": mass}
+    weight = np.broadcast_to((n_f * per_rev)[:, None], (n, 2))  # cycles per turn of each kind
+    out = fa.summarize(loads, gas.label, res, v_max, v_min, weight, 1.0, disp)
+    eps = np.where(kind_a, vol_a[1] / vol_a[0], vol_b[1] / vol_b[0])
+    pumping = (loads.intake_pressure - loads.ambient_pressure) * (v_max - v_min)
+    work = res["work"] + pumping
+    out.update({
+        "indicated_work_per_cycle_a_J": work[:, 0],
+        "indicated_work_per_cycle_b_J": work[:, 1],
+        "otto_efficiency": 1.0 - eps**-0.4,
+        "mean_torque_Nm": out["indicated_work_J"] / (2.0 * np.pi),
+        "indicated_power_kW": out["indicated_work_J"] * omega / (2.0 * np.pi) / 1e3,
+    })  # fmt: skip
+    del out["gas_properties"]
+    return out
 
 
 def _section(p):

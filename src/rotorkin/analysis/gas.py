@@ -1,0 +1,201 @@
+"""Caloric properties of an engine's gas: unburnt charge and burnt products, over temperature.
+
+A single-zone engine model needs, for the mixture of unburnt charge and burnt gas
+(burnt mass fraction ``x``), the gas constant ``R(x)``, the specific heat at constant
+volume ``c_v(T, x)`` and the sensible internal energy ``u(T, x)`` (zero at 298.15 K):
+
+* :class:`ConstantGas` -- one ratio of specific heats ``gamma`` for both
+  (``c_v = R / (gamma - 1)``); the ideal-gas cycles' assumption.
+* :class:`NasaGas` -- the species' NASA 7-coefficient polynomials (GRI-Mech 3.0
+  thermodynamic data) evaluated by Cantera (the ``thermo`` extra) for
+
+  - the unburnt charge: dry air (molar O2 20.95 %, N2 78.09 %, Ar 0.93 %, 0.03 % CO2
+    counted as Ar) and the residual burnt gas; the fuel vapour (about 6 % of the mass
+    at stoichiometry) is not counted, it changes ``c_v`` by about 1 % at most;
+  - the burnt gas: the complete products of a fuel ``C H_y`` (``y`` the fuel's
+    hydrogen-to-carbon ratio, gasoline 1.87) with that air at the equivalence ratio
+    ``phi``: CO2, H2O, N2, Ar and the excess O2 (``phi < 1``); frozen, no dissociation
+    (which lowers the real peak temperatures above about 2500 K; Heywood ch. 4.9).
+    Richer mixtures take the stoichiometric products (what burns is limited by the
+    air, :mod:`rotorkin.analysis.combustion`).
+
+  Tabulated once per composition on a 1 K grid from 200 K to 5000 K and
+  interpolated linearly (``c_v``) and by the trapezoid integral of that table
+  (``u``), so that ``du = c_v dT`` holds on the tables exactly.
+
+J. B. Heywood, *Internal Combustion Engine Fundamentals*, 2nd ed., 2018, ch. 4.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from rotorkin.core.errors import ParameterError
+
+__all__ = [
+    "ConstantGas",
+    "NasaGas",
+    "R_UNIVERSAL",
+    "R_AIR",
+    "cantera_available",
+    "burnt_composition",
+]
+
+#: Universal gas constant [J/(mol K)].
+R_UNIVERSAL = 8.314462618
+#: Gas constant of dry air [J/(kg K)] (molar mass 28.965 g/mol).
+R_AIR = R_UNIVERSAL / 28.965e-3
+#: Dry air, molar fractions (the 0.03 % CO2 counted as argon).
+AIR = {"O2": 0.2095, "N2": 0.7809, "AR": 0.0096}
+_T_LO, _T_HI = 200.0, 5000.0
+_T_REF = 298.15
+
+
+def cantera_available() -> bool:
+    """Whether Cantera (the ``thermo`` extra) can be imported."""
+    try:
+        import cantera  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+@dataclass(frozen=True)
+class ConstantGas:
+    """Ideal gas of one ratio of specific heats, unburnt and burnt alike.
+
+    Parameters
+    ----------
+    gamma : float
+        ``c_p / c_v`` [-], ``> 1``.
+    r : float
+        Gas constant [J/(kg K)] (air by default).
+    """
+
+    gamma: float = 1.3
+    r: float = R_AIR
+
+    @property
+    def label(self) -> str:
+        return f"constant gamma = {self.gamma:g}"
+
+    def gas_constant(self, x):
+        """``R`` [J/(kg K)] at burnt fraction ``x``."""
+        return self.r + 0.0 * np.asarray(x, dtype=float)
+
+    def cv(self, t, x):
+        """``c_v`` [J/(kg K)]."""
+        return self.r / (self.gamma - 1.0) + 0.0 * (np.asarray(t) + np.asarray(x))
+
+    def energy(self, t, x):
+        """Sensible internal energy ``u`` [J/kg], zero at 298.15 K."""
+        return self.r / (self.gamma - 1.0) * (np.asarray(t, dtype=float) - _T_REF) + 0.0 * x
+
+    def burnt_minus_unburnt(self, t):
+        """``u_b(T) - u_u(T)`` [J/kg]: zero for one gas."""
+        return 0.0 * np.asarray(t, dtype=float)
+
+    def temperature_after(self, energy, x):
+        """The temperature whose energy is ``energy`` at burnt fraction ``x`` [K]."""
+        return _T_REF + np.asarray(energy, dtype=float) * (self.gamma - 1.0) / self.r
+
+
+def burnt_composition(equivalence_ratio: float, hc_ratio: float) -> dict:
+    """Molar amounts of the complete products of ``C H_y`` with air per mole of fuel carbon.
+
+    ``C H_y + (a_s / phi) (O2 + 3.727 N2 + 0.0458 Ar) -> CO2 + y/2 H2O + ...``,
+    ``a_s = 1 + y / 4``; ``phi`` taken at most 1 (stoichiometric products).
+    """
+    phi = min(float(equivalence_ratio), 1.0)
+    a_s = 1.0 + hc_ratio / 4.0
+    o2 = a_s / phi
+    return {
+        "CO2": 1.0,
+        "H2O": hc_ratio / 2.0,
+        "O2": o2 - a_s,
+        "N2": o2 * AIR["N2"] / AIR["O2"],
+        "AR": o2 * AIR["AR"] / AIR["O2"],
+    }
+
+
+@lru_cache(maxsize=32)
+def _tables(composition: tuple) -> tuple:
+    """``(T, R, c_v(T), u(T))`` of a mixture given as ((species, moles), ...), by Cantera."""
+    import cantera as ct
+
+    gas = ct.Solution("gri30.yaml")
+    t = np.arange(_T_LO, _T_HI + 0.5, 1.0)
+    states = ct.SolutionArray(gas, len(t))
+    states.TPX = t, 1.0e5, dict(composition)
+    cv = np.asarray(states.cv_mass, dtype=float)
+    u = np.concatenate([[0.0], np.cumsum(0.5 * (cv[1:] + cv[:-1]) * np.diff(t))])
+    u = u - np.interp(_T_REF, t, u)
+    r = R_UNIVERSAL / (float(states.mean_molecular_weight[0]) * 1e-3)
+    return t, r, cv, u
+
+
+class NasaGas:
+    """Unburnt charge and burnt products from the NASA polynomials (needs Cantera).
+
+    Parameters
+    ----------
+    equivalence_ratio : float
+        Of the fresh mixture [-].
+    hc_ratio : float
+        Hydrogen-to-carbon atom ratio of the fuel [-] (gasoline 1.87).
+    residual_fraction : float
+        Mass fraction of burnt gas in the unburnt charge [-].
+
+    Raises
+    ------
+    ParameterError
+        ``loads.gas_properties`` when Cantera is not installed.
+    """
+
+    def __init__(self, equivalence_ratio=1.0, hc_ratio=1.87, residual_fraction=0.0):
+        if not cantera_available():
+            raise ParameterError(
+                "loads.gas_properties",
+                "nasa",
+                "gas_properties = 'nasa' needs Cantera: pip install 'rotorkin[thermo]' "
+                "(or 'constant')",
+            )
+        burnt = burnt_composition(equivalence_ratio, hc_ratio)
+        self._b = _tables(tuple(sorted(burnt.items())))
+        self._a = _tables(tuple(sorted(AIR.items())))
+        self.residual_fraction = float(residual_fraction)
+        self.label = "NASA polynomials (Cantera, GRI-Mech 3.0 data)"
+
+    def _unburnt(self, table_index, t):
+        a, b, xr = self._a, self._b, self.residual_fraction
+        return (1.0 - xr) * np.interp(t, a[0], a[table_index]) + xr * np.interp(
+            t, b[0], b[table_index]
+        )
+
+    def gas_constant(self, x):
+        x = np.asarray(x, dtype=float)
+        ru = (1.0 - self.residual_fraction) * self._a[1] + self.residual_fraction * self._b[1]
+        return (1.0 - x) * ru + x * self._b[1]
+
+    def cv(self, t, x):
+        x = np.asarray(x, dtype=float)
+        return (1.0 - x) * self._unburnt(2, t) + x * np.interp(t, self._b[0], self._b[2])
+
+    def energy(self, t, x):
+        x = np.asarray(x, dtype=float)
+        return (1.0 - x) * self._unburnt(3, t) + x * np.interp(t, self._b[0], self._b[3])
+
+    def burnt_minus_unburnt(self, t):
+        return np.interp(t, self._b[0], self._b[3]) - self._unburnt(3, t)
+
+    def temperature_after(self, energy, x):
+        """Inverse of :meth:`energy` in ``T`` (monotone), on the 1 K grid."""
+        t = self._b[0]
+        energy, x = np.broadcast_arrays(np.asarray(energy, float), np.asarray(x, float))
+        out = np.empty(energy.shape)
+        for idx in np.ndindex(energy.shape):  # a few chambers, once per cycle
+            out[idx] = np.interp(energy[idx], self.energy(t, x[idx]), t)
+        return out
