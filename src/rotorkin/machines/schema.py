@@ -343,6 +343,16 @@ class VanePumpSection(InertialSection):
         description="radial gap between a vane root and the other impeller's hub, for the "
         "laminar leakage; 0: no leakage (0 mm <= hub_clearance <= 1 mm)",
     )
+    port_land: Angle = Field(
+        "0 deg",
+        ge=0.0,
+        le=62.83185307179586,  # ten turns; the drive's shortest stroke is checked on it
+        description="sealing land of the ports: the shaft angle round each turning point of the "
+        "relative angle during which every chamber is closed to both ports (its fluid trapped); "
+        "0: ideal ports (0 deg <= port_land < the shortest stroke, the shaft angle between two "
+        "turning points; > 0 needs a dead volume, a vane_angle below the widest; "
+        "port_land <= 3600 deg)",
+    )
 
 
 class PumpPorts(Section):
@@ -370,7 +380,16 @@ class PumpPorts(Section):
         ge=1.0e7,
         le=1.0e11,
         description="bulk modulus of the fluid, for the flow lost compressing a chamber at the "
-        "switch to the outlet; 1.5 GPa: mineral oil (0.01 GPa <= K <= 100 GPa)",
+        "switch to the outlet and the pressure of a trapped chamber; 1.5 GPa: mineral oil "
+        "(0.01 GPa <= K <= 100 GPa)",
+    )
+    vapour_pressure: Pressure = Field(
+        "0.1 bar",
+        ge=0.0,
+        le=PRESSURE_MAX,
+        description="cavitation floor, absolute: a warning when the pressure of a chamber closed "
+        "by machine.port_land falls below it; 0.1 bar: a cautious gas-release pressure of "
+        "mineral oil (its vapour pressure proper is far lower) (0 bar <= p_v <= 1000 bar)",
     )
 
 

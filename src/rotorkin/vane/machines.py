@@ -191,7 +191,96 @@ def _vane_pump(machine, loads, law, points, lo, hi, swing, mid, per_turn, speed)
         },
     )
     ports = build_params(vp.PortPressures, "loads", _fields(vp.PortPressures, loads))
-    return Setup("vane_pump", law, pump, ports, points, lo, hi, 0.0, per_turn, {})
+    gaps = _pump_gaps(machine, loads)
+    values = {
+        "pump": pump,
+        "ports": ports,
+        "gaps": gaps,
+        "motion_of": law.motion,
+        "turning": points,
+        "period": law.period,
+        "land": machine.get("port_land", 0.0),
+    }
+    windows = build_params(vp.land_windows, "machine", values)  # fmt: skip
+    return Setup("vane_pump", law, pump, ports, points, lo, hi, 0.0, per_turn,
+                 {"gaps": gaps, "windows": windows})  # fmt: skip
+
+
+def _pump_gaps(machine: dict, loads: dict) -> vp.Gaps:
+    """The vanes' clearances (machine section) and the fluid (loads section), SI."""
+    values = {k: machine[k] for k in vp.GAP_FIELDS[:3] if k in machine}
+    values |= {k: loads[k] for k in vp.GAP_FIELDS[3:] if k in loads}
+    aliases = {k: f"loads.{k}" for k in vp.GAP_FIELDS[3:]}
+    return build_params(vp.Gaps, "machine", values, aliases)
+
+
+_L_PER_MIN = 60.0e3  # [l/min] per [m^3/s]
+_PUMP_COLUMN_DOCS = {
+    "flow_l_per_min": "Geometric flow, sum over the shrinking chambers of -dV/dt at the run "
+    "speed (ideal ports).",
+    "leakage_l_per_min": "Laminar leakage through the clearances of all vanes, "
+    "2 Z (G_tip + G_side + G_hub) (p_d - p_s) (docs/machines/vane_pump.md).",
+    "flow_delivered_l_per_min": "Flow to the outlet: flow_l_per_min outside the ports' closed "
+    "windows (0 inside, machine.port_land), less leakage_l_per_min.",
+}
+
+
+def pump_flow(s: Setup, theta, st: State, omega) -> tuple[dict, dict, dict]:
+    """A pump's flow at the run speed: summary keys, columns and their docs.
+
+    The machine's :func:`rotorkin.machines.vane_pump.pump_flow` on the state sampled
+    over whole spans of the law: geometric mean flow (the displacement per turn over
+    the time of a turn), its ripple and extremes, leakage, compression and land
+    losses, the delivered flow and its ripple, volumetric efficiency, trapped
+    pressures (:func:`rotorkin.machines.vane_pump.flow_keys`: the same keys on every
+    drive).
+
+    Parameters
+    ----------
+    s : Setup
+        A vane pump.
+    theta : ndarray, shape (n,)
+        Shaft angles over whole spans of the law, ends included [rad].
+    st : State
+        The pump at ``theta``.
+    omega : ndarray, shape (n,)
+        Shaft speed at ``theta`` [rad/s].
+    """
+    theta, omega = np.asarray(theta, dtype=float), np.asarray(omega, dtype=float)
+    pump, ports, extra = s.model, s.loads, s.extra
+    cycles = s.strokes_per_turn / 2.0
+    disp_rev = float(vp.displacement(pump)) * cycles
+    dt = 1.0 / omega
+    span = float(theta[-1] - theta[0])
+    t_turn = float(np.trapezoid(dt, theta)) * _TWO_PI / span
+    flow_mean = disp_rev / t_turn
+    geometric = np.sum(np.maximum(-st.dvolume, 0.0), axis=0) * omega
+    t_period = t_turn * float(s.law.period) / _TWO_PI
+    flow = vp.pump_flow(pump, ports, extra["gaps"], extra["windows"], flow_mean, t_period,
+                        st.dvolume, theta, omega)  # fmt: skip
+    dp = float(ports.discharge_pressure) - float(ports.suction_pressure)
+    keys = {
+        "flow_mean_l_per_min": flow_mean * _L_PER_MIN,
+        "flow_max_l_per_min": float(np.max(geometric)) * _L_PER_MIN,
+        "flow_min_l_per_min": float(np.min(geometric)) * _L_PER_MIN,
+        "flow_ripple": float(vp.flow_ripple(geometric, dt)),
+        "hydraulic_power_W": dp * flow_mean,
+        **vp.flow_keys(flow, ports, extra["windows"].land),
+    }
+    leak = np.full(theta.shape, flow["leakage"]["total"])
+    columns = {
+        "flow_l_per_min": geometric * _L_PER_MIN,
+        "leakage_l_per_min": leak * _L_PER_MIN,
+        "flow_delivered_l_per_min": flow["delivered"] * _L_PER_MIN,
+    }
+    return keys, columns, dict(_PUMP_COLUMN_DOCS)
+
+
+def pump_warnings(s: Setup, summary: dict) -> tuple[str, ...]:
+    """A pump's trapped chamber below the cavitation floor (``loads.vapour_pressure``)."""
+    line = vp.cavitation_warning(s.extra["windows"].pressure_min,
+                                 s.extra["gaps"].vapour_pressure)  # fmt: skip
+    return (line,) if line else ()
 
 
 def _rotary_blade(machine, loads, law, points, lo, hi, swing, mid, per_turn, speed) -> Setup:
@@ -229,7 +318,7 @@ def state(s: Setup, theta) -> State:
                      st.member_torque, st.shaft_torque)  # fmt: skip
     if s.kind == "vane_pump":
         volume, dvolume = vp.chamber_volumes(s.model, motion)
-        pressure = vp.chamber_pressures(s.loads, dvolume)
+        pressure = vp.port_pressures(s.loads, s.extra["windows"], volume, dvolume, theta)
         members = member_torques(pressure, vp.volume_derivatives_dq(s.model, motion))
         return State(motion, volume, dvolume, pressure, members,
                      shaft_torque_from_members(members, motion.dq))  # fmt: skip
@@ -291,6 +380,9 @@ def summary(s: Setup) -> dict:
             "displacement_cm3_per_rev": disp * 1e6,
             "pressure_rise_bar": (ports.discharge_pressure - ports.suction_pressure) / 1e5,
             "indicated_work_J": -(ports.discharge_pressure - ports.suction_pressure) * disp,
+            "port_land_deg": float(np.degrees(s.extra["windows"].land)),
+            "trapped_pressure_peak_bar": s.extra["windows"].pressure_peak / 1e5,
+            "trapped_pressure_min_bar": s.extra["windows"].pressure_min / 1e5,
         })  # fmt: skip
     else:
         m, gas, e = s.model, s.loads, s.extra
