@@ -373,8 +373,9 @@ def _adiabatic_run(x0, vc, ve, dvc, dve, k, h, record):
         k2, _, _ = _adiabatic_rates(tc + 0.5 * h * k1[0], te + 0.5 * h * k1[1], *at(2 * i + 1), k)
         k3, _, _ = _adiabatic_rates(tc + 0.5 * h * k2[0], te + 0.5 * h * k2[1], *at(2 * i + 1), k)
         k4, _, _ = _adiabatic_rates(tc + h * k3[0], te + h * k3[1], *at(2 * i + 2), k)
-        inc = [h / 6.0 * (a + 2.0 * b + 2.0 * c + d) for a, b, c, d in zip(k1, k2, k3, k4,
-                                                                           strict=True)]  # fmt: skip
+        inc = [
+            h / 6.0 * (a + 2.0 * b + 2.0 * c + d) for a, b, c, d in zip(k1, k2, k3, k4, strict=True)
+        ]
         tc, te = tc + inc[0], te + inc[1]
         acc = [a + d for a, d in zip(acc, inc[2:], strict=True)]
     if record:
@@ -442,7 +443,9 @@ def adiabatic_cycle(gas, vc, ve, dvc, dve, vk, vr, vh, tk, th, gamma=1.4, r_gas=
     x = np.stack([np.broadcast_to(tk, shape), np.broadcast_to(th, shape)]).astype(float)
     bump = np.zeros((2, 3) + (1,) * len(shape))
     bump[0, 1], bump[1, 2] = delta, delta
-    for it in range(1, max_iterations + 1):
+    cycles = 0
+    for _ in range(max_iterations):
+        cycles += 1
         start = x[:, None] + bump
         end, rec = _adiabatic_run((start[0], start[1]), *v3, k3, h, True)
         f = np.stack(end) - start  # (2, 3, ...)
@@ -459,13 +462,15 @@ def adiabatic_cycle(gas, vc, ve, dvc, dve, vk, vr, vh, tk, th, gamma=1.4, r_gas=
         ok = np.isfinite(newton) & (newton > 0.0)
         x = np.where(ok & np.isfinite(det), newton, plain)
     else:
-        raise RuntimeError(f"ideal adiabatic cycle not periodic to {tolerance:g} K after "
-                           f"{max_iterations} cycles (residual {np.max(residual):.3g} K)")  # fmt: skip
+        raise RuntimeError(
+            f"ideal adiabatic cycle not periodic to {tolerance:g} K after "
+            f"{max_iterations} cycles (residual {np.max(residual):.3g} K)"
+        )
     cols = [np.stack([r[j][0] for r in rec], axis=-1) for j in range(12)]
     p, tc, te, qk, qr, qh, wc, we, *flows = cols
     theta = np.linspace(0.0, period, steps + 1)
     return _finish(theta, p, tc, te, (qk, qr, qh), (wc, we), flows, r_gas,
-                   regenerator_effectiveness, residual, it)  # fmt: skip
+                   regenerator_effectiveness, residual, cycles)  # fmt: skip
 
 
 def periodic_pressure(result: CycleResult, theta, period: float):

@@ -698,8 +698,9 @@ class StirlingLoads:
     def __post_init__(self):
         IsothermalGas(self.charge_pressure, self.hot_temperature, self.cold_temperature)
         if self.pressure_model not in ("adiabatic", "schmidt"):
-            raise ParameterError("pressure_model", repr(self.pressure_model),
-                                 "'adiabatic' or 'schmidt' ('isothermal': IsothermalGas)")  # fmt: skip
+            raise ParameterError(
+                "pressure_model", repr(self.pressure_model), "'adiabatic' or 'schmidt'"
+            )
         if self.gas not in sa.GASES:
             raise ParameterError("gas", repr(self.gas), "one of " + ", ".join(sa.GASES))
         phase = float(self.phase_angle)
