@@ -42,9 +42,11 @@ def sinusoidal(vswc, vswe, vclc, vcle, alpha, samples):
 def closed_form(mr, d):
     """Schmidt closed form, derived independently: 1/p = (s + C cos(t + beta)) / (M R)."""
     tr = (d["th"] - d["tk"]) / np.log(d["th"] / d["tk"])
-    s = (d["vswc"] / 2 + d["vclc"] + d["vk"]) / d["tk"] + d["vr"] / tr + (
-        d["vswe"] / 2 + d["vcle"] + d["vh"]
-    ) / d["th"]
+    s = (
+        (d["vswc"] / 2 + d["vclc"] + d["vk"]) / d["tk"]
+        + d["vr"] / tr
+        + (d["vswe"] / 2 + d["vcle"] + d["vh"]) / d["th"]
+    )
     a_, b_ = d["vswc"] / (2 * d["tk"]), d["vswe"] / (2 * d["th"])
     cb = a_ + b_ * np.cos(d["alpha"])  # C cos(beta)
     sb = b_ * np.sin(d["alpha"])  # C sin(beta)
