@@ -155,7 +155,9 @@ class CycleResult:
     qk, qr, qh, wc, we : ndarray, shape (..., n)
         Heat into the cooler, regenerator, heater gas and work of the compression and
         expansion spaces since ``theta = 0`` [J] (the ideal cycle, before the
-        regenerator-effectiveness correction).
+        regenerator-effectiveness correction). Schmidt: the heat crosses the isothermal
+        working spaces, so ``qk = wc`` and ``qh = we`` (the compression and expansion
+        spaces' heat stands for the cooler's and the heater's).
     flow_ck, flow_kr, flow_rh, flow_he : ndarray, shape (..., n)
         Mass flows across the interfaces, ``+`` towards the expansion space [kg/rad].
     work, work_compression, work_expansion : ndarray, shape (...)
