@@ -100,6 +100,9 @@ def _law_of(cfg):
         ("rhomboid-engine", ["loads.pressure_model=isothermal"],
          ("displacement_cm3_per_rev", "compression_ratio_geometric", "indicated_work_J",
           "mean_torque_Nm", "pressure_max_bar")),
+        ("rhomboid-engine", ["loads.pressure_model=adiabatic"],
+         ("displacement_cm3_per_rev", "compression_ratio_geometric", "indicated_work_J",
+          "mean_torque_Nm", "heat_in_J_per_rev", "indicated_efficiency", "peak_pressure_bar")),
     ],
 )  # fmt: skip
 def test_the_papers_pairings_through_the_generic_layer_equal_the_drives_own_studies(

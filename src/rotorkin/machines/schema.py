@@ -444,22 +444,71 @@ class RotaryBladeSection(InertialSection):
 
 
 class StirlingGas(Section):
+    pressure_model: Literal["adiabatic", "schmidt", "isothermal"] = Field(
+        "adiabatic",
+        description="gas model: adiabatic (Urieli's ideal adiabatic analysis of each circuit: "
+        "the engine's chambers are the hot spaces, a second blade set lagging by phase_angle "
+        "the cold ones, joined by heater, regenerator and cooler), schmidt (the same "
+        "circuits, isothermal spaces) or isothermal (each chamber's own gas, hot while it "
+        "expands, cold while it is compressed: no heat exchangers, an upper bound)",
+    )
     charge_pressure: Pressure = Field(
         "2 bar",
         ge=PRESSURE_MIN,
         le=PRESSURE_MAX,
-        description="pressure of a chamber's gas at its largest volume, cold "
-        "(0.01 bar <= p <= 1000 bar, absolute)",
+        description="pressure of the gas at its largest volume, all at cold_temperature: of "
+        "a circuit (both chambers and the heat exchangers), or of a chamber for the "
+        "isothermal model (0.01 bar <= p <= 1000 bar, absolute)",
     )
     hot_temperature: Temperature = Field(
         "900 K",
         ge=TEMPERATURE_MIN,
         le=TEMPERATURE_MAX,
-        description="gas temperature while a chamber expands (1 K <= T_hot <= 5000 K)",
+        description="heater gas temperature; isothermal model: gas temperature while a "
+        "chamber expands (1 K <= T_hot <= 5000 K)",
     )
     cold_temperature: Temperature = Field(
         "330 K",
         ge=TEMPERATURE_MIN,
         le=TEMPERATURE_MAX,
-        description="gas temperature while a chamber is compressed (1 K <= T_cold <= 5000 K)",
+        description="cooler gas temperature; isothermal model: gas temperature while a "
+        "chamber is compressed (1 K <= T_cold <= 5000 K)",
+    )
+    gas: Literal["air", "helium", "hydrogen"] = Field(
+        "air", description="working gas of the adiabatic and schmidt models (R and gamma)"
+    )
+    phase_angle: Angle = Field(
+        "90 deg",
+        ge=0.0,
+        le=6.283185307179586,
+        description="lag of the cold blade set behind the hot one, in degrees of a "
+        "chamber's volume cycle (0 deg <= phase_angle <= 360 deg)",
+    )
+    heater_volume: Volume | None = Field(
+        None,
+        ge=0.0,
+        le=1.0,
+        description="gas volume of each circuit's heater (0 <= V <= 1 m^3); default 0.3 x "
+        "a chamber's swept volume",
+    )
+    regenerator_volume: Volume | None = Field(
+        None,
+        ge=0.0,
+        le=1.0,
+        description="gas (void) volume of each circuit's regenerator (0 <= V <= 1 m^3); "
+        "default 0.4 x a chamber's swept volume",
+    )
+    cooler_volume: Volume | None = Field(
+        None,
+        ge=0.0,
+        le=1.0,
+        description="gas volume of each circuit's cooler (0 <= V <= 1 m^3); default 0.2 x a "
+        "chamber's swept volume",
+    )
+    regenerator_effectiveness: float = Field(
+        1.0,
+        ge=0.0,
+        le=1.0,
+        description="share of the regenerator's heat it passes on; the rest loads heater and "
+        "cooler (0 <= eps <= 1, 1 ideal)",
     )

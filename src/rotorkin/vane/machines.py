@@ -55,7 +55,7 @@ class Setup:
     kind: str
     law: RotaryLaw
     model: object  # TwinRotor | VanePump | RotaryBlade
-    loads: object  # IdealCycle | PortPressures | IsothermalGas
+    loads: object  # IdealCycle | PortPressures | IsothermalGas | StirlingLoads
     turning: np.ndarray  # turning points of r in [0, period)
     r_lo: float
     r_hi: float
@@ -287,7 +287,15 @@ def _rotary_blade(machine, loads, law, points, lo, hi, swing, mid, per_turn, spe
     keys = ("blade_thickness", "inner_radius", "outer_radius", "axial_width", "blades_per_pair",
             "inertia_shaft", "inertia_blade_pair_1", "inertia_blade_pair_2")  # fmt: skip
     model = build_params(rb.RotaryBlade, "machine", {k: machine[k] for k in keys if k in machine})
-    gas = build_params(rb.IsothermalGas, "loads", _fields(rb.IsothermalGas, loads))
+    kind = loads.get("pressure_model", "adiabatic")
+    if kind not in rb.PRESSURE_MODELS:
+        raise ParameterError("loads.pressure_model", repr(kind),
+                             "adiabatic, schmidt or isothermal (the drive's own models run in "
+                             "its own study)")  # fmt: skip
+    if kind == "isothermal":
+        gas = build_params(rb.IsothermalGas, "loads", _fields(rb.IsothermalGas, loads))
+    else:
+        gas = build_params(rb.StirlingLoads, "loads", _fields(rb.StirlingLoads, loads))
     centre = np.pi / model.blades_per_pair
     psi_lo, psi_hi = centre - 0.5 * swing, centre + 0.5 * swing
     try:  # the blades must fit the drive's swing
@@ -295,11 +303,35 @@ def _rotary_blade(machine, loads, law, points, lo, hi, swing, mid, per_turn, spe
     except ParameterError as exc:
         raise ParameterError(f"machine.{exc.name}", exc.value, exc.admissible) from None
     v_min, v_max = rb.volume_range(model, psi_lo, psi_hi)
-    extra = {"psi": (psi_lo, psi_hi), "charge": rb.gas_charge(gas, v_max), "v_min": v_min,
-             "v_max": v_max}  # fmt: skip
     # psi = q1 - q2 runs from its centre pi/B where r = q2 - q1 is at mid-swing
-    return Setup("rotary_blade", law, model, gas, points, lo, hi, -(mid + centre), per_turn,
-                 extra)  # fmt: skip
+    shift = -(mid + centre)
+    extra = {"psi": (psi_lo, psi_hi), "v_min": v_min, "v_max": v_max, "stirling": None}
+    if kind == "isothermal":
+        extra["charge"] = rb.gas_charge(gas, v_max)
+    else:
+        extra["stirling"] = _stirling(model, gas, law, shift, points, v_max - v_min)
+    return Setup("rotary_blade", law, model, gas, points, lo, hi, shift, per_turn, extra)
+
+
+def _stirling(model, gas, law, shift, points, swept) -> rb.StirlingSolution:
+    """The circuits of the rotary-blade Stirling engine over one period of the law."""
+
+    def motion(theta):
+        return mounted(law.motion(theta), shift)
+
+    return rb.stirling_solution(model, gas, motion, law.period, len(points) // 2,
+                                float(np.max(swept)))  # fmt: skip
+
+
+def _rotary_blade_state(s: Setup, motion) -> State:
+    """Both blade sets of the Stirling models: volumes and pressures hot set first."""
+    sol = s.extra["stirling"]
+    cold = mounted(s.law.motion(np.asarray(motion.theta) - sol.lag), s.shift)
+    st = rb.stirling_state(s.model, sol, motion, cold)
+    two = (np.concatenate([st["volume_hot"], st["volume_cold"]]),
+           np.concatenate([st["dvolume_hot"], st["dvolume_cold"]]),
+           np.concatenate([st["pressure"], st["pressure"]]))  # fmt: skip
+    return State(motion, *two, st["members"], st["shaft"])
 
 
 _SETUPS = {"twin_rotor": _twin_rotor, "vane_pump": _vane_pump, "rotary_blade": _rotary_blade}
@@ -322,6 +354,8 @@ def state(s: Setup, theta) -> State:
         members = member_torques(pressure, vp.volume_derivatives_dq(s.model, motion))
         return State(motion, volume, dvolume, pressure, members,
                      shaft_torque_from_members(members, motion.dq))  # fmt: skip
+    if s.extra["stirling"] is not None:
+        return _rotary_blade_state(s, motion)
     volume = rb.chamber_volumes(s.model, motion.q)
     dvolume = rb.chamber_volume_derivative(s.model, motion.dq)
     dpsi, d2psi = motion.dq[0] - motion.dq[1], motion.d2q[0] - motion.d2q[1]
@@ -387,10 +421,6 @@ def summary(s: Setup) -> dict:
     else:
         m, gas, e = s.model, s.loads, s.extra
         psi_lo, psi_hi = e["psi"]
-        ends = np.concatenate([[0.0], np.asarray(s.turning, dtype=float), [s.law.period]])
-        ends = np.unique(ends)
-        v_turns = rb.chamber_volumes(m, mounted(s.law.motion(ends), s.shift).q)
-        per_period = float(np.sum(rb.isothermal_cycle_work(gas, e["charge"], v_turns)))
         periods = _TWO_PI / s.law.period
         disp = float(rb.displacement_per_rev(m, s.strokes_per_turn * (psi_hi - psi_lo)))
         out.update({
@@ -401,8 +431,18 @@ def summary(s: Setup) -> dict:
             "chamber_volume_max_cm3": float(np.max(e["v_max"])) * 1e6,
             "displacement_cm3_per_rev": disp * 1e6,
             "compression_ratio_geometric": float(np.min(e["v_max"] / e["v_min"])),
-            "indicated_work_J": per_period * periods,
-            "hot_temperature_K": gas.hot_temperature,
-            "cold_temperature_K": gas.cold_temperature,
         })  # fmt: skip
+        if e["stirling"] is not None:  # both sets' expansion strokes
+            out["displacement_cm3_per_rev"] = 2.0 * disp * 1e6
+            out.update(rb.stirling_summary(e["stirling"], periods))
+        else:
+            ends = np.concatenate([[0.0], np.asarray(s.turning, dtype=float), [s.law.period]])
+            ends = np.unique(ends)
+            v_turns = rb.chamber_volumes(m, mounted(s.law.motion(ends), s.shift).q)
+            per_period = float(np.sum(rb.isothermal_cycle_work(gas, e["charge"], v_turns)))
+            out.update({
+                "indicated_work_J": per_period * periods,
+                "hot_temperature_K": gas.hot_temperature,
+                "cold_temperature_K": gas.cold_temperature,
+            })  # fmt: skip
     return out
