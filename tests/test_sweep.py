@@ -494,8 +494,12 @@ def test_sampled_extremes_of_a_corrected_spin_law_take_the_library_path():
     from rotorkin.drives.wobble_cam import kinematics as wc
     from rotorkin.drives.wobble_cam.sweep import SAMPLED_METRICS
 
-    sets = ["drive.spin_a=[0.05]", "drive.spin_b=[0.02]", "machine.compression_ratio=30",
-            "loads.model=ideal"]  # the kinematics alone, in the batch kernel
+    sets = [
+        "drive.spin_a=[0.05]",
+        "drive.spin_b=[0.02]",
+        "machine.compression_ratio=30",
+        "loads.model=ideal",
+    ]  # the kinematics alone, in the batch kernel
     try:
         _, raw, _ = load_config(None, "wobble-cam-engine", sets)
     except ConfigError:

@@ -265,12 +265,14 @@ def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
     lost = np.zeros(shape)
     temps = [t]
     left = [t]
+    slopes = []
     for k in range(0, n_half - 1, 2):  # the cycle's steps, chambers in arrays
         if burn is None and k == 2 * zero:  # all the heat at the dead centre
             before = gas.energy(t, 0.0)
             t = gas.temperature_after(before + heat / mass, 1.0)
             temps[-1] = t
         k1 = rates(k, t)
+        slopes.append(k1[0])  # dT/dx at the node (after an instant burn there)
         k2 = rates(k + 1, t + h / 2 * k1[0])
         k3 = rates(k + 1, t + h / 2 * k2[0])
         k4 = rates(k + 2, t + h * k3[0])
@@ -286,7 +288,8 @@ def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
     m = mass[..., None] if np.ndim(mass) else mass
     pressure = m * r_gas * temp / volume[..., nodes]
     # dp/dx = m/V (R dT/dx + T dR/dx) - p dV/dx / V at the nodes
-    slopes = np.stack([rates(2 * j, temp[..., j])[0] for j in range(temp.shape[-1])], axis=-1)
+    slopes.append(rates(n_half - 1, t)[0])  # the last node
+    slopes = np.stack(slopes, axis=-1)
     dr = (gas.gas_constant(1.0) - gas.gas_constant(0.0)) * rate[nodes]
     dp = (m * (r_gas * slopes + temp * dr) - pressure * dvolume[..., nodes]) / volume[..., nodes]
     energy0 = gas.energy(t0, 0.0)

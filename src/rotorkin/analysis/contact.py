@@ -172,7 +172,7 @@ def effective_radius(r1, r2):
     """
     r1 = np.asarray(r1, dtype=float)
     r2 = np.asarray(r2, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # 1/denormal: a point
         curvature = 1.0 / r1 + 1.0 / r2
         radius = 1.0 / curvature
     both_flat = np.isinf(r1) & np.isinf(r2)

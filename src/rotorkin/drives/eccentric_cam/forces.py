@@ -202,7 +202,8 @@ def pairs(params: ec.EccentricCam, state: ContactState, bearing_radius: float,
     elif follower == "roller":
         kind, geometry, what = "rolling", ("line", R, float(params.roller_radius)), "roller"
     else:
-        geometry = ("line", R, float(tip_radius)) if tip_radius > 0.0 else None
+        # below a nanometre the tip is an edge (and its curvature would overflow)
+        geometry = ("line", R, float(tip_radius)) if tip_radius >= 1e-9 else None
         kind, what = "sliding", "knife edge"
     out = []
     for k, side in enumerate(SIDES):

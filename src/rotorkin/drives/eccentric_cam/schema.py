@@ -66,8 +66,8 @@ class EccentricDrive(Section):
         ge=0.0,
         le=LENGTH_MAX,
         description="tip radius of a knife-edge follower, for its contact stress only "
-        "(0 <= tip_radius <= 10 m; 0: a sharp edge, no contact stress; the travel takes the "
-        "tip as a point, eq. 1)",
+        "(0 <= tip_radius <= 10 m; 0 or below 1 nm: a sharp edge, no contact stress; the "
+        "travel takes the tip as a point, eq. 1)",
     )
     inclination: Angle = Field(
         "0 deg",
