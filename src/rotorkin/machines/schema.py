@@ -48,8 +48,8 @@ __all__ = [
 #: The vane machines and what each is, in the order of the help.
 VANE_MACHINES = {
     "twin_rotor": "twin-rotor four-stroke engine: N vane pistons on each rotor",
-    "vane_pump": "differential vane pump: Z vanes on each impeller, ideal ports",
-    "rotary_blade": "rotary-blade Stirling engine: B blades per pair, isothermal gas",
+    "vane_pump": "differential vane pump: Z vanes on each impeller, leakage and port losses",
+    "rotary_blade": "rotary-blade Stirling engine: B blades per pair, hot and cold blade sets",
 }
 #: Largest compression ratio [-]: 1e6 stands for pistons of zero width (the drive alone).
 COMPRESSION_RATIO_MAX = 1e6

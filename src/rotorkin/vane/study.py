@@ -84,7 +84,10 @@ HEADLINES = {
     "rotary_blade": {
         **_COMMON,
         "compression_ratio_geometric": "V_max / V_min of a chamber",
-        "pressure_max_bar": "highest gas pressure, isothermal model",
+        "pressure_max_bar": "highest gas pressure of the cycle (loads.pressure_model)",
+        "indicated_efficiency": "indicated work over the heater's heat (Stirling models)",
+        "carnot_efficiency": "1 - T_cold / T_hot, the bound of the efficiency",
+        "heat_in_J_per_rev": "heat taken in by the hot spaces and the heater per turn",
         **_TAIL,
     },
 }
@@ -334,6 +337,17 @@ def evaluate(
     )
 
 
+#: Per machine: the model input that leaves a summary value undefined.
+_BECAUSE = {
+    "twin_rotor": {"indicated_efficiency": "no heat is added (loads.heat_per_cycle = 0)"},
+    "vane_pump": {"volumetric_efficiency": "the geometric flow is 0 (no displacement)"},
+    "rotary_blade": {
+        "indicated_efficiency": "the gas takes in no heat (loads.hot_temperature is not above "
+        "loads.cold_temperature)"
+    },
+}
+
+
 def _warnings(setup: vm.Setup, summary: dict) -> tuple[str, ...]:
     out = []
     if setup.kind == "twin_rotor" and getattr(setup.loads, "heat_per_cycle", None) == 0.0:
@@ -347,5 +361,4 @@ def _warnings(setup: vm.Setup, summary: dict) -> tuple[str, ...]:
     if setup.kind == "rotary_blade" and setup.loads.hot_temperature == setup.loads.cold_temperature:
         out.append("loads.hot_temperature = loads.cold_temperature: the gas does no net work, so "
                    "the mean torque and power are 0")  # fmt: skip
-    because = {"indicated_efficiency": "no heat is added (loads.heat_per_cycle = 0)"}
-    return (*out, *undefined_warnings(summary, because))
+    return (*out, *undefined_warnings(summary, _BECAUSE[setup.kind]))
