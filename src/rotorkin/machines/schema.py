@@ -48,8 +48,8 @@ __all__ = [
 #: The vane machines and what each is, in the order of the help.
 VANE_MACHINES = {
     "twin_rotor": "twin-rotor four-stroke engine: N vane pistons on each rotor",
-    "vane_pump": "differential vane pump: Z vanes on each impeller, ideal ports",
-    "rotary_blade": "rotary-blade Stirling engine: B blades per pair, isothermal gas",
+    "vane_pump": "differential vane pump: Z vanes on each impeller, leakage and port losses",
+    "rotary_blade": "rotary-blade Stirling engine: B blades per pair, hot and cold blade sets",
 }
 #: Largest compression ratio [-]: 1e6 stands for pistons of zero width (the drive alone).
 COMPRESSION_RATIO_MAX = 1e6
@@ -343,6 +343,16 @@ class VanePumpSection(InertialSection):
         description="radial gap between a vane root and the other impeller's hub, for the "
         "laminar leakage; 0: no leakage (0 mm <= hub_clearance <= 1 mm)",
     )
+    port_land: Angle = Field(
+        "0 deg",
+        ge=0.0,
+        le=62.83185307179586,  # ten turns; the drive's shortest stroke is checked on it
+        description="sealing land of the ports: the shaft angle round each turning point of the "
+        "relative angle during which every chamber is closed to both ports (its fluid trapped); "
+        "0: ideal ports (0 deg <= port_land < the shortest stroke, the shaft angle between two "
+        "turning points; > 0 needs a dead volume, a vane_angle below the widest; "
+        "port_land <= 3600 deg)",
+    )
 
 
 class PumpPorts(Section):
@@ -370,7 +380,16 @@ class PumpPorts(Section):
         ge=1.0e7,
         le=1.0e11,
         description="bulk modulus of the fluid, for the flow lost compressing a chamber at the "
-        "switch to the outlet; 1.5 GPa: mineral oil (0.01 GPa <= K <= 100 GPa)",
+        "switch to the outlet and the pressure of a trapped chamber; 1.5 GPa: mineral oil "
+        "(0.01 GPa <= K <= 100 GPa)",
+    )
+    vapour_pressure: Pressure = Field(
+        "0.1 bar",
+        ge=0.0,
+        le=PRESSURE_MAX,
+        description="cavitation floor, absolute: a warning when the pressure of a chamber closed "
+        "by machine.port_land falls below it; 0.1 bar: a cautious gas-release pressure of "
+        "mineral oil (its vapour pressure proper is far lower) (0 bar <= p_v <= 1000 bar)",
     )
 
 
@@ -425,22 +444,71 @@ class RotaryBladeSection(InertialSection):
 
 
 class StirlingGas(Section):
+    pressure_model: Literal["adiabatic", "schmidt", "isothermal"] = Field(
+        "adiabatic",
+        description="gas model: adiabatic (Urieli's ideal adiabatic analysis of each circuit: "
+        "the engine's chambers are the hot spaces, a second blade set lagging by phase_angle "
+        "the cold ones, joined by heater, regenerator and cooler), schmidt (the same "
+        "circuits, isothermal spaces) or isothermal (each chamber's own gas, hot while it "
+        "expands, cold while it is compressed: no heat exchangers, an upper bound)",
+    )
     charge_pressure: Pressure = Field(
         "2 bar",
         ge=PRESSURE_MIN,
         le=PRESSURE_MAX,
-        description="pressure of a chamber's gas at its largest volume, cold "
-        "(0.01 bar <= p <= 1000 bar, absolute)",
+        description="pressure of the gas at its largest volume, all at cold_temperature: of "
+        "a circuit (both chambers and the heat exchangers), or of a chamber for the "
+        "isothermal model (0.01 bar <= p <= 1000 bar, absolute)",
     )
     hot_temperature: Temperature = Field(
         "900 K",
         ge=TEMPERATURE_MIN,
         le=TEMPERATURE_MAX,
-        description="gas temperature while a chamber expands (1 K <= T_hot <= 5000 K)",
+        description="heater gas temperature; isothermal model: gas temperature while a "
+        "chamber expands (1 K <= T_hot <= 5000 K)",
     )
     cold_temperature: Temperature = Field(
         "330 K",
         ge=TEMPERATURE_MIN,
         le=TEMPERATURE_MAX,
-        description="gas temperature while a chamber is compressed (1 K <= T_cold <= 5000 K)",
+        description="cooler gas temperature; isothermal model: gas temperature while a "
+        "chamber is compressed (1 K <= T_cold <= 5000 K)",
+    )
+    gas: Literal["air", "helium", "hydrogen"] = Field(
+        "air", description="working gas of the adiabatic and schmidt models (R and gamma)"
+    )
+    phase_angle: Angle = Field(
+        "90 deg",
+        ge=0.0,
+        le=6.283185307179586,
+        description="lag of the cold blade set behind the hot one, in degrees of a "
+        "chamber's volume cycle (0 deg <= phase_angle <= 360 deg)",
+    )
+    heater_volume: Volume | None = Field(
+        None,
+        ge=0.0,
+        le=1.0,
+        description="gas volume of each circuit's heater (0 <= V <= 1 m^3); default 0.3 x "
+        "a chamber's swept volume",
+    )
+    regenerator_volume: Volume | None = Field(
+        None,
+        ge=0.0,
+        le=1.0,
+        description="gas (void) volume of each circuit's regenerator (0 <= V <= 1 m^3); "
+        "default 0.4 x a chamber's swept volume",
+    )
+    cooler_volume: Volume | None = Field(
+        None,
+        ge=0.0,
+        le=1.0,
+        description="gas volume of each circuit's cooler (0 <= V <= 1 m^3); default 0.2 x a "
+        "chamber's swept volume",
+    )
+    regenerator_effectiveness: float = Field(
+        1.0,
+        ge=0.0,
+        le=1.0,
+        description="share of the regenerator's heat it passes on; the rest loads heater and "
+        "cooler (0 <= eps <= 1, 1 ideal)",
     )

@@ -55,7 +55,7 @@ class Setup:
     kind: str
     law: RotaryLaw
     model: object  # TwinRotor | VanePump | RotaryBlade
-    loads: object  # IdealCycle | PortPressures | IsothermalGas
+    loads: object  # IdealCycle | PortPressures | IsothermalGas | StirlingLoads
     turning: np.ndarray  # turning points of r in [0, period)
     r_lo: float
     r_hi: float
@@ -191,14 +191,111 @@ def _vane_pump(machine, loads, law, points, lo, hi, swing, mid, per_turn, speed)
         },
     )
     ports = build_params(vp.PortPressures, "loads", _fields(vp.PortPressures, loads))
-    return Setup("vane_pump", law, pump, ports, points, lo, hi, 0.0, per_turn, {})
+    gaps = _pump_gaps(machine, loads)
+    values = {
+        "pump": pump,
+        "ports": ports,
+        "gaps": gaps,
+        "motion_of": law.motion,
+        "turning": points,
+        "period": law.period,
+        "land": machine.get("port_land", 0.0),
+    }
+    windows = build_params(vp.land_windows, "machine", values)  # fmt: skip
+    return Setup("vane_pump", law, pump, ports, points, lo, hi, 0.0, per_turn,
+                 {"gaps": gaps, "windows": windows})  # fmt: skip
+
+
+def _pump_gaps(machine: dict, loads: dict) -> vp.Gaps:
+    """The vanes' clearances (machine section) and the fluid (loads section), SI."""
+    values = {k: machine[k] for k in vp.GAP_FIELDS[:3] if k in machine}
+    values |= {k: loads[k] for k in vp.GAP_FIELDS[3:] if k in loads}
+    aliases = {k: f"loads.{k}" for k in vp.GAP_FIELDS[3:]}
+    return build_params(vp.Gaps, "machine", values, aliases)
+
+
+_L_PER_MIN = 60.0e3  # [l/min] per [m^3/s]
+_PUMP_COLUMN_DOCS = {
+    "flow_l_per_min": "Geometric flow, sum over the shrinking chambers of -dV/dt at the run "
+    "speed (ideal ports).",
+    "leakage_l_per_min": "Laminar leakage through the clearances of all vanes, "
+    "2 Z (G_tip + G_side + G_hub) (p_d - p_s) (docs/machines/vane_pump.md).",
+    "flow_delivered_l_per_min": "Flow to the outlet: flow_l_per_min outside the ports' closed "
+    "windows (0 inside, machine.port_land), less leakage_l_per_min.",
+}
+
+
+def pump_flow(s: Setup, theta, st: State, omega) -> tuple[dict, dict, dict]:
+    """A pump's flow at the run speed: summary keys, columns and their docs.
+
+    The machine's :func:`rotorkin.machines.vane_pump.pump_flow` on the state sampled
+    over whole spans of the law: geometric mean flow (the displacement per turn over
+    the time of a turn), its ripple and extremes, leakage, compression and land
+    losses, the delivered flow and its ripple, volumetric efficiency, trapped
+    pressures (:func:`rotorkin.machines.vane_pump.flow_keys`: the same keys on every
+    drive).
+
+    Parameters
+    ----------
+    s : Setup
+        A vane pump.
+    theta : ndarray, shape (n,)
+        Shaft angles over whole spans of the law, ends included [rad].
+    st : State
+        The pump at ``theta``.
+    omega : ndarray, shape (n,)
+        Shaft speed at ``theta`` [rad/s].
+    """
+    theta, omega = np.asarray(theta, dtype=float), np.asarray(omega, dtype=float)
+    pump, ports, extra = s.model, s.loads, s.extra
+    cycles = s.strokes_per_turn / 2.0
+    disp_rev = float(vp.displacement(pump)) * cycles
+    dt = 1.0 / omega
+    span = float(theta[-1] - theta[0])
+    t_turn = float(np.trapezoid(dt, theta)) * _TWO_PI / span
+    flow_mean = disp_rev / t_turn
+    geometric = np.sum(np.maximum(-st.dvolume, 0.0), axis=0) * omega
+    t_period = t_turn * float(s.law.period) / _TWO_PI
+    flow = vp.pump_flow(pump, ports, extra["gaps"], extra["windows"], flow_mean, t_period,
+                        st.dvolume, theta, omega)  # fmt: skip
+    dp = float(ports.discharge_pressure) - float(ports.suction_pressure)
+    keys = {
+        "flow_mean_l_per_min": flow_mean * _L_PER_MIN,
+        "flow_max_l_per_min": float(np.max(geometric)) * _L_PER_MIN,
+        "flow_min_l_per_min": float(np.min(geometric)) * _L_PER_MIN,
+        "flow_ripple": float(vp.flow_ripple(geometric, dt)),
+        "hydraulic_power_W": dp * flow_mean,
+        **vp.flow_keys(flow, ports, extra["windows"].land),
+    }
+    leak = np.full(theta.shape, flow["leakage"]["total"])
+    columns = {
+        "flow_l_per_min": geometric * _L_PER_MIN,
+        "leakage_l_per_min": leak * _L_PER_MIN,
+        "flow_delivered_l_per_min": flow["delivered"] * _L_PER_MIN,
+    }
+    return keys, columns, dict(_PUMP_COLUMN_DOCS)
+
+
+def pump_warnings(s: Setup, summary: dict) -> tuple[str, ...]:
+    """A pump's trapped chamber below the cavitation floor (``loads.vapour_pressure``)."""
+    line = vp.cavitation_warning(s.extra["windows"].pressure_min,
+                                 s.extra["gaps"].vapour_pressure)  # fmt: skip
+    return (line,) if line else ()
 
 
 def _rotary_blade(machine, loads, law, points, lo, hi, swing, mid, per_turn, speed) -> Setup:
     keys = ("blade_thickness", "inner_radius", "outer_radius", "axial_width", "blades_per_pair",
             "inertia_shaft", "inertia_blade_pair_1", "inertia_blade_pair_2")  # fmt: skip
     model = build_params(rb.RotaryBlade, "machine", {k: machine[k] for k in keys if k in machine})
-    gas = build_params(rb.IsothermalGas, "loads", _fields(rb.IsothermalGas, loads))
+    kind = loads.get("pressure_model", "adiabatic")
+    if kind not in rb.PRESSURE_MODELS:
+        raise ParameterError("loads.pressure_model", repr(kind),
+                             "adiabatic, schmidt or isothermal (the drive's own models run in "
+                             "its own study)")  # fmt: skip
+    if kind == "isothermal":
+        gas = build_params(rb.IsothermalGas, "loads", _fields(rb.IsothermalGas, loads))
+    else:
+        gas = build_params(rb.StirlingLoads, "loads", _fields(rb.StirlingLoads, loads))
     centre = np.pi / model.blades_per_pair
     psi_lo, psi_hi = centre - 0.5 * swing, centre + 0.5 * swing
     try:  # the blades must fit the drive's swing
@@ -206,11 +303,35 @@ def _rotary_blade(machine, loads, law, points, lo, hi, swing, mid, per_turn, spe
     except ParameterError as exc:
         raise ParameterError(f"machine.{exc.name}", exc.value, exc.admissible) from None
     v_min, v_max = rb.volume_range(model, psi_lo, psi_hi)
-    extra = {"psi": (psi_lo, psi_hi), "charge": rb.gas_charge(gas, v_max), "v_min": v_min,
-             "v_max": v_max}  # fmt: skip
     # psi = q1 - q2 runs from its centre pi/B where r = q2 - q1 is at mid-swing
-    return Setup("rotary_blade", law, model, gas, points, lo, hi, -(mid + centre), per_turn,
-                 extra)  # fmt: skip
+    shift = -(mid + centre)
+    extra = {"psi": (psi_lo, psi_hi), "v_min": v_min, "v_max": v_max, "stirling": None}
+    if kind == "isothermal":
+        extra["charge"] = rb.gas_charge(gas, v_max)
+    else:
+        extra["stirling"] = _stirling(model, gas, law, shift, points, v_max - v_min)
+    return Setup("rotary_blade", law, model, gas, points, lo, hi, shift, per_turn, extra)
+
+
+def _stirling(model, gas, law, shift, points, swept) -> rb.StirlingSolution:
+    """The circuits of the rotary-blade Stirling engine over one period of the law."""
+
+    def motion(theta):
+        return mounted(law.motion(theta), shift)
+
+    return rb.stirling_solution(model, gas, motion, law.period, len(points) // 2,
+                                float(np.max(swept)))  # fmt: skip
+
+
+def _rotary_blade_state(s: Setup, motion) -> State:
+    """Both blade sets of the Stirling models: volumes and pressures hot set first."""
+    sol = s.extra["stirling"]
+    cold = mounted(s.law.motion(np.asarray(motion.theta) - sol.lag), s.shift)
+    st = rb.stirling_state(s.model, sol, motion, cold)
+    two = (np.concatenate([st["volume_hot"], st["volume_cold"]]),
+           np.concatenate([st["dvolume_hot"], st["dvolume_cold"]]),
+           np.concatenate([st["pressure"], st["pressure"]]))  # fmt: skip
+    return State(motion, *two, st["members"], st["shaft"])
 
 
 _SETUPS = {"twin_rotor": _twin_rotor, "vane_pump": _vane_pump, "rotary_blade": _rotary_blade}
@@ -229,10 +350,12 @@ def state(s: Setup, theta) -> State:
                      st.member_torque, st.shaft_torque)  # fmt: skip
     if s.kind == "vane_pump":
         volume, dvolume = vp.chamber_volumes(s.model, motion)
-        pressure = vp.chamber_pressures(s.loads, dvolume)
+        pressure = vp.port_pressures(s.loads, s.extra["windows"], volume, dvolume, theta)
         members = member_torques(pressure, vp.volume_derivatives_dq(s.model, motion))
         return State(motion, volume, dvolume, pressure, members,
                      shaft_torque_from_members(members, motion.dq))  # fmt: skip
+    if s.extra["stirling"] is not None:
+        return _rotary_blade_state(s, motion)
     volume = rb.chamber_volumes(s.model, motion.q)
     dvolume = rb.chamber_volume_derivative(s.model, motion.dq)
     dpsi, d2psi = motion.dq[0] - motion.dq[1], motion.d2q[0] - motion.d2q[1]
@@ -291,14 +414,13 @@ def summary(s: Setup) -> dict:
             "displacement_cm3_per_rev": disp * 1e6,
             "pressure_rise_bar": (ports.discharge_pressure - ports.suction_pressure) / 1e5,
             "indicated_work_J": -(ports.discharge_pressure - ports.suction_pressure) * disp,
+            "port_land_deg": float(np.degrees(s.extra["windows"].land)),
+            "trapped_pressure_peak_bar": s.extra["windows"].pressure_peak / 1e5,
+            "trapped_pressure_min_bar": s.extra["windows"].pressure_min / 1e5,
         })  # fmt: skip
     else:
         m, gas, e = s.model, s.loads, s.extra
         psi_lo, psi_hi = e["psi"]
-        ends = np.concatenate([[0.0], np.asarray(s.turning, dtype=float), [s.law.period]])
-        ends = np.unique(ends)
-        v_turns = rb.chamber_volumes(m, mounted(s.law.motion(ends), s.shift).q)
-        per_period = float(np.sum(rb.isothermal_cycle_work(gas, e["charge"], v_turns)))
         periods = _TWO_PI / s.law.period
         disp = float(rb.displacement_per_rev(m, s.strokes_per_turn * (psi_hi - psi_lo)))
         out.update({
@@ -309,8 +431,18 @@ def summary(s: Setup) -> dict:
             "chamber_volume_max_cm3": float(np.max(e["v_max"])) * 1e6,
             "displacement_cm3_per_rev": disp * 1e6,
             "compression_ratio_geometric": float(np.min(e["v_max"] / e["v_min"])),
-            "indicated_work_J": per_period * periods,
-            "hot_temperature_K": gas.hot_temperature,
-            "cold_temperature_K": gas.cold_temperature,
         })  # fmt: skip
+        if e["stirling"] is not None:  # both sets' expansion strokes
+            out["displacement_cm3_per_rev"] = 2.0 * disp * 1e6
+            out.update(rb.stirling_summary(e["stirling"], periods))
+        else:
+            ends = np.concatenate([[0.0], np.asarray(s.turning, dtype=float), [s.law.period]])
+            ends = np.unique(ends)
+            v_turns = rb.chamber_volumes(m, mounted(s.law.motion(ends), s.shift).q)
+            per_period = float(np.sum(rb.isothermal_cycle_work(gas, e["charge"], v_turns)))
+            out.update({
+                "indicated_work_J": per_period * periods,
+                "hot_temperature_K": gas.hot_temperature,
+                "cold_temperature_K": gas.cold_temperature,
+            })  # fmt: skip
     return out

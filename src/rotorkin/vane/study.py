@@ -24,7 +24,6 @@ from rotorkin.analysis.pairs import ContactModel
 from rotorkin.analysis.pairs import columns as pair_columns
 from rotorkin.analysis.pairs import summary as pair_summary
 from rotorkin.analysis.timing import shaft_speed
-from rotorkin.machines.vane_pump import flow_ripple
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, time_domain, undefined_warnings
 from rotorkin.vane import figures
@@ -74,13 +73,21 @@ HEADLINES = {
         **_COMMON,
         "vane_angle_deg": "angular width of a vane",
         "flow_mean_l_per_min": "mean delivered flow at the run speed",
-        "flow_ripple": "(max - min) / mean of the delivered flow",
+        "flow_ripple": "(max - min) / mean of the geometric flow (ideal ports)",
+        "flow_delivered_mean_l_per_min": "mean flow less leakage, land and compression losses",
+        "volumetric_efficiency": "delivered over geometric mean flow",
+        "flow_delivered_ripple": "(max - min) / mean of the flow delivered, losses included",
+        "trapped_pressure_peak_bar": "highest pressure of a chamber closed by the ports' land",
+        "trapped_pressure_min_bar": "lowest pressure of a chamber closed by the ports' land",
         **_TAIL,
     },
     "rotary_blade": {
         **_COMMON,
         "compression_ratio_geometric": "V_max / V_min of a chamber",
-        "pressure_max_bar": "highest gas pressure, isothermal model",
+        "pressure_max_bar": "highest gas pressure of the cycle (loads.pressure_model)",
+        "indicated_efficiency": "indicated work over the heater's heat (Stirling models)",
+        "carnot_efficiency": "1 - T_cold / T_hot, the bound of the efficiency",
+        "heat_in_J_per_rev": "heat taken in by the hot spaces and the heater per turn",
         **_TAIL,
     },
 }
@@ -176,11 +183,7 @@ def _summary(setup: vm.Setup, cfg: dict, theta, st, dyn) -> dict:
         "flywheel_inertia_kgm2": float(fw.flywheel_inertia(d_e, w, coefficient, j_mean)),
     })  # fmt: skip
     if setup.kind == "vane_pump":
-        flow = np.sum(np.maximum(-st.dvolume, 0.0), axis=0) * dyn["omega"]
-        t_turn = float(np.trapezoid(1.0 / dyn["omega"], theta)) * _TWO_PI / setup.law.span
-        dt = 1.0 / dyn["omega"]
-        out["flow_mean_l_per_min"] = out["displacement_cm3_per_rev"] * 1e-6 / t_turn * 6e4
-        out["flow_ripple"] = float(flow_ripple(flow, dt))
+        out.update(vm.pump_flow(setup, theta, st, dyn["omega"])[0])
     if setup.kind == "rotary_blade":
         out["pressure_max_bar"] = float(np.max(st.pressure)) / 1e5
         out["pressure_min_bar"] = float(np.min(st.pressure)) / 1e5
@@ -295,6 +298,10 @@ def evaluate(
     dyn = dynamics(st, theta, speed, law.period, inertia)
     members = st.motion.members
     columns, docs = _columns(setup, st, dyn, theta, members)
+    if kind == "vane_pump":
+        extra, extra_docs = vm.pump_flow(setup, theta, st, dyn["omega"])[1:]
+        columns.update(extra)
+        docs.update(extra_docs)
     if drive_columns is not None:
         extra, extra_docs = drive_columns(theta)
         columns.update(extra)
@@ -330,16 +337,28 @@ def evaluate(
     )
 
 
+#: Per machine: the model input that leaves a summary value undefined.
+_BECAUSE = {
+    "twin_rotor": {"indicated_efficiency": "no heat is added (loads.heat_per_cycle = 0)"},
+    "vane_pump": {"volumetric_efficiency": "the geometric flow is 0 (no displacement)"},
+    "rotary_blade": {
+        "indicated_efficiency": "the gas takes in no heat (loads.hot_temperature is not above "
+        "loads.cold_temperature)"
+    },
+}
+
+
 def _warnings(setup: vm.Setup, summary: dict) -> tuple[str, ...]:
     out = []
     if setup.kind == "twin_rotor" and getattr(setup.loads, "heat_per_cycle", None) == 0.0:
         out.append("loads.heat_per_cycle = 0: no heat is added, so the indicated work, mean "
                    "torque and power are those of a motored engine (about 0)")  # fmt: skip
+    if setup.kind == "vane_pump":
+        out.extend(vm.pump_warnings(setup, summary))
     if setup.kind == "vane_pump" and setup.loads.discharge_pressure == setup.loads.suction_pressure:
         out.append("loads.discharge_pressure = loads.suction_pressure: the pump lifts nothing, so "
                    "its mean torque, work and hydraulic power are 0")  # fmt: skip
     if setup.kind == "rotary_blade" and setup.loads.hot_temperature == setup.loads.cold_temperature:
         out.append("loads.hot_temperature = loads.cold_temperature: the gas does no net work, so "
                    "the mean torque and power are 0")  # fmt: skip
-    because = {"indicated_efficiency": "no heat is added (loads.heat_per_cycle = 0)"}
-    return (*out, *undefined_warnings(summary, because))
+    return (*out, *undefined_warnings(summary, _BECAUSE[setup.kind]))

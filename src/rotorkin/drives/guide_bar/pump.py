@@ -21,8 +21,8 @@ from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar.schema import VanePumpMachine
 from rotorkin.machines import vane_pump as vp
 
-__all__ = ["CHECKS", "relative_angle_extremes", "default_vane_angle", "inadmissible", "vane_pump",
-           "displacement"]  # fmt: skip
+__all__ = ["CHECKS", "relative_angle_extremes", "turning_angles", "default_vane_angle",
+           "inadmissible", "vane_pump", "displacement"]  # fmt: skip
 
 #: The machine section's defaults (SI), the one source of the pump's defaults.
 _MACHINE = VanePumpMachine().model_dump()
@@ -51,6 +51,18 @@ def relative_angle_extremes(params: gb.GuideBar):
     r = q[1] - q[0]  # (2 points, ...)
     lo, hi = np.min(r, axis=0), np.max(r, axis=0)
     return (float(lo), float(hi)) if np.ndim(lo) == 0 else (lo, hi)
+
+
+def turning_angles(params: gb.GuideBar) -> np.ndarray:
+    """Input angles in ``[0, 2 pi i12)`` where ``r`` turns back: the equal-speed points [rad].
+
+    The driving angles ``-Sigma/2`` and ``pi - Sigma/2`` of mechanism 1
+    (:func:`~rotorkin.drives.guide_bar.kinematics.equal_speed_angles`) times ``i12``,
+    sorted: where the pump's ports switch (closed form, one design).
+    """
+    i12 = float(params.input_gear_ratio)
+    t = np.array(gb.equal_speed_angles(float(params.phase)), dtype=float) * i12
+    return np.sort(np.mod(t, float(gb.period(params))))
 
 
 def default_vane_angle(params: gb.GuideBar):

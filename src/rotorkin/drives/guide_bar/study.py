@@ -45,8 +45,8 @@ from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 from rotorkin.vane import RotaryLaw
 
-__all__ = ["evaluate", "drive_params", "pump_params", "gap_params", "pump_state", "pair_forces",
-           "HEADLINE"]  # fmt: skip
+__all__ = ["evaluate", "drive_params", "pump_params", "gap_params", "land_params", "pump_state",
+           "pair_forces", "HEADLINE"]  # fmt: skip
 
 #: Summary keys printed by the command line, in order, with what each means (one line).
 HEADLINE = {
@@ -63,6 +63,9 @@ HEADLINE = {
     "flow_ripple": "(max - min) / mean of the delivered flow",
     "flow_delivered_mean_l_per_min": "mean flow less leakage and compression loss",
     "volumetric_efficiency": "delivered over geometric mean flow",
+    "flow_delivered_ripple": "(max - min) / mean of the flow delivered, losses included",
+    "trapped_pressure_peak_bar": "highest pressure of a chamber closed by the ports' land",
+    "trapped_pressure_min_bar": "lowest pressure of a chamber closed by the ports' land",
     "mean_torque_Nm": "ideal ports: mean torque on the shaft (- : the motor drives)",
     "torque_ripple": "ideal ports: (max - min) / |mean| of the shaft torque",
     "flywheel_inertia_kgm2": "flywheel for the chosen coefficient of speed fluctuation",
@@ -157,7 +160,8 @@ _PUMP_DOCS = {
     "speed.",
     "leakage_l_per_min": "Laminar leakage through the clearances of all vanes, "
     "2 Z (G_tip + G_side + G_hub) (p_d - p_s) (docs/machines/vane_pump.md).",
-    "flow_delivered_l_per_min": "flow_l_per_min less leakage_l_per_min.",
+    "flow_delivered_l_per_min": "Flow to the outlet: flow_l_per_min outside the ports' closed "
+    "windows (0 inside, machine.port_land), less leakage_l_per_min.",
     "impeller1_torque_Nm": "Torque of the chamber pressures on impeller 1, sum p_j dV_j/dq_1, "
     "positive in its sense of rotation.",
     "impeller2_torque_Nm": "Torque of the chamber pressures on impeller 2, sum p_j dV_j/dq_2.",
@@ -195,7 +199,13 @@ def _inertias(machine: dict) -> tuple[float, tuple[float, float]]:
 
 
 def pump_state(
-    params: gb.GuideBar, pump: vp.VanePump, ports: vp.PortPressures, inertia, speed, theta
+    params: gb.GuideBar,
+    pump: vp.VanePump,
+    ports: vp.PortPressures,
+    inertia,
+    speed,
+    theta,
+    windows: vp.LandWindows | None = None,
 ) -> dict:
     """Chambers, pressures, flow and torques of the pump at the input angles ``theta``.
 
@@ -211,18 +221,24 @@ def pump_state(
         ``run.speed`` [rad/s] (constant or a profile over one period).
     theta : ndarray, shape (n,)
         Input angles [rad].
+    windows : LandWindows, optional
+        The ports' sealing land (:func:`land_params`): the chambers' trapped
+        pressure in the closed windows; None: ideal ports.
 
     Returns
     -------
     dict of ndarray
         ``V``, ``dV``, ``p`` (2 Z, n); ``M`` (2, n); ``shaft``, ``inertia``,
-        ``net``, ``J_eq``, ``flow``, ``omega``, ``omega_dot`` (n,).
+        ``net``, ``J_eq``, ``flow`` (geometric), ``omega``, ``omega_dot`` (n,).
     """
     period = gb.period(params)
     motion = gb.motion(params, theta)
     dq, d2q = motion.dq, motion.d2q
     V, dV = vp.chamber_volumes(pump, motion)
-    p = vp.chamber_pressures(ports, dV)
+    if windows is None:
+        p = vp.chamber_pressures(ports, dV)
+    else:
+        p = vp.port_pressures(ports, windows, V, dV, theta)
     M = tq.member_torques(p, vp.volume_derivatives_dq(pump, motion))
     shaft = tq.shaft_torque_from_members(M, dq)
     omega, omega_dot, _ = shaft_speed(theta, speed, period)
@@ -251,28 +267,28 @@ def gap_params(machine: dict, loads: dict) -> vp.Gaps:
     return build_params(vp.Gaps, "machine", values, aliases)
 
 
-def _loss_summary(pump, ports, gaps, flow_mean, t_period) -> dict:
-    """Leakage, compression loss, delivered flow and volumetric efficiency (mean over time)."""
-    leak = vp.leakage_flow(pump, gaps, ports)
-    compression = vp.compression_loss(pump, gaps, ports) / t_period
-    delivered = flow_mean - leak["total"] - compression
-    dp = float(ports.discharge_pressure) - float(ports.suction_pressure)
-    return {
-        "leakage_l_per_min": leak["total"] * _M3_TO_L_PER_MIN,
-        "leakage_tip_l_per_min": leak["tip"] * _M3_TO_L_PER_MIN,
-        "leakage_side_l_per_min": leak["side"] * _M3_TO_L_PER_MIN,
-        "leakage_hub_l_per_min": leak["hub"] * _M3_TO_L_PER_MIN,
-        "compression_loss_l_per_min": compression * _M3_TO_L_PER_MIN,
-        "flow_delivered_mean_l_per_min": delivered * _M3_TO_L_PER_MIN,
-        "volumetric_efficiency": delivered / flow_mean if flow_mean > 0.0 else float("nan"),
-        "hydraulic_power_delivered_W": dp * delivered,
-    }
+def land_params(params: gb.GuideBar, pump: vp.VanePump, ports: vp.PortPressures,
+                gaps: vp.Gaps, land: float = 0.0) -> vp.LandWindows:  # fmt: skip
+    """The ports' closed windows at the equal-speed points (``machine.port_land`` [rad]).
+
+    The machine's :func:`rotorkin.machines.vane_pump.land_windows` at this drive's
+    turning points in closed form (:func:`rotorkin.drives.guide_bar.pump.turning_angles`);
+    errors name ``machine.port_land``.
+    """
+    values = {"pump": pump, "ports": ports, "gaps": gaps,
+              "motion_of": functools.partial(gb.motion, params),
+              "turning": gb_pump.turning_angles(params), "period": gb.period(params),
+              "land": land}  # fmt: skip
+    return build_params(vp.land_windows, "machine", values)
 
 
-def _pump_summary(drive, pump, ports, inertia, speed, coefficient, gaps=None) -> dict:
+def _pump_summary(drive, pump, ports, inertia, speed, coefficient, gaps=None,
+                  windows=None) -> dict:  # fmt: skip
     period = gb.period(drive)
+    gaps = gaps or vp.Gaps()
+    windows = windows or land_params(drive, pump, ports, gaps)
     fine = np.linspace(0.0, period, _PEAK_SAMPLES)
-    st = pump_state(drive, pump, ports, inertia, speed, fine)
+    st = pump_state(drive, pump, ports, inertia, speed, fine, windows)
     omega_mean = float(np.mean(st["omega"][:-1]))
     # time-averaged flow: volume per period over the time of a period
     dt = 1.0 / st["omega"]
@@ -285,13 +301,15 @@ def _pump_summary(drive, pump, ports, inertia, speed, coefficient, gaps=None) ->
     delta_e = float(fw.energy_fluctuation(net_const, fine))
     j_mean = float(np.trapezoid(st["J_eq"], fine) / period)
     cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
+    flow = vp.pump_flow(pump, ports, gaps, windows, flow_mean, t_period, st["dV"], fine,
+                        st["omega"])  # fmt: skip
     out = {
         **closed_forms.pump_summary(drive, pump),
         "flow_mean_l_per_min": flow_mean * _M3_TO_L_PER_MIN,
         "flow_max_l_per_min": float(np.max(st["flow"])) * _M3_TO_L_PER_MIN,
         "flow_min_l_per_min": float(np.min(st["flow"])) * _M3_TO_L_PER_MIN,
         "flow_ripple": vp.flow_ripple(st["flow"], dt),
-        **_loss_summary(pump, ports, gaps or vp.Gaps(), flow_mean, t_period),
+        **vp.flow_keys(flow, ports, windows.land),
         **closed_forms.work_summary(drive, pump, ports, flow_mean),
         "shaft_torque_min_Nm": float(np.min(st["shaft"])),
         "shaft_torque_max_Nm": float(np.max(st["shaft"])),
@@ -312,9 +330,13 @@ def _pump_summary(drive, pump, ports, inertia, speed, coefficient, gaps=None) ->
     return out
 
 
-def _pump_columns(drive, pump, ports, inertia, speed, theta, gaps=None) -> tuple[dict, dict]:
-    st = pump_state(drive, pump, ports, inertia, speed, theta)
-    leak = vp.leakage_flow(pump, gaps or vp.Gaps(), ports)["total"]
+def _pump_columns(drive, pump, ports, inertia, speed, theta, gaps=None,
+                  windows=None) -> tuple[dict, dict]:  # fmt: skip
+    gaps = gaps or vp.Gaps()
+    windows = windows or land_params(drive, pump, ports, gaps)
+    st = pump_state(drive, pump, ports, inertia, speed, theta, windows)
+    leak = vp.leakage_flow(pump, gaps, ports)["total"]
+    closed = vp.closed_windows(theta, windows.turning, windows.period, windows.land)[0]
     cols = {}
     for j, tag in ((0, "a"), (1, "b")):
         cols[f"chamber_{tag}_volume_cm3"] = st["V"][j] * 1e6
@@ -322,7 +344,9 @@ def _pump_columns(drive, pump, ports, inertia, speed, theta, gaps=None) -> tuple
         cols[f"chamber_{tag}_pressure_bar"] = st["p"][j] / 1e5
     cols["flow_l_per_min"] = st["flow"] * _M3_TO_L_PER_MIN
     cols["leakage_l_per_min"] = np.full(np.shape(st["flow"]), leak * _M3_TO_L_PER_MIN)
-    cols["flow_delivered_l_per_min"] = (st["flow"] - leak) * _M3_TO_L_PER_MIN
+    cols["flow_delivered_l_per_min"] = (
+        vp.delivered_flow(st["dV"], closed, st["omega"], leak) * _M3_TO_L_PER_MIN
+    )
     cols["impeller1_torque_Nm"] = st["M"][0]
     cols["impeller2_torque_Nm"] = st["M"][1]
     cols["shaft_torque_Nm"] = st["shaft"]
@@ -353,9 +377,10 @@ def pair_forces(cfg: dict, params: gb.GuideBar, state: dict, theta, inertia):
     return forces, gb_forces.pairs(params, size, forces, float(contact["bearing_radius"]))
 
 
-def _forces_summary(cfg, params, pump, ports, inertia, speed, work_per_turn) -> dict:
+def _forces_summary(cfg, params, pump, ports, inertia, speed, work_per_turn,
+                    windows=None) -> dict:  # fmt: skip
     fine = np.linspace(0.0, gb.period(params), _PEAK_SAMPLES)
-    st = pump_state(params, pump, ports, inertia, speed, fine)
+    st = pump_state(params, pump, ports, inertia, speed, fine, windows)
     forces, pairs = pair_forces(cfg, params, st, fine, inertia)
     model = pr.ContactModel.from_config(cfg)
     out = pr.summary(pairs, fine, work_per_turn, model, st["omega"])
@@ -363,8 +388,9 @@ def _forces_summary(cfg, params, pump, ports, inertia, speed, work_per_turn) -> 
     return out
 
 
-def _forces_columns(cfg, params, pump, ports, inertia, speed, theta) -> tuple[dict, dict]:
-    st = pump_state(params, pump, ports, inertia, speed, theta)
+def _forces_columns(cfg, params, pump, ports, inertia, speed, theta,
+                    windows=None) -> tuple[dict, dict]:  # fmt: skip
+    st = pump_state(params, pump, ports, inertia, speed, theta, windows)
     forces, pairs = pair_forces(cfg, params, st, theta, inertia)
     cols, docs = pr.columns(pairs, pr.ContactModel.from_config(cfg), st["shaft"])
     cols.update(gb_forces.signed_columns(forces))
@@ -447,23 +473,27 @@ def evaluate(cfg: dict) -> StudyResult:
         },
     )
     gaps = gap_params(machine, loads)
+    windows = land_params(params, pump, ports, gaps, float(machine["port_land"]))
     inertia = _inertias(machine)
     speed = run["speed"]
     summary = _summary(params, m7, m8)
     summary.update(_pump_summary(params, pump, ports, inertia, speed,
-                                 float(machine["speed_fluctuation"]), gaps))  # fmt: skip
+                                 float(machine["speed_fluctuation"]), gaps,
+                                 windows))  # fmt: skip
     columns = _columns(params, m7, m8, run["points"])
     theta = angle_grid(gb.period(params), run["points"])
-    pump_cols, pump_docs = _pump_columns(params, pump, ports, inertia, speed, theta, gaps)
+    pump_cols, pump_docs = _pump_columns(params, pump, ports, inertia, speed, theta, gaps,
+                                         windows)  # fmt: skip
     columns.update(pump_cols)
     summary.update(_forces_summary(cfg, params, pump, ports, inertia, speed,
-                                   summary["indicated_work_J"]))  # fmt: skip
-    force_cols, force_docs = _forces_columns(cfg, params, pump, ports, inertia, speed, theta)
+                                   summary["indicated_work_J"], windows))  # fmt: skip
+    force_cols, force_docs = _forces_columns(cfg, params, pump, ports, inertia, speed, theta,
+                                             windows)  # fmt: skip
     columns.update(force_cols)
 
     def plot(outdir: Path) -> list[Path]:
         grid = angle_grid(gb.period(params), 1441)
-        state = pump_state(params, pump, ports, inertia, speed, grid)
+        state = pump_state(params, pump, ports, inertia, speed, grid, windows)
         pairs = pair_forces(cfg, params, state, grid, inertia)[1]
         return figures_guide_bar.plot_all(
             params, m7, m8, Path(outdir), pump=pump, ports=ports, theta=grid, state=state,
@@ -479,14 +509,18 @@ def evaluate(cfg: dict) -> StudyResult:
         headline=HEADLINE,
         write_figures=plot,
         motion=gb.motion(params, theta),
-        warnings=_warnings(cfg, summary),
+        warnings=_warnings(cfg, summary, gaps),
     )
 
 
-def _warnings(cfg: dict, summary: dict) -> tuple[str, ...]:
+def _warnings(cfg: dict, summary: dict, gaps: vp.Gaps | None = None) -> tuple[str, ...]:
     """Inputs that leave summary numbers without meaning, one line each."""
     loads = cfg.get("loads", {})
     out = []
+    floor = vp.VAPOUR_PRESSURE if gaps is None else gaps.vapour_pressure
+    cavitation = vp.cavitation_warning(summary["trapped_pressure_min_bar"] * 1e5, floor)
+    if cavitation:
+        out.append(cavitation)
     if loads.get("discharge_pressure") == loads.get("suction_pressure"):
         out.append(
             "loads.discharge_pressure = loads.suction_pressure: the pump lifts nothing, so its "

@@ -216,6 +216,13 @@ def _machine_tag(machine, loads) -> str:
         f"R_i = {m.inner_radius * 1e3:.4g} mm, R_o = {m.outer_radius * 1e3:.4g} mm, "
         f"w = {m.axial_width * 1e3:.4g} mm"
     )
+    if loads.stirling is not None:
+        g = loads.gas
+        return (
+            f"{geo}; {loads.model} Stirling circuits ({g.gas}): p_charge = "
+            f"{g.charge_pressure * 1e-5:.4g} bar, T_h = {g.hot_temperature:.4g} K, "
+            f"T_k = {g.cold_temperature:.4g} K, cold set {np.degrees(g.phase_angle):.4g} deg behind"
+        )
     if loads.model == "isothermal":
         g = loads.gas
         return (

@@ -320,7 +320,7 @@ def plots(result, cfg) -> list[Plot]:
                     pv,
                     "volume [cm^3]",
                     "pressure [bar]",
-                    "p-V diagram of chamber 1 (isothermal model)",
+                    f"p-V diagram of chamber 1 ({s.get('pressure_model')} model)",
                     height=480,
                 ),
             )

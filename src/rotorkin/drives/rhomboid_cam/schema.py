@@ -81,8 +81,11 @@ class RhomboidLoads(StirlingGas):
         le=TORQUE_MAX,
         description="torque level M2 of the linear blade model (|M2| <= 1e6 N*m)",
     )
-    pressure_model: Literal["linear", "isothermal"] = Field(
-        "linear", description="blade loads: the paper's linear torque model or isothermal gas"
+    pressure_model: Literal["linear", "adiabatic", "schmidt", "isothermal"] = Field(
+        "linear",
+        description="blade loads: the paper's linear torque model (eq. 29), or a gas model of "
+        "the machine: adiabatic or schmidt (hot and cold blade sets joined by heater, "
+        "regenerator and cooler) or isothermal (each chamber's own gas)",
     )
 
 

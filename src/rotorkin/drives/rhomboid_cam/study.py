@@ -8,15 +8,19 @@ hand-built ``cfg`` take the same defaults):
 * ``machine.*``: the rotary-blade engine (:class:`rotorkin.machines.rotary_blade.RotaryBlade`)
   and ``machine.speed_fluctuation`` for the flywheel;
 * ``loads.torque_high``, ``loads.torque_low`` [N m] (the paper's linear model, eq. 29),
-  ``loads.pressure_model`` (``"linear"`` or ``"isothermal"``), ``loads.charge_pressure``
-  [Pa], ``loads.hot_temperature``, ``loads.cold_temperature`` [K];
+  ``loads.pressure_model`` (``"linear"``, ``"adiabatic"``, ``"schmidt"`` or
+  ``"isothermal"``), ``loads.charge_pressure`` [Pa], ``loads.hot_temperature``,
+  ``loads.cold_temperature`` [K] and, for the Stirling models (a cold blade set lagging
+  the engine's, :mod:`rotorkin.machines.rotary_blade`), ``loads.gas``,
+  ``loads.phase_angle``, the heat exchangers' volumes and
+  ``loads.regenerator_effectiveness``;
 * ``run.points``, ``run.speed`` [rad/s] (constant or a profile over one period, pi);
 * ``cam.roller_radius`` [m] and ``contact.*`` for the forces in the converter's pairs
   (:mod:`rotorkin.drives.rhomboid_cam.forces`).
 
 The linear torque model (eq. 29) is defined for ``psi_min <= psi <= psi_max`` (eq. 2)
-only: a law whose higher harmonics take psi outside is refused with it. The isothermal
-model runs such a law (its torques follow the chamber volumes over the law's own swing,
+only: a law whose higher harmonics take psi outside is refused with it. The gas
+models run such a law (its torques follow the chamber volumes over the law's own swing,
 which the blades must fit); the summary keys of the paper's linear model are then
 left undefined.
 
@@ -73,7 +77,7 @@ HEADLINE = {
     "mean_shaft_torque_Nm": "paper's linear torque model: mean output-shaft torque",
     "blade_accel_coeff_max": "max |d2 phi_1 / d alpha2| of a blade pair",
     "psi_monotone": "true if psi rises and falls once per period",
-    "pressure_model": "chamber model of the machine keys below: linear or isothermal",
+    "pressure_model": "model of the machine keys below: linear, adiabatic, schmidt, isothermal",
     "compression_ratio_geometric": "V_max / V_min of a chamber",
     "displacement_cm3_per_rev": "swept volume of all chambers per output turn",
     "indicated_work_J": "pressure model above: work per output-shaft turn",
@@ -171,15 +175,18 @@ def _columns(params, m1, m2, points) -> dict:
 class Loads(NamedTuple):
     """The pressure model and its data.
 
-    ``model`` is ``"linear"`` (paper, eq. 29: ``torque_high``, ``torque_low`` [N m]) or
-    ``"isothermal"`` (``gas`` and ``charge`` = ``m_j R`` per chamber [J/K]).
+    ``model`` is ``"linear"`` (paper, eq. 29: ``torque_high``, ``torque_low`` [N m]),
+    ``"isothermal"`` (``gas`` and ``charge`` = ``m_j R`` per chamber [J/K]) or
+    ``"adiabatic"`` / ``"schmidt"`` (``gas`` the :class:`~rotorkin.machines.rotary_blade.
+    StirlingLoads`, ``stirling`` the solved circuits).
     """
 
     model: str
     torque_high: float
     torque_low: float
-    gas: rb.IsothermalGas | None = None
+    gas: rb.IsothermalGas | rb.StirlingLoads | None = None
     charge: np.ndarray | None = None
+    stirling: rb.StirlingSolution | None = None
 
 
 class State(NamedTuple):
@@ -192,14 +199,18 @@ class State(NamedTuple):
     pressure: np.ndarray | None  # (2B, ...) [Pa], None for the linear model
     members: np.ndarray  # (2, ...) torques on the blade pairs [N m]
     torque: np.ndarray  # (...) torque of the loads on the output shaft [N m]
+    cold_volume: np.ndarray | None = None  # (2B, ...) cold set, Stirling models [m^3]
+    cold_dvolume: np.ndarray | None = None  # (2B, ...) [m^3/rad]
 
 
 def machine_state(params, machine, loads: Loads, alpha, stroke=None) -> State:
     """Volumes, pressures and torques at the output-shaft angles ``alpha`` (any shape).
 
     Member torques: the linear model's ``(M_1, -M_1)`` (eq. 24, 29), or
-    ``M_i = sum_j p_j dV_j/dq_i`` from the isothermal pressures; the shaft torque by
-    virtual work ``T = sum_i M_i phi_i'`` (positive when it drives the shaft).
+    ``M_i = sum_j p_j dV_j/dq_i`` from the gas pressures; the shaft torque by
+    virtual work ``T = sum_i M_i phi_i'`` (positive when it drives the shaft). The
+    Stirling models add the cold set's ``sum_j p_j dV_cold,j/dalpha`` (its blade pairs
+    are driven by a second converter ``lag`` behind; ``members`` are the hot set's).
 
     Parameters
     ----------
@@ -214,6 +225,11 @@ def machine_state(params, machine, loads: Loads, alpha, stroke=None) -> State:
     volume = rb.chamber_volumes(machine, mo.q)
     dvolume = rb.chamber_volume_derivative(machine, mo.dq)
     pressure = None
+    if loads.stirling is not None:
+        sol = loads.stirling
+        st = rb.stirling_state(machine, sol, mo, rc.motion(params, alpha - sol.lag))
+        return State(mo, stroke, volume, dvolume, st["pressure"], st["members"], st["shaft"],
+                     st["volume_cold"], st["dvolume_cold"])  # fmt: skip
     if loads.model == "linear":
         psi = rc.psi_law(*law, alpha)[0]
         m1 = rc.blade_torque(loads.torque_high, loads.torque_low, params.psi_min, psi, stroke)
@@ -232,8 +248,11 @@ def indicated_work_per_period(params, machine, loads: Loads, nodes: int = 64) ->
     ``integral_0^pi T d alpha`` with ``T`` from :func:`machine_state`, split at the
     stationary points of ``psi`` (where the stroke, and so the model, switches) and
     integrated by Gauss-Legendre on each smooth piece (exact to rounding for the
-    linear model, ~1e-15 relative for the isothermal one).
+    linear model, ~1e-15 relative for the isothermal one). The Stirling models give the
+    work of their solved cycles, ``sum W_c + W_e`` over the circuits.
     """
+    if loads.stirling is not None:
+        return float(np.sum(loads.stirling.cycle.work))
     law = (params.psi_min, params.a, params.b)
     z = rc.psi_stationary_points(*law)
     x, w = np.polynomial.legendre.leggauss(int(nodes))
@@ -265,7 +284,16 @@ def _machine_setup(cfg, params):
         raise ParameterError(f"machine.{exc.name}", exc.value, exc.admissible) from None
     ld = cfg["loads"]
     v_min, v_max = rb.volume_range(machine, lo, hi)
-    if ld["pressure_model"] == "isothermal":
+    model = ld["pressure_model"]
+    if model in ("adiabatic", "schmidt"):
+        keys = [f for f in rb.STIRLING_CHECKS if f in ld]
+        gas = build_params(rb.StirlingLoads, "loads", {k: ld[k] for k in keys})
+        turning = len(rc.psi_stationary_points(params.psi_min, params.a, params.b)) - 1
+        sol = rb.stirling_solution(machine, gas, functools.partial(rc.motion, params),
+                                   rc.period(params), turning // 2,
+                                   float(np.max(v_max - v_min)))  # fmt: skip
+        loads = Loads(model, ld["torque_high"], ld["torque_low"], gas, None, sol)
+    elif model == "isothermal":
         gas = build_params(
             rb.IsothermalGas,
             "loads",
@@ -391,6 +419,12 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient,
         "speed_fluctuation": float(coefficient),
         "flywheel_inertia_kgm2": flywheel,
     }
+    if loads.stirling is not None:
+        s.update(rb.stirling_summary(loads.stirling, revs))
+        s["displacement_cm3_per_rev"] = 2.0 * s["displacement_cm3_per_rev"]  # both sets
+        s["indicated_work_J"] = work_rev
+        s["pressure_max_bar"] = float(np.max(st.pressure)) * 1e-5
+        s["pressure_min_bar"] = float(np.min(st.pressure)) * 1e-5
     if loads.model == "isothermal":
         z = rc.psi_stationary_points(*law)
         v_turns = rb.chamber_volumes(machine, rc.blade_angles(*law, z)[0])
@@ -434,6 +468,15 @@ def _machine_columns(params, machine, loads, points, speed, forces_cfg):
             out_docs[f"{c}_pressure_bar"] = (
                 f"Absolute gas pressure in chamber {j + 1}, isothermal model "
                 "(hot while it expands, cold while it is compressed)."
+                if loads.stirling is None
+                else f"Absolute gas pressure in circuit {j + 1} (hot chamber {j + 1}, cold "
+                f"chamber {j + 1} and their heat exchangers), {loads.model} model."
+            )
+        if st.cold_volume is not None:
+            out[f"cold_{c}_volume_cm3"] = st.cold_volume[j] * 1e6
+            out_docs[f"cold_{c}_volume_cm3"] = (
+                f"Volume of chamber {j + 1} of the cold blade set (the engine's chamber "
+                f"{j + 1} {np.degrees(loads.stirling.lag):.6g} deg of shaft angle earlier)."
             )
     for i in (0, 1):
         key = f"blade_pair_{i + 1}_torque_Nm"
@@ -617,7 +660,7 @@ def _warnings(loads, summary: dict, outside: str = "") -> tuple[str, ...]:
     if outside:
         because = {
             k: f"{outside} takes psi outside psi_min ... psi_max, where the paper's linear "
-            "torque model (eq. 29) is defined; the isothermal keys stand"
+            "torque model (eq. 29) is defined; the gas model's keys stand"
             for k in _LINEAR_KEYS
         }
     if loads.model == "linear" and loads.torque_high == loads.torque_low:
