@@ -214,3 +214,12 @@ def test_limits_command_prints_the_interval_and_what_binds(capsys):
     out = capsys.readouterr().out
     assert "admissible from 41.13" in out and "to 51.8" in out
     assert "machine.compression_ratio" in out
+
+
+def test_the_report_lists_the_same_checks(tmp_path):
+    assert main(["report", "-e", "rhomboid-engine", "--out", str(tmp_path)]) == 0
+    html = (tmp_path / "report.html").read_text()
+    cfg, _, _ = load_config(None, "rhomboid-engine", [])
+    for c in design_checks(cfg):
+        assert c.name in html
+    assert "margin" in html
