@@ -21,6 +21,7 @@ from rotorkin.cli import main
 from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion
 from rotorkin.io.config import load_config, validate_config
+from rotorkin.machines import pump_flow as pf
 from rotorkin.machines import vane_pump as vp
 from rotorkin.vane import RotaryLaw
 
@@ -83,26 +84,26 @@ def test_zero_clearances_and_no_land_give_the_ideal_flow_exactly():
     motion, turning, period = _sine_motion()
     pump = _pump(np.pi / 2 - 0.3, np.pi / 2 + 0.3, 0.5)
     ports = vp.PortPressures(PS, PD)
-    gaps = vp.Gaps()
-    windows = vp.land_windows(pump, ports, gaps, motion, turning, period, 0.0)
+    gaps = pf.Gaps()
+    windows = pf.land_windows(pump, ports, gaps, motion, turning, period, 0.0)
     theta = np.linspace(0.0, 2 * np.pi, 4001)
     m = motion(theta)
     volume, dvolume = vp.chamber_volumes(pump, m)
     omega = 157.0
-    closed = vp.closed_windows(theta, turning, period, 0.0)[0]
+    closed = pf.closed_windows(theta, turning, period, 0.0)[0]
     assert not closed.any()
     ideal = vp.flow_rate(pump, m, omega)
-    leak = vp.leakage_flow(pump, gaps, ports)["total"]
+    leak = pf.leakage_flow(pump, gaps, ports)["total"]
     assert leak == 0.0
-    assert np.array_equal(vp.delivered_flow(dvolume, closed, omega, leak), ideal)
-    assert np.array_equal(vp.port_pressures(ports, windows, volume, dvolume, theta),
+    assert np.array_equal(pf.delivered_flow(dvolume, closed, omega, leak), ideal)
+    assert np.array_equal(pf.port_pressures(ports, windows, volume, dvolume, theta),
                           vp.chamber_pressures(ports, dvolume))  # fmt: skip
     # nothing trapped: the extremes are the ports', no volume lost to a land
     assert (windows.pressure_peak, windows.pressure_min) == (PD, PS)
     assert windows.lost_volume == 0.0
     # the compression loss is today's closed form (2 Z V_max dp / K), to rounding
     assert windows.compression_volume == pytest.approx(
-        vp.compression_loss(pump, gaps, ports), rel=1e-12
+        pf.compression_loss(pump, gaps, ports), rel=1e-12
     )
 
 
@@ -183,9 +184,9 @@ def test_trapped_pressure_against_a_numeric_integration_of_the_continuity_equati
     motion, turning, period = _sine_motion(amp)
     lo, hi, gamma = np.pi / 2 - amp, np.pi / 2 + amp, 1.2  # a dead volume: phi_min = 0.0708 rad
     pump = _pump(lo, hi, gamma)
-    ports, gaps = vp.PortPressures(PS, PD), vp.Gaps(bulk_modulus=K)
+    ports, gaps = vp.PortPressures(PS, PD), pf.Gaps(bulk_modulus=K)
     land = math.radians(land_deg)
-    windows = vp.land_windows(pump, ports, gaps, motion, turning, period, land)
+    windows = pf.land_windows(pump, ports, gaps, motion, turning, period, land)
 
     def rhs(t, p):  # dp/dtheta = -(K/V) dV/dtheta, chamber A closed
         return -K / _chamber_a_volume(t, lo, hi, gamma, motion) * _chamber_a_dvolume(t, motion)
@@ -203,7 +204,7 @@ def test_trapped_pressure_against_a_numeric_integration_of_the_continuity_equati
         fine = sol.sol(np.linspace(a, b, 2001))[0]
         m = motion(grid)
         volume, dvolume = vp.chamber_volumes(pump, m)
-        p = vp.port_pressures(ports, windows, volume, dvolume, grid)
+        p = pf.port_pressures(ports, windows, volume, dvolume, grid)
         scale = abs(numeric - p0).max()
         assert p[0] == pytest.approx(numeric[:-2], abs=1e-9 * scale + 1e-6)
         assert windows.pressure_turn[i, 0] == pytest.approx(numeric[-2], abs=1e-9 * scale + 1e-6)
@@ -228,7 +229,7 @@ def test_trapped_pressure_broadcasts_at_0d_1d_3d():
     for shape in ((), (5,), (2, 3, 4)):
         v = rng.uniform(1e-6, 2e-6, shape)
         v0 = rng.uniform(1e-6, 2e-6, shape)
-        p = vp.trapped_pressure(v, v0, PS, K)
+        p = pf.trapped_pressure(v, v0, PS, K)
         assert np.shape(p) == shape
         assert p == pytest.approx(PS - K * np.log(v / v0), rel=1e-14)
 
@@ -263,9 +264,9 @@ def test_ripple_of_a_constant_relative_speed_against_the_sampled_curve(land_deg,
     motion, turning, period = _triangle_motion(slope)
     lo, hi, gamma = np.pi / 2 - slope * np.pi / 2, np.pi / 2 + slope * np.pi / 2, 1.0
     pump = _pump(lo, hi, gamma)
-    ports, gaps = vp.PortPressures(PS, PD), vp.Gaps(tip_clearance=h_tip, bulk_modulus=K)
+    ports, gaps = vp.PortPressures(PS, PD), pf.Gaps(tip_clearance=h_tip, bulk_modulus=K)
     land = math.radians(land_deg)
-    windows = vp.land_windows(pump, ports, gaps, motion, turning, period, land)
+    windows = pf.land_windows(pump, ports, gaps, motion, turning, period, land)
     omega = 100.0
     theta = np.linspace(0.0, 2 * np.pi, 36_001)  # 0.01 deg: the windows' ends are samples
     dvolume = vp.chamber_volumes(pump, motion(theta))[1]
@@ -273,7 +274,7 @@ def test_ripple_of_a_constant_relative_speed_against_the_sampled_curve(land_deg,
     q = omega * 2 * KV * slope  # Z k |r'| omega: constant
     flow_mean = vp.displacement(pump) / t_period
     assert flow_mean == pytest.approx(q, rel=1e-12)
-    flow = vp.pump_flow(pump, ports, gaps, windows, flow_mean, t_period, dvolume, theta,
+    flow = pf.pump_flow(pump, ports, gaps, windows, flow_mean, t_period, dvolume, theta,
                         np.full_like(theta, omega))  # fmt: skip
     leak = flow["leakage"]["total"]
     closed_share = 2 * land / period  # two windows per period
@@ -317,21 +318,21 @@ def test_guide_bar_study_with_a_land_uses_the_machines_flow():
 def test_bad_values_are_refused_naming_the_field():
     motion, turning, period = _sine_motion()
     pump = _pump(np.pi / 2 - 0.3, np.pi / 2 + 0.3, 0.5)
-    ports, gaps = vp.PortPressures(PS, PD), vp.Gaps()
+    ports, gaps = vp.PortPressures(PS, PD), pf.Gaps()
     stroke = period / 2
     for land in (-0.01, stroke, 10.0, float("nan")):
         with pytest.raises(ParameterError) as err:
-            vp.land_windows(pump, ports, gaps, motion, turning, period, land)
+            pf.land_windows(pump, ports, gaps, motion, turning, period, land)
         assert err.value.name == "port_land"
     closing = _pump(np.pi / 2 - 0.3, np.pi / 2 + 0.3, float(vp.vane_angle_max(2, 0.6)))
     with pytest.raises(ParameterError, match="close completely") as err:
-        vp.land_windows(closing, ports, gaps, motion, turning, period, 0.01)
+        pf.land_windows(closing, ports, gaps, motion, turning, period, 0.01)
     assert err.value.name == "port_land"
-    vp.land_windows(closing, ports, gaps, motion, turning, period, 0.0)  # no land: fine
+    pf.land_windows(closing, ports, gaps, motion, turning, period, 0.0)  # no land: fine
     with pytest.raises(ParameterError, match="tip_clearance"):
-        vp.Gaps(tip_clearance=-1e-6)
+        pf.Gaps(tip_clearance=-1e-6)
     with pytest.raises(ParameterError, match="vapour_pressure"):
-        vp.Gaps(vapour_pressure=-1.0)
+        pf.Gaps(vapour_pressure=-1.0)
 
 
 @pytest.mark.parametrize(

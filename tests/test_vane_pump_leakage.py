@@ -12,6 +12,7 @@ from rotorkin import drives
 from rotorkin.cli import main
 from rotorkin.core.errors import ParameterError
 from rotorkin.io.config import load_config
+from rotorkin.machines import pump_flow as pf
 from rotorkin.machines import vane_pump as vp
 
 PS, PD = 1.0e5, 6.0e5
@@ -39,8 +40,8 @@ def test_zero_clearances_deliver_the_ideal_flow():
 
 def test_leakage_by_hand():
     h_t, h_s, h_h = 20e-6, 10e-6, 5e-6
-    gaps = vp.Gaps(h_t, h_s, h_h, MU)
-    leak = vp.leakage_flow(PUMP, gaps, vp.PortPressures(PS, PD))
+    gaps = pf.Gaps(h_t, h_s, h_h, MU)
+    leak = pf.leakage_flow(PUMP, gaps, vp.PortPressures(PS, PD))
     dp, n, g = PD - PS, 4, 0.5
     tip = 0.040 * h_t**3 * dp / (12 * MU * g * 0.080)
     hub = 0.040 * h_h**3 * dp / (12 * MU * g * 0.030)
@@ -51,16 +52,16 @@ def test_leakage_by_hand():
     assert leak["total"] == pytest.approx(n * (tip + hub + side), rel=1e-12)
     # the side land as thin plane strips of length gamma rho (Poiseuille on each strip)
     rho = np.linspace(0.030, 0.080, 200_001)
-    strips = vp.gap_flow(1.0, h_s, g * rho, dp, MU)
+    strips = pf.gap_flow(1.0, h_s, g * rho, dp, MU)
     assert 2 * np.trapezoid(strips, rho) == pytest.approx(side, rel=1e-9)
 
 
 def test_compression_loss_by_hand():
-    gaps = vp.Gaps(bulk_modulus=1.5e9)
+    gaps = pf.Gaps(bulk_modulus=1.5e9)
     k = 0.5 * (0.080**2 - 0.030**2) * 0.040
     phi_max = PUMP.chamber_angle_range[1]
     expected = 4 * k * phi_max * (PD - PS) / 1.5e9
-    loss = vp.compression_loss(PUMP, gaps, vp.PortPressures(PS, PD))
+    loss = pf.compression_loss(PUMP, gaps, vp.PortPressures(PS, PD))
     assert loss == pytest.approx(expected, rel=1e-12)
 
 
@@ -80,11 +81,11 @@ def test_volumetric_loss_grows_as_the_cube_of_the_clearance():
 
 def test_gaps_refuse_bad_values():
     with pytest.raises(ParameterError, match="tip_clearance"):
-        vp.Gaps(tip_clearance=-1e-6)
+        pf.Gaps(tip_clearance=-1e-6)
     with pytest.raises(ParameterError, match="fluid_viscosity"):
-        vp.Gaps(fluid_viscosity=0.0)
+        pf.Gaps(fluid_viscosity=0.0)
     with pytest.raises(ParameterError, match="bulk_modulus"):
-        vp.Gaps(bulk_modulus=float("nan"))
+        pf.Gaps(bulk_modulus=float("nan"))
 
 
 @pytest.mark.parametrize(

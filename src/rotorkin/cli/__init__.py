@@ -25,10 +25,12 @@ import typer
 from rotorkin import __version__
 from rotorkin.cli import compare as cli_compare
 from rotorkin.cli import export as cli_export
+from rotorkin.cli import limits as cli_limits
 from rotorkin.cli import report as cli_report
 from rotorkin.cli import sweep as cli_sweep
 from rotorkin.cli import synthesize as cli_synthesize
 from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, out_folder
+from rotorkin.cli.tables import print_checks
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import REGISTRY, evaluate
 from rotorkin.io.config import example_names, example_path, glossary, load_config, read_toml
@@ -147,9 +149,11 @@ def _print_summary(result, name, outdir, written):
             shown = str(value)
         table.add_row(key, shown, *([meanings[key]] if meanings else []))
     console.print(table)
+    print_checks(console, result.checks)
     figures = [p.name for p in written if p.suffix == ".png"]
+    checks = "checks.csv, " if result.checks else ""
     console.print(
-        f"wrote {outdir}/: summary.json, motion.csv, config.toml, README.txt, "
+        f"wrote {outdir}/: summary.json, motion.csv, config.toml, {checks}README.txt, "
         f"{len(figures)} figures ({', '.join(figures)})",
         highlight=False,
         soft_wrap=True,
@@ -158,7 +162,7 @@ def _print_summary(result, name, outdir, written):
 
 # Commands that live in their own modules (cad export, synthesis, html report, sweeps):
 # each module has register(app), which adds its commands.
-for _module in (cli_export, cli_synthesize, cli_report, cli_sweep, cli_compare):
+for _module in (cli_export, cli_synthesize, cli_report, cli_sweep, cli_compare, cli_limits):
     _module.register(app)
 
 

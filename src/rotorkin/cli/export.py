@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich.console import Console
 
 from rotorkin.cli.options import (
     ConfigArg,
@@ -20,8 +21,9 @@ from rotorkin.cli.options import (
     flag_names,
     out_option,
 )
+from rotorkin.cli.tables import print_checks
 from rotorkin.core.errors import RotorkinError
-from rotorkin.drives import get
+from rotorkin.drives import design_checks, get
 from rotorkin.io.config import load_config
 from rotorkin.io.export import FORMATS, export, profile_checks
 
@@ -93,9 +95,11 @@ def register(app) -> None:
         cfg, _, name = load_config(config, example, set_ or [])
         outdir = out if out is not None else Path("rotorkin-out") / name / "cad"
         rows = _check_rows(cfg)
+        checks = design_checks(cfg)  # the same checks as run (with their margins)
         written = export(cfg, fmt_, outdir, name)
         if not quiet:
             _print(name, cfg["drive"]["type"], fmt_, outdir, written, rows)
+            print_checks(Console(markup=False, highlight=False), checks)
 
 
 def _print(name, kind, fmt, outdir, written, rows) -> None:

@@ -27,7 +27,8 @@ from rotorkin.drives import (
     wobble_cam,
 )
 from rotorkin.drives._spec import DriveSpec
-from rotorkin.studies.limits import violations
+from rotorkin.studies.checks import limit_checks, profile_checks
+from rotorkin.studies.limits import limit_value, violations
 from rotorkin.synthesis import SynthesisResult
 from rotorkin.vane import MACHINES
 from rotorkin.vane import evaluate as evaluate_vane_machine
@@ -44,6 +45,7 @@ __all__ = [
     "spec_of",
     "register",
     "evaluate",
+    "design_checks",
     "synthesize",
 ]
 
@@ -200,8 +202,7 @@ def evaluate(cfg: dict):
     rotorkin.studies.StudyResult
     """
     spec = spec_of(cfg)
-    if spec.check_cam is not None:
-        spec.check_cam(cfg)  # what export refuses, every command refuses
+    checks = design_checks(cfg)  # what export refuses, every command refuses
     result = spec.study(cfg)
     if isinstance(result.headline, dict):  # every drive prints its pairs' peaks the same way
         extra = {k: v for k, v in CONTACT_HEADLINE.items()
@@ -212,7 +213,32 @@ def evaluate(cfg: dict):
     # the limits passed, comma-separated ("" when none): a summary value stays a plain string
     result.summary["limits_passed"] = ", ".join(line.split(":", 1)[0] for line in lines)
     result.warnings = (*result.warnings, *lines)
+    result.checks = (*checks, *limit_checks(result.summary, cfg, result.columns))
     return result
+
+
+def design_checks(cfg: dict) -> list:
+    """The drive's checks of a validated config, with their margins, before any study.
+
+    The drive's own (``DriveSpec.checks``) or, for a drive with planar parts, the checks
+    of each cam profile (:func:`rotorkin.studies.checks.profile_checks`); then
+    ``DriveSpec.check_cam``. Raises :class:`ParameterError` for what ``rotorkin export``
+    refuses outright (named by config key), so every command refuses it too.
+
+    Returns
+    -------
+    list of rotorkin.studies.checks.Check
+    """
+    spec = spec_of(cfg)
+    if spec.checks is not None:
+        return list(spec.checks(cfg))
+    if spec.cad_parts is not None:
+        _, profiles = spec.cad_parts(cfg, False)
+        angle = limit_value(cfg, "limits.pressure_angle")
+        return [c for label, p in profiles for c in profile_checks(label, p, angle)]
+    if spec.check_cam is not None:
+        spec.check_cam(cfg)
+    return []
 
 
 def synthesize(

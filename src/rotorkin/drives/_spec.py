@@ -83,6 +83,10 @@ class DriveSpec:
     check_rows : callable, optional
         ``check_rows(cfg) -> [(check, value)]``: the cam checks printed by ``export``;
         default: the rows of the planar profile checks.
+    checks : callable, optional
+        ``checks(cfg) -> [rotorkin.studies.checks.Check]``: the drive's own checks with
+        their margins (raising for what it refuses outright); default: the checks of the
+        planar profiles of ``cad_parts`` (:func:`rotorkin.drives.design_checks`).
     machine : str
         ``machine.type`` of the drive's own machine (its paper's), what ``study``
         evaluates; "" when the drive has none of its own.
@@ -123,6 +127,7 @@ class DriveSpec:
     cad_write: Callable | None = None
     check_cam: Callable | None = None
     check_rows: Callable | None = None
+    checks: Callable | None = None
     machine: str = ""
     law: Callable | None = None
     pairs: Callable | None = None

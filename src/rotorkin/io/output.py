@@ -53,6 +53,8 @@ def write_outputs(result, outdir: Path, raw_config: dict, meta: dict) -> list[Pa
         (stage / "summary.json").write_text(json.dumps(_jsonable(summary), indent=2) + "\n")
         _write_csv(stage / "motion.csv", result.columns)
         (stage / "config.toml").write_text(to_toml(raw_config))
+        if result.checks:
+            write_checks(stage / "checks.csv", result.checks)
         figures = result.write_figures(stage)
         (stage / "README.txt").write_text(_readme(result, [Path(f).name for f in figures]))
     return written
@@ -252,6 +254,25 @@ def _write_csv(path: Path, columns: dict) -> None:
     np.savetxt(path, data, delimiter=",", header=",".join(names), comments="", fmt="%.12g")
 
 
+def write_checks(path: Path, checks) -> Path:
+    """Write a design's checks (:class:`rotorkin.studies.checks.Check`) as CSV; the path.
+
+    Columns: ``check, key, value, limit, unit, sense, margin, passed, where`` (``sense``
+    ``<=`` for an upper limit, ``>=`` for a lower one; ``margin`` > 0 when it passes).
+    """
+    import csv
+
+    with Path(path).open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["check", "key", "value", "limit", "unit", "sense", "margin", "passed",
+                    "where"])  # fmt: skip
+        for c in checks:
+            w.writerow([c.name, c.key, f"{c.value:.12g}", f"{c.limit:.12g}", c.unit,
+                        "<=" if c.upper else ">=", f"{c.margin:.12g}",
+                        "true" if c.passed else "false", c.where])  # fmt: skip
+    return Path(path)
+
+
 def _readme(result, figures: list[str]) -> str:
     lines = [
         f"rotorkin results: {result.title}",
@@ -261,7 +282,10 @@ def _readme(result, figures: list[str]) -> str:
     ]
     width = max(len(n) for n in result.columns)
     lines += [f"  {n.ljust(width)}  {result.column_docs[n]}" for n in result.columns]
-    lines += ["config.toml   the configuration as run (after --set overrides)", "figures:"]
+    lines += ["config.toml   the configuration as run (after --set overrides)"]
+    if result.checks:
+        lines += ["checks.csv    the design's checks: value, limit, margin (> 0: passes), where"]
+    lines += ["figures:"]
     lines += [f"  {f}" for f in figures]
     return "\n".join(lines) + "\n"
 

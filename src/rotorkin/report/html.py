@@ -30,6 +30,7 @@ from rotorkin.drives import spec_of
 from rotorkin.io.output import out_error, to_toml
 from rotorkin.render import member_scene
 from rotorkin.render.scenes import Check, fmt
+from rotorkin.studies.checks import rows as check_rows
 from rotorkin.studies.published import paper_rows
 
 __all__ = ["write_report", "render_report", "FRAMES"]
@@ -94,6 +95,9 @@ def render_report(result, cfg, raw, meta, frames: int = FRAMES) -> str:
     scene = mod.scene(result, cfg, frames)
     plots = mod.plots(result, cfg)
     checks = [Check("warning", "Input", line) for line in result.warnings]
+    checks += [Check("ok" if c.passed else "error", name, f"{value}, limit {limit}, margin "
+                     f"{margin} ({c.key})") for c, (name, value, limit, margin, _)
+               in zip(result.checks, check_rows(result.checks), strict=True)]  # fmt: skip
     checks += mod.checks(result, cfg)
     papers = paper_rows(spec.published, spec.paper, cfg, result.summary)
     data = {

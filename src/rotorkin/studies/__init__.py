@@ -58,6 +58,9 @@ class StudyResult:
         One line each: a model input that leaves a summary number without meaning
         (e.g. no heat added, so no power), naming the key to set. The command line
         prints them; the report lists them among its checks.
+    checks : tuple of rotorkin.studies.checks.Check
+        The design's checks with their margins (the drive's cam or part checks, the
+        plausibility limits); :func:`rotorkin.drives.evaluate` fills them in.
     """
 
     drive_type: str
@@ -69,6 +72,7 @@ class StudyResult:
     write_figures: Callable[[Path], list[Path]] = field(default=lambda outdir: [])
     motion: Motion | None = None
     warnings: tuple = ()
+    checks: tuple = ()
 
     def __post_init__(self):
         lengths = {np.shape(v) for v in self.columns.values()}

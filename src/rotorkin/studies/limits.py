@@ -30,7 +30,16 @@ import numpy as np
 from rotorkin.core.errors import ConfigError
 from rotorkin.core.schema import ContactSection, LimitsSection
 
-__all__ = ["LIMITS", "BITS", "violations", "violated", "violation_codes", "flag_doc", "refuse"]
+__all__ = [
+    "LIMITS",
+    "BITS",
+    "limit_value",
+    "violations",
+    "violated",
+    "violation_codes",
+    "flag_doc",
+    "refuse",
+]
 
 #: config key -> (summary-key pattern, column pattern or None, unit of the keys, SI -> unit)
 LIMITS: dict[str, tuple[str, str | None, str, float]] = {
@@ -59,7 +68,8 @@ _DEFAULTS = {
 }
 
 
-def _limit(cfg: dict, key: str) -> float:
+def limit_value(cfg: dict, key: str) -> float:
+    """The value of a limit's config key (its default where the config has none), SI."""
     section, name = key.split(".")
     value = (cfg.get(section) or {}).get(name)
     return float(_DEFAULTS[section][name] if value is None else value)
@@ -76,7 +86,7 @@ def violated(summary: dict, cfg: dict, columns: dict | None = None) -> list[tupl
     """``[(config key, worst result name, value, limit)]`` of every limit passed (key units)."""
     out = []
     for key, (pattern, col_pattern, _, scale) in LIMITS.items():
-        limit = _limit(cfg, key) * scale
+        limit = limit_value(cfg, key) * scale
         worst = None
         for name, value in summary.items():
             v = _number(value) if re.search(pattern, name) else None
@@ -148,7 +158,7 @@ def violation_codes(metrics: dict, cfg: dict, n: int, table: dict | None = None)
     table = table or {}
     for key, (pattern, _, _, scale) in LIMITS.items():
         limit = table.get(key)
-        limit = (_limit(cfg, key) if limit is None else np.asarray(limit, dtype=float)) * scale
+        limit = (limit_value(cfg, key) if limit is None else np.asarray(limit, dtype=float)) * scale
         for name, values in metrics.items():
             if not re.search(pattern, name):
                 continue

@@ -22,7 +22,7 @@ from rotorkin.core.units import parse_quantity
 from rotorkin.io.config import validate_config
 
 __all__ = ["Vary", "Field", "DISPLAY_UNITS", "parse_vary", "parse_item", "field_of",
-           "display"]  # fmt: skip
+           "display", "bounds_of"]  # fmt: skip
 
 #: Most values of one ``--vary`` range (``N``); the whole grid is capped by
 #: :data:`rotorkin.sweep.MAX_DESIGNS` and the result's memory by ``MAX_RESULT_BYTES``.
@@ -122,19 +122,44 @@ def _kind_of(annotation) -> str | None:
     return None
 
 
-def field_of(drive_type: str, key: str, machine: str | None = None) -> Field | None:
-    """The :class:`Field` of ``key`` (``section.name``) for a drive type, None if unknown.
-
-    ``machine``: the ``machine.type`` the drive carries (default: its own).
-    """
+def _model_field(drive_type: str, key: str, machine: str | None):
+    """The pydantic field of ``key`` (``section.name``) in the drive's config model, or None."""
     section, _, name = key.partition(".")
     model = drives.config_model(drive_type, machine)
     sfield = model.model_fields.get(section)
     if sfield is None or not name or "." in name:
         return None
-    sub = sfield.annotation
-    fields = getattr(sub, "model_fields", {})
-    field = next((f for n, f in fields.items() if name in (n, f.alias) and n != "type"), None)
+    fields = getattr(sfield.annotation, "model_fields", {})
+    return next((f for n, f in fields.items() if name in (n, f.alias) and n != "type"), None)
+
+
+def bounds_of(drive_type: str, key: str, machine: str | None = None) -> tuple:
+    """The schema's bounds of a numeric key: ``(lo, hi, lo_open, hi_open)``, SI.
+
+    ``-inf`` / ``inf`` where the schema sets none; ``lo_open`` is True for a strict
+    bound (``gt``), False for an inclusive one (``ge``).
+    """
+    field = _model_field(drive_type, key, machine)
+    lo, hi, lo_open, hi_open = -np.inf, np.inf, False, False
+    for m in field.metadata if field is not None else ():
+        for attr, low, strict in (("ge", True, False), ("gt", True, True),
+                                  ("le", False, False), ("lt", False, True)):  # fmt: skip
+            v = getattr(m, attr, None)
+            if v is None:
+                continue
+            if low:
+                lo, lo_open = float(v), strict
+            else:
+                hi, hi_open = float(v), strict
+    return lo, hi, lo_open, hi_open
+
+
+def field_of(drive_type: str, key: str, machine: str | None = None) -> Field | None:
+    """The :class:`Field` of ``key`` (``section.name``) for a drive type, None if unknown.
+
+    ``machine``: the ``machine.type`` the drive carries (default: its own).
+    """
+    field = _model_field(drive_type, key, machine)
     if field is None:
         return None
     kind = _kind_of(field.annotation) or next(

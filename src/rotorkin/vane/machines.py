@@ -26,7 +26,9 @@ from rotorkin.analysis.torque import member_torques, shaft_torque_from_members
 from rotorkin.core.angles import fmt_deg
 from rotorkin.core.errors import ParameterError
 from rotorkin.machines import fuel_air as fa
+from rotorkin.machines import pump_flow as pf
 from rotorkin.machines import rotary_blade as rb
+from rotorkin.machines import rotary_blade_stirling as rs
 from rotorkin.machines import twin_rotor as tr
 from rotorkin.machines import vane_pump as vp
 from rotorkin.machines.schema import (
@@ -201,17 +203,17 @@ def _vane_pump(machine, loads, law, points, lo, hi, swing, mid, per_turn, speed)
         "period": law.period,
         "land": machine.get("port_land", 0.0),
     }
-    windows = build_params(vp.land_windows, "machine", values)  # fmt: skip
+    windows = build_params(pf.land_windows, "machine", values)  # fmt: skip
     return Setup("vane_pump", law, pump, ports, points, lo, hi, 0.0, per_turn,
                  {"gaps": gaps, "windows": windows})  # fmt: skip
 
 
-def _pump_gaps(machine: dict, loads: dict) -> vp.Gaps:
+def _pump_gaps(machine: dict, loads: dict) -> pf.Gaps:
     """The vanes' clearances (machine section) and the fluid (loads section), SI."""
-    values = {k: machine[k] for k in vp.GAP_FIELDS[:3] if k in machine}
-    values |= {k: loads[k] for k in vp.GAP_FIELDS[3:] if k in loads}
-    aliases = {k: f"loads.{k}" for k in vp.GAP_FIELDS[3:]}
-    return build_params(vp.Gaps, "machine", values, aliases)
+    values = {k: machine[k] for k in pf.GAP_FIELDS[:3] if k in machine}
+    values |= {k: loads[k] for k in pf.GAP_FIELDS[3:] if k in loads}
+    aliases = {k: f"loads.{k}" for k in pf.GAP_FIELDS[3:]}
+    return build_params(pf.Gaps, "machine", values, aliases)
 
 
 _L_PER_MIN = 60.0e3  # [l/min] per [m^3/s]
@@ -256,7 +258,7 @@ def pump_flow(s: Setup, theta, st: State, omega) -> tuple[dict, dict, dict]:
     flow_mean = disp_rev / t_turn
     geometric = np.sum(np.maximum(-st.dvolume, 0.0), axis=0) * omega
     t_period = t_turn * float(s.law.period) / _TWO_PI
-    flow = vp.pump_flow(pump, ports, extra["gaps"], extra["windows"], flow_mean, t_period,
+    flow = pf.pump_flow(pump, ports, extra["gaps"], extra["windows"], flow_mean, t_period,
                         st.dvolume, theta, omega)  # fmt: skip
     dp = float(ports.discharge_pressure) - float(ports.suction_pressure)
     keys = {
@@ -265,7 +267,7 @@ def pump_flow(s: Setup, theta, st: State, omega) -> tuple[dict, dict, dict]:
         "flow_min_l_per_min": float(np.min(geometric)) * _L_PER_MIN,
         "flow_ripple": float(vp.flow_ripple(geometric, dt)),
         "hydraulic_power_W": dp * flow_mean,
-        **vp.flow_keys(flow, ports, extra["windows"].land),
+        **pf.flow_keys(flow, ports, extra["windows"].land),
     }
     leak = np.full(theta.shape, flow["leakage"]["total"])
     columns = {
@@ -278,7 +280,7 @@ def pump_flow(s: Setup, theta, st: State, omega) -> tuple[dict, dict, dict]:
 
 def pump_warnings(s: Setup, summary: dict) -> tuple[str, ...]:
     """A pump's trapped chamber below the cavitation floor (``loads.vapour_pressure``)."""
-    line = vp.cavitation_warning(s.extra["windows"].pressure_min,
+    line = pf.cavitation_warning(s.extra["windows"].pressure_min,
                                  s.extra["gaps"].vapour_pressure)  # fmt: skip
     return (line,) if line else ()
 
@@ -288,14 +290,14 @@ def _rotary_blade(machine, loads, law, points, lo, hi, swing, mid, per_turn, spe
             "inertia_shaft", "inertia_blade_pair_1", "inertia_blade_pair_2")  # fmt: skip
     model = build_params(rb.RotaryBlade, "machine", {k: machine[k] for k in keys if k in machine})
     kind = loads.get("pressure_model", "adiabatic")
-    if kind not in rb.PRESSURE_MODELS:
+    if kind not in rs.PRESSURE_MODELS:
         raise ParameterError("loads.pressure_model", repr(kind),
                              "adiabatic, schmidt or isothermal (the drive's own models run in "
                              "its own study)")  # fmt: skip
     if kind == "isothermal":
         gas = build_params(rb.IsothermalGas, "loads", _fields(rb.IsothermalGas, loads))
     else:
-        gas = build_params(rb.StirlingLoads, "loads", _fields(rb.StirlingLoads, loads))
+        gas = build_params(rs.StirlingLoads, "loads", _fields(rs.StirlingLoads, loads))
     centre = np.pi / model.blades_per_pair
     psi_lo, psi_hi = centre - 0.5 * swing, centre + 0.5 * swing
     try:  # the blades must fit the drive's swing
@@ -313,13 +315,13 @@ def _rotary_blade(machine, loads, law, points, lo, hi, swing, mid, per_turn, spe
     return Setup("rotary_blade", law, model, gas, points, lo, hi, shift, per_turn, extra)
 
 
-def _stirling(model, gas, law, shift, points, swept) -> rb.StirlingSolution:
+def _stirling(model, gas, law, shift, points, swept) -> rs.StirlingSolution:
     """The circuits of the rotary-blade Stirling engine over one period of the law."""
 
     def motion(theta):
         return mounted(law.motion(theta), shift)
 
-    return rb.stirling_solution(model, gas, motion, law.period, len(points) // 2,
+    return rs.stirling_solution(model, gas, motion, law.period, len(points) // 2,
                                 float(np.max(swept)))  # fmt: skip
 
 
@@ -327,7 +329,7 @@ def _rotary_blade_state(s: Setup, motion) -> State:
     """Both blade sets of the Stirling models: volumes and pressures hot set first."""
     sol = s.extra["stirling"]
     cold = mounted(s.law.motion(np.asarray(motion.theta) - sol.lag), s.shift)
-    st = rb.stirling_state(s.model, sol, motion, cold)
+    st = rs.stirling_state(s.model, sol, motion, cold)
     two = (np.concatenate([st["volume_hot"], st["volume_cold"]]),
            np.concatenate([st["dvolume_hot"], st["dvolume_cold"]]),
            np.concatenate([st["pressure"], st["pressure"]]))  # fmt: skip
@@ -350,7 +352,7 @@ def state(s: Setup, theta) -> State:
                      st.member_torque, st.shaft_torque)  # fmt: skip
     if s.kind == "vane_pump":
         volume, dvolume = vp.chamber_volumes(s.model, motion)
-        pressure = vp.port_pressures(s.loads, s.extra["windows"], volume, dvolume, theta)
+        pressure = pf.port_pressures(s.loads, s.extra["windows"], volume, dvolume, theta)
         members = member_torques(pressure, vp.volume_derivatives_dq(s.model, motion))
         return State(motion, volume, dvolume, pressure, members,
                      shaft_torque_from_members(members, motion.dq))  # fmt: skip
@@ -434,7 +436,7 @@ def summary(s: Setup) -> dict:
         })  # fmt: skip
         if e["stirling"] is not None:  # both sets' expansion strokes
             out["displacement_cm3_per_rev"] = 2.0 * disp * 1e6
-            out.update(rb.stirling_summary(e["stirling"], periods))
+            out.update(rs.stirling_summary(e["stirling"], periods))
         else:
             ends = np.concatenate([[0.0], np.asarray(s.turning, dtype=float), [s.law.period]])
             ends = np.unique(ends)

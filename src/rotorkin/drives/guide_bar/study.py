@@ -40,6 +40,7 @@ from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar import pump as gb_pump
 from rotorkin.drives.guide_bar import summary as closed_forms
 from rotorkin.drives.guide_bar.schema import GuideBarLoads, VanePumpMachine
+from rotorkin.machines import pump_flow as pf
 from rotorkin.machines import vane_pump as vp
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
@@ -205,7 +206,7 @@ def pump_state(
     inertia,
     speed,
     theta,
-    windows: vp.LandWindows | None = None,
+    windows: pf.LandWindows | None = None,
 ) -> dict:
     """Chambers, pressures, flow and torques of the pump at the input angles ``theta``.
 
@@ -238,7 +239,7 @@ def pump_state(
     if windows is None:
         p = vp.chamber_pressures(ports, dV)
     else:
-        p = vp.port_pressures(ports, windows, V, dV, theta)
+        p = pf.port_pressures(ports, windows, V, dV, theta)
     M = tq.member_torques(p, vp.volume_derivatives_dq(pump, motion))
     shaft = tq.shaft_torque_from_members(M, dq)
     omega, omega_dot, _ = shaft_speed(theta, speed, period)
@@ -259,19 +260,19 @@ def pump_state(
     }
 
 
-def gap_params(machine: dict, loads: dict) -> vp.Gaps:
+def gap_params(machine: dict, loads: dict) -> pf.Gaps:
     """The vane clearances (machine section) and the fluid (loads section), SI."""
-    values = {k: machine[k] for k in vp.GAP_FIELDS[:3]}
-    values |= {k: loads[k] for k in vp.GAP_FIELDS[3:]}
-    aliases = {k: f"loads.{k}" for k in vp.GAP_FIELDS[3:]}
-    return build_params(vp.Gaps, "machine", values, aliases)
+    values = {k: machine[k] for k in pf.GAP_FIELDS[:3]}
+    values |= {k: loads[k] for k in pf.GAP_FIELDS[3:]}
+    aliases = {k: f"loads.{k}" for k in pf.GAP_FIELDS[3:]}
+    return build_params(pf.Gaps, "machine", values, aliases)
 
 
 def land_params(params: gb.GuideBar, pump: vp.VanePump, ports: vp.PortPressures,
-                gaps: vp.Gaps, land: float = 0.0) -> vp.LandWindows:  # fmt: skip
+                gaps: pf.Gaps, land: float = 0.0) -> pf.LandWindows:  # fmt: skip
     """The ports' closed windows at the equal-speed points (``machine.port_land`` [rad]).
 
-    The machine's :func:`rotorkin.machines.vane_pump.land_windows` at this drive's
+    The machine's :func:`rotorkin.machines.pump_flow.land_windows` at this drive's
     turning points in closed form (:func:`rotorkin.drives.guide_bar.pump.turning_angles`);
     errors name ``machine.port_land``.
     """
@@ -279,13 +280,13 @@ def land_params(params: gb.GuideBar, pump: vp.VanePump, ports: vp.PortPressures,
               "motion_of": functools.partial(gb.motion, params),
               "turning": gb_pump.turning_angles(params), "period": gb.period(params),
               "land": land}  # fmt: skip
-    return build_params(vp.land_windows, "machine", values)
+    return build_params(pf.land_windows, "machine", values)
 
 
 def _pump_summary(drive, pump, ports, inertia, speed, coefficient, gaps=None,
                   windows=None) -> dict:  # fmt: skip
     period = gb.period(drive)
-    gaps = gaps or vp.Gaps()
+    gaps = gaps or pf.Gaps()
     windows = windows or land_params(drive, pump, ports, gaps)
     fine = np.linspace(0.0, period, _PEAK_SAMPLES)
     st = pump_state(drive, pump, ports, inertia, speed, fine, windows)
@@ -301,7 +302,7 @@ def _pump_summary(drive, pump, ports, inertia, speed, coefficient, gaps=None,
     delta_e = float(fw.energy_fluctuation(net_const, fine))
     j_mean = float(np.trapezoid(st["J_eq"], fine) / period)
     cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
-    flow = vp.pump_flow(pump, ports, gaps, windows, flow_mean, t_period, st["dV"], fine,
+    flow = pf.pump_flow(pump, ports, gaps, windows, flow_mean, t_period, st["dV"], fine,
                         st["omega"])  # fmt: skip
     out = {
         **closed_forms.pump_summary(drive, pump),
@@ -309,7 +310,7 @@ def _pump_summary(drive, pump, ports, inertia, speed, coefficient, gaps=None,
         "flow_max_l_per_min": float(np.max(st["flow"])) * _M3_TO_L_PER_MIN,
         "flow_min_l_per_min": float(np.min(st["flow"])) * _M3_TO_L_PER_MIN,
         "flow_ripple": vp.flow_ripple(st["flow"], dt),
-        **vp.flow_keys(flow, ports, windows.land),
+        **pf.flow_keys(flow, ports, windows.land),
         **closed_forms.work_summary(drive, pump, ports, flow_mean),
         "shaft_torque_min_Nm": float(np.min(st["shaft"])),
         "shaft_torque_max_Nm": float(np.max(st["shaft"])),
@@ -332,11 +333,11 @@ def _pump_summary(drive, pump, ports, inertia, speed, coefficient, gaps=None,
 
 def _pump_columns(drive, pump, ports, inertia, speed, theta, gaps=None,
                   windows=None) -> tuple[dict, dict]:  # fmt: skip
-    gaps = gaps or vp.Gaps()
+    gaps = gaps or pf.Gaps()
     windows = windows or land_params(drive, pump, ports, gaps)
     st = pump_state(drive, pump, ports, inertia, speed, theta, windows)
-    leak = vp.leakage_flow(pump, gaps, ports)["total"]
-    closed = vp.closed_windows(theta, windows.turning, windows.period, windows.land)[0]
+    leak = pf.leakage_flow(pump, gaps, ports)["total"]
+    closed = pf.closed_windows(theta, windows.turning, windows.period, windows.land)[0]
     cols = {}
     for j, tag in ((0, "a"), (1, "b")):
         cols[f"chamber_{tag}_volume_cm3"] = st["V"][j] * 1e6
@@ -345,7 +346,7 @@ def _pump_columns(drive, pump, ports, inertia, speed, theta, gaps=None,
     cols["flow_l_per_min"] = st["flow"] * _M3_TO_L_PER_MIN
     cols["leakage_l_per_min"] = np.full(np.shape(st["flow"]), leak * _M3_TO_L_PER_MIN)
     cols["flow_delivered_l_per_min"] = (
-        vp.delivered_flow(st["dV"], closed, st["omega"], leak) * _M3_TO_L_PER_MIN
+        pf.delivered_flow(st["dV"], closed, st["omega"], leak) * _M3_TO_L_PER_MIN
     )
     cols["impeller1_torque_Nm"] = st["M"][0]
     cols["impeller2_torque_Nm"] = st["M"][1]
@@ -513,12 +514,12 @@ def evaluate(cfg: dict) -> StudyResult:
     )
 
 
-def _warnings(cfg: dict, summary: dict, gaps: vp.Gaps | None = None) -> tuple[str, ...]:
+def _warnings(cfg: dict, summary: dict, gaps: pf.Gaps | None = None) -> tuple[str, ...]:
     """Inputs that leave summary numbers without meaning, one line each."""
     loads = cfg.get("loads", {})
     out = []
-    floor = vp.VAPOUR_PRESSURE if gaps is None else gaps.vapour_pressure
-    cavitation = vp.cavitation_warning(summary["trapped_pressure_min_bar"] * 1e5, floor)
+    floor = pf.VAPOUR_PRESSURE if gaps is None else gaps.vapour_pressure
+    cavitation = pf.cavitation_warning(summary["trapped_pressure_min_bar"] * 1e5, floor)
     if cavitation:
         out.append(cavitation)
     if loads.get("discharge_pressure") == loads.get("suction_pressure"):

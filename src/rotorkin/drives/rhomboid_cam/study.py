@@ -53,6 +53,7 @@ from rotorkin.drives.rhomboid_cam.schema import (
     RotaryBladeMachine,
 )
 from rotorkin.machines import rotary_blade as rb
+from rotorkin.machines import rotary_blade_stirling as rbs
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 from rotorkin.vane import RotaryLaw
@@ -184,9 +185,9 @@ class Loads(NamedTuple):
     model: str
     torque_high: float
     torque_low: float
-    gas: rb.IsothermalGas | rb.StirlingLoads | None = None
+    gas: rb.IsothermalGas | rbs.StirlingLoads | None = None
     charge: np.ndarray | None = None
-    stirling: rb.StirlingSolution | None = None
+    stirling: rbs.StirlingSolution | None = None
 
 
 class State(NamedTuple):
@@ -227,7 +228,7 @@ def machine_state(params, machine, loads: Loads, alpha, stroke=None) -> State:
     pressure = None
     if loads.stirling is not None:
         sol = loads.stirling
-        st = rb.stirling_state(machine, sol, mo, rc.motion(params, alpha - sol.lag))
+        st = rbs.stirling_state(machine, sol, mo, rc.motion(params, alpha - sol.lag))
         return State(mo, stroke, volume, dvolume, st["pressure"], st["members"], st["shaft"],
                      st["volume_cold"], st["dvolume_cold"])  # fmt: skip
     if loads.model == "linear":
@@ -286,10 +287,10 @@ def _machine_setup(cfg, params):
     v_min, v_max = rb.volume_range(machine, lo, hi)
     model = ld["pressure_model"]
     if model in ("adiabatic", "schmidt"):
-        keys = [f for f in rb.STIRLING_CHECKS if f in ld]
-        gas = build_params(rb.StirlingLoads, "loads", {k: ld[k] for k in keys})
+        keys = [f for f in rbs.STIRLING_CHECKS if f in ld]
+        gas = build_params(rbs.StirlingLoads, "loads", {k: ld[k] for k in keys})
         turning = len(rc.psi_stationary_points(params.psi_min, params.a, params.b)) - 1
-        sol = rb.stirling_solution(machine, gas, functools.partial(rc.motion, params),
+        sol = rbs.stirling_solution(machine, gas, functools.partial(rc.motion, params),
                                    rc.period(params), turning // 2,
                                    float(np.max(v_max - v_min)))  # fmt: skip
         loads = Loads(model, ld["torque_high"], ld["torque_low"], gas, None, sol)
@@ -420,7 +421,7 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient,
         "flywheel_inertia_kgm2": flywheel,
     }
     if loads.stirling is not None:
-        s.update(rb.stirling_summary(loads.stirling, revs))
+        s.update(rbs.stirling_summary(loads.stirling, revs))
         s["displacement_cm3_per_rev"] = 2.0 * s["displacement_cm3_per_rev"]  # both sets
         s["indicated_work_J"] = work_rev
         s["pressure_max_bar"] = float(np.max(st.pressure)) * 1e-5

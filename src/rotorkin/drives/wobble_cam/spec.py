@@ -6,6 +6,7 @@ from pathlib import Path
 
 from rotorkin.drives._spec import DriveSpec
 from rotorkin.drives.wobble_cam import cad, published, scene, schema, study, synthesis
+from rotorkin.drives.wobble_cam import checks as cam_checks
 from rotorkin.drives.wobble_cam import sweep as batch
 from rotorkin.drives.wobble_cam.figures_sweep import sweep_recipes
 
@@ -41,6 +42,7 @@ SPEC = DriveSpec(
     cad_write=cad.export_wobble,
     check_cam=cad.check_cam,
     check_rows=cad.check_rows,
+    checks=cam_checks.checks,
     machine="twin_rotor",
     law=study.law,
     pairs=study.pairs_of,
