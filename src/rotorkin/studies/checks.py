@@ -19,12 +19,11 @@ The margin is positive when the check passes, in the unit of the value
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 
 import numpy as np
 
-from rotorkin.studies.limits import LIMITS, limit_value
+from rotorkin.studies.limits import LIMITS, limit_value, worst_result
 
 __all__ = ["Check", "limit_checks", "profile_checks", "failed", "rows"]
 
@@ -113,19 +112,8 @@ def limit_checks(summary: dict, cfg: dict, columns: dict | None = None) -> list[
     machine, no contact stress without forces) gives no check.
     """
     out = []
-    for key, (pattern, col_pattern, unit, scale) in LIMITS.items():
-        worst = None
-        for name, value in summary.items():
-            v = _number(value) if re.search(pattern, name) else None
-            if v is not None and (worst is None or v > worst[1]):
-                worst = (name, v)
-        for name, values in (columns or {}).items() if col_pattern else ():
-            if not re.search(col_pattern, name):
-                continue
-            arr = np.abs(np.asarray(values, dtype=float))
-            arr = arr[np.isfinite(arr)]
-            if arr.size and (worst is None or float(arr.max()) > worst[1]):
-                worst = (f"max of {name}", float(arr.max()))
+    for key, (_, _, unit, scale) in LIMITS.items():
+        worst = worst_result(key, summary, columns)
         if worst is not None:
             limit = limit_value(cfg, key) * scale
             out.append(Check(_NAMES[key], key, worst[1], limit, unit, True, worst[0]))

@@ -82,25 +82,35 @@ def _number(value) -> float | None:
     return value if math.isfinite(value) else None
 
 
+def worst_result(key: str, summary: dict, columns: dict | None = None) -> tuple | None:
+    """``(name, value)`` of the largest result that limit ``key`` measures, or None.
+
+    Summary values and the largest magnitude of the matching motion columns, in the
+    limit's unit (:data:`LIMITS`); values that are not finite are not counted.
+    """
+    pattern, col_pattern, _, _ = LIMITS[key]
+    worst = None
+    for name, value in summary.items():
+        v = _number(value) if re.search(pattern, name) else None
+        if v is not None and (worst is None or v > worst[1]):
+            worst = (name, v)
+    for name, values in (columns or {}).items() if col_pattern else ():
+        if not re.search(col_pattern, name):
+            continue
+        arr = np.abs(np.asarray(values, dtype=float))
+        arr = arr[np.isfinite(arr)]
+        if arr.size and (worst is None or float(arr.max()) > worst[1]):
+            worst = (f"max of {name}", float(arr.max()))
+    return worst
+
+
 def violated(summary: dict, cfg: dict, columns: dict | None = None) -> list[tuple]:
     """``[(config key, worst result name, value, limit)]`` of every limit passed (key units)."""
     out = []
-    for key, (pattern, col_pattern, _, scale) in LIMITS.items():
+    for key, (_, _, _, scale) in LIMITS.items():
         limit = limit_value(cfg, key) * scale
-        worst = None
-        for name, value in summary.items():
-            v = _number(value) if re.search(pattern, name) else None
-            if v is not None and v > limit and (worst is None or v > worst[1]):
-                worst = (name, v)
-        for name, values in (columns or {}).items() if col_pattern else ():
-            if not re.search(col_pattern, name):
-                continue
-            arr = np.abs(np.asarray(values, dtype=float))
-            arr = arr[np.isfinite(arr)]
-            v = float(arr.max()) if arr.size else None
-            if v is not None and v > limit and (worst is None or v > worst[1]):
-                worst = (f"max of {name}", v)
-        if worst is not None:
+        worst = worst_result(key, summary, columns)
+        if worst is not None and worst[1] > limit:
             out.append((key, worst[0], worst[1], limit))
     return out
 
