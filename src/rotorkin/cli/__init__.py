@@ -26,6 +26,7 @@ from rotorkin import __version__
 from rotorkin.cli import compare as cli_compare
 from rotorkin.cli import export as cli_export
 from rotorkin.cli import report as cli_report
+from rotorkin.cli import solve as cli_solve
 from rotorkin.cli import sweep as cli_sweep
 from rotorkin.cli import synthesize as cli_synthesize
 from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, out_folder
@@ -158,7 +159,7 @@ def _print_summary(result, name, outdir, written):
 
 # Commands that live in their own modules (cad export, synthesis, html report, sweeps):
 # each module has register(app), which adds its commands.
-for _module in (cli_export, cli_synthesize, cli_report, cli_sweep, cli_compare):
+for _module in (cli_export, cli_synthesize, cli_report, cli_sweep, cli_compare, cli_solve):
     _module.register(app)
 
 
