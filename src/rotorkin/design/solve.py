@@ -4,7 +4,7 @@
 >>> _, raw, _ = load_config(None, "guide-bar-pump")
 >>> res = solve(raw, "machine.casing_radius", "flow_mean_l_per_min", 20.0)
 >>> round(res.value * 1e3, 6)                                 # [mm]
-35.412548
+35.48899
 
 The search runs over the key's admissible range: the schema field's bounds
 (``ge``/``gt``/``le``/``lt``), narrowed where the drive refuses a design (a design
@@ -15,7 +15,7 @@ the drive refuses is not a candidate). It has three steps:
    :func:`rotorkin.sweep.evaluate_designs` -- the drive's sweep kernel where it has
    one for the key and the metric, else the scalar study design by design;
 2. the ends of the admissible stretches located by bisection on the drive's
-   reason codes (to 1e-12 of the range with a kernel, 1e-6 without), and the
+   reason codes (to a relative 1e-12 with a kernel, 1e-6 without), and the
    metric evaluated there;
 3. in the stretch and sign change of ``metric - target`` nearest the current
    value, :func:`scipy.optimize.brentq` to a relative ``rtol`` (default 1e-12).
