@@ -28,6 +28,7 @@ from rotorkin.design.optimize import build_spec, optimize, refused_share, write_
 from rotorkin.drives import evaluate
 from rotorkin.io.config import load_config
 from rotorkin.io.output import check_out, staged_output, write_outputs
+from rotorkin.sweep.engine import coverage
 
 __all__ = ["register"]
 
@@ -88,6 +89,10 @@ def register(app) -> None:
             if not quiet:
                 print(f"rotorkin: note: {message}", file=sys.stderr)
 
+        why = coverage(cfg["drive"]["type"], cfg, [v.key for v in spec.variables],
+                       spec.metrics)[2]  # fmt: skip
+        if why:
+            status(f"{why}: evaluated design by design by the scalar study (slow)")
         with staged_output(out, "optimize") as (stage, written):
             res = optimize(spec, store=out / ".optimize", resume=resume, on_status=status)
             if report is not None:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 import time
 from pathlib import Path
 from typing import Annotated
@@ -98,6 +99,8 @@ def register(app) -> None:
             with staged_output(out, "solve") as (stage, written):
                 (stage / "config.toml").write_text(to_toml(res.raw))
                 (stage / "solve.json").write_text(json.dumps(doc, indent=2) + "\n")
+        for line in res.warnings:  # once the outputs stand, as rotorkin run
+            print(f"rotorkin: warning: {' '.join(str(line).split())}", file=sys.stderr)
         if not quiet:
             _print(name, res, out, written, seconds)
 

@@ -247,10 +247,6 @@ class OptimizeResult:
         return "\n".join(lines) + "\n"
 
 
-class Interrupted(RotorkinError):
-    """Raised by an ``on_generation`` callback to stop a search (its generations stay stored)."""
-
-
 def optimize(spec: OptimizeSpec, *, store=None, resume: bool = False, on_generation=None,
              on_status=None) -> OptimizeResult:  # fmt: skip
     """Run NSGA-II on ``spec``; the Pareto set of its last population.
@@ -336,7 +332,10 @@ def _rows(table: np.ndarray, X: np.ndarray) -> np.ndarray:
     """Row of ``table`` holding each row of ``X`` (the last such)."""
     if table.shape == X.shape and np.array_equal(table, X):
         return np.arange(X.shape[0])
-    return np.array([np.flatnonzero(np.all(table == x, axis=1))[-1] for x in X], dtype=int)
+    table = np.ascontiguousarray(table, dtype=float)
+    where = {row.tobytes(): i for i, row in enumerate(table)}  # later rows win
+    return np.array([where[row.tobytes()] for row in np.ascontiguousarray(X, dtype=float)],
+                    dtype=int)  # fmt: skip
 
 
 def _front(spec: OptimizeSpec, opt, history, replayed) -> OptimizeResult:

@@ -134,6 +134,9 @@ class SolveResult:
     raw : dict
         The config as written with the key set (write it with
         :func:`rotorkin.io.output.to_toml`).
+    warnings : tuple of str
+        The study's warnings at the solution (as ``rotorkin run`` prints them): a
+        plausibility limit passed, a number without meaning.
     """
 
     key: str
@@ -151,6 +154,7 @@ class SolveResult:
     kernel: bool
     info: KeyInfo = field(repr=False)
     raw: dict = field(repr=False, compare=False)
+    warnings: tuple = ()
 
     @property
     def unit(self) -> str:
@@ -194,6 +198,7 @@ class SolveResult:
             "roots_seen": self.roots_seen,
             "evaluations": self.evaluations,
             "evaluated_by": "sweep kernel" if self.kernel else "scalar study",
+            "warnings": list(self.warnings),
         }
 
 
@@ -395,17 +400,12 @@ def _stretch_end(batch: _Batch, scan: _Scan, i: int, step: int, range_end: End) 
 
 def _roots(scan: _Scan, target: float) -> list[tuple[int, int]]:
     """Brackets ``(i, j)`` of consecutive admissible values with a sign change (or a hit)."""
-    d = scan.f - target
-    out = []
-    for i in range(scan.x.size):
-        if not scan.ok[i]:
-            continue
-        if d[i] == 0.0:
-            out.append((i, i))
-        elif i + 1 < scan.x.size and scan.ok[i + 1] and d[i + 1] != 0.0 and \
-                np.sign(d[i]) != np.sign(d[i + 1]):  # fmt: skip
-            out.append((i, i + 1))
-    return out
+    d = np.where(scan.ok, scan.f - target, np.nan)
+    hits = np.flatnonzero(d == 0.0)
+    sign = np.sign(d)
+    cross = np.flatnonzero(sign[:-1] * sign[1:] < 0.0)  # NaN (refused) compares False
+    pairs = [(int(i), int(i)) for i in hits] + [(int(i), int(i) + 1) for i in cross]
+    return sorted(pairs)
 
 
 def _fmt(value: float) -> str:
@@ -506,30 +506,32 @@ def solve(raw: dict, key: str, metric: str, target: float, *, within=None, scan=
     solved_raw, solved_cfg = with_values(raw, [info], [root])
     section, _, name = key.partition(".")
     value = float(solved_cfg[section][name])
-    reached = _reached(batch, solved_cfg, value)
+    reached, notes = _reached(batch, solved_cfg, value)
     span = np.nanmax(np.abs(sc.f[sc.ok])) if np.any(sc.ok) else abs(target)
     if not abs(reached - target) <= 1e-8 * max(abs(target), span):
         raise _jump(batch, info, metric, target, value)
     return SolveResult(key, metric, target, value, value_text(info, root), reached,
                        reached - target, lower, upper, len(brackets), info.current,
-                       batch.count, batch.kernel, info, solved_raw)  # fmt: skip
+                       batch.count, batch.kernel, info, solved_raw, notes)  # fmt: skip
 
 
-def _reached(batch: _Batch, cfg: dict, value: float) -> float:
-    """The metric of the solved config: the scalar study's, or the kernel's sweep metric."""
+def _reached(batch: _Batch, cfg: dict, value: float) -> tuple[float, tuple]:
+    """The metric of the solved config (the scalar study's, or the kernel's sweep metric)
+    and the study's warnings (plausibility limits passed, numbers without meaning)."""
     try:
         with np.errstate(all="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            summary = drives.evaluate(cfg).summary
+            result = drives.evaluate(cfg)
     except ParameterError as exc:
         raise ParameterError(batch.info.key, batch.info.show(value),
                              f"it brings {batch.metric} to the target but the drive refuses "
                              f"it: {exc}") from None  # fmt: skip
     batch.count += 1
-    if batch.metric in summary:
-        return float(summary[batch.metric])
+    notes = tuple(result.warnings)
+    if batch.metric in result.summary:
+        return float(result.summary[batch.metric]), notes
     f, _ = batch(value)
-    return float(f[0])
+    return float(f[0]), notes
 
 
 def _out_of_reach(info: KeyInfo, metric: str, target: float, sc: _Scan, a: float, b: float):
