@@ -26,7 +26,9 @@ from rotorkin import __version__
 from rotorkin.cli import compare as cli_compare
 from rotorkin.cli import export as cli_export
 from rotorkin.cli import limits as cli_limits
+from rotorkin.cli import optimize as cli_optimize
 from rotorkin.cli import report as cli_report
+from rotorkin.cli import solve as cli_solve
 from rotorkin.cli import sweep as cli_sweep
 from rotorkin.cli import synthesize as cli_synthesize
 from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, out_folder
@@ -162,7 +164,8 @@ def _print_summary(result, name, outdir, written):
 
 # Commands that live in their own modules (cad export, synthesis, html report, sweeps):
 # each module has register(app), which adds its commands.
-for _module in (cli_export, cli_synthesize, cli_report, cli_sweep, cli_compare, cli_limits):
+for _module in (cli_export, cli_synthesize, cli_report, cli_sweep, cli_compare, cli_limits,
+                cli_solve, cli_optimize):  # fmt: skip
     _module.register(app)
 
 
