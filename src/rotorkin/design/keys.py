@@ -17,7 +17,6 @@ import copy
 import math
 from dataclasses import dataclass
 
-import annotated_types as at
 import numpy as np
 
 from rotorkin import drives
@@ -25,7 +24,7 @@ from rotorkin.core.errors import ConfigError, ParameterError, shown
 from rotorkin.core.units import parse_quantity
 from rotorkin.io.config import validate_config
 from rotorkin.sweep.engine import kernel_of
-from rotorkin.sweep.spec import Field, field_of
+from rotorkin.sweep.spec import Field, bounds_of, field_of
 
 __all__ = [
     "KeyInfo",
@@ -104,14 +103,6 @@ def _machine(raw: dict) -> str | None:
     return section.get("type") if isinstance(section, dict) else None
 
 
-def _field_info(drive_type: str, machine: str | None, key: str):
-    """The pydantic ``FieldInfo`` of ``key`` in the drive's config model."""
-    section, _, name = key.partition(".")
-    model = drives.config_model(drive_type, machine)
-    sub = model.model_fields[section].annotation
-    return next(f for n, f in sub.model_fields.items() if name in (n, f.alias))
-
-
 def _continuous(field: Field | None) -> bool:
     return field is not None and (field.dimensional or field.kind == "float")
 
@@ -164,18 +155,9 @@ def key_info(raw: dict, cfg: dict, key: str, option: str) -> KeyInfo:
         why = "unknown key" if field is None else f"{kind} key cannot be varied continuously"
         raise ConfigError(f"{option} {shown(key)} is not admissible ({why}): one of the number "
                           f"keys of drive.type = {drive_type}: {', '.join(keys)}")  # fmt: skip
-    info = _field_info(drive_type, machine, key)
-    low = high = None
-    low_open = high_open = False
-    for m in info.metadata:
-        if isinstance(m, at.Ge):
-            low, low_open = float(m.ge), False
-        elif isinstance(m, at.Gt):
-            low, low_open = float(m.gt), True
-        elif isinstance(m, at.Le):
-            high, high_open = float(m.le), False
-        elif isinstance(m, at.Lt):
-            high, high_open = float(m.lt), True
+    low, high, low_open, high_open = bounds_of(drive_type, key, machine)
+    low = low if np.isfinite(low) else None
+    high = high if np.isfinite(high) else None
     section, _, name = key.partition(".")
     current = (cfg.get(section) or {}).get(name)
     if isinstance(current, list):
