@@ -36,7 +36,6 @@ run.
 from __future__ import annotations
 
 import contextlib
-import errno
 import json
 import os
 from dataclasses import dataclass, field
@@ -54,6 +53,7 @@ from rotorkin.design.problem import (
     evaluate_population,
     objectives_and_constraints,
 )
+from rotorkin.sweep.store import open_folder
 
 __all__ = [
     "OptimizeResult",
@@ -93,15 +93,7 @@ class GenerationStore:
 
     def open(self, resume: bool) -> dict:
         """Prepare the folder; the stored generations (all dropped unless ``resume``)."""
-        try:
-            self.folder.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            if exc.errno in (errno.ENOTDIR, errno.EEXIST, errno.ENAMETOOLONG):
-                raise ConfigError(f"--out = {str(self.folder.parent.parent)!r} cannot be "
-                                  f"written: {exc.strerror}") from None  # fmt: skip
-            raise
-        for tmp in self.folder.glob(".*.tmp-*"):
-            tmp.unlink(missing_ok=True)
+        open_folder(self.folder, self.folder.parent.parent)
         path = self.folder / "manifest.json"
         old = None
         with contextlib.suppress(OSError, ValueError):

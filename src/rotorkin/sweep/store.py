@@ -38,6 +38,22 @@ __all__ = ["ChunkStore", "spec_hash", "write_dataset"]
 _MANIFEST = "manifest.json"
 
 
+def open_folder(folder: Path, shown) -> None:
+    """Create a store's folder and drop the temporary files a killed writer left in it.
+
+    ``shown`` is the ``--out`` folder named in the one-line error when it cannot be made.
+    """
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        if exc.errno in (errno.ENOTDIR, errno.EEXIST, errno.ENAMETOOLONG):
+            raise ConfigError(f"--out = {str(shown)!r} cannot be written: "
+                              f"{exc.strerror}") from None  # fmt: skip
+        raise
+    for tmp in folder.glob(".*.tmp-*"):
+        tmp.unlink(missing_ok=True)
+
+
 def spec_hash(manifest: dict) -> str:
     """SHA-256 of the canonical JSON of a sweep's manifest."""
     text = json.dumps(manifest, sort_keys=True, separators=(",", ":"))
@@ -79,15 +95,7 @@ class ChunkStore:
         Leftover temporary files of a killed run are removed; chunks of a
         different spec are removed too (with the old manifest).
         """
-        try:
-            self.folder.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            if exc.errno in (errno.ENOTDIR, errno.EEXIST, errno.ENAMETOOLONG):
-                raise ConfigError(f"--out = {str(self.folder.parent)!r} cannot be written: "
-                                  f"{exc.strerror}") from None  # fmt: skip
-            raise
-        for tmp in self.folder.glob(".*.tmp-*"):
-            tmp.unlink(missing_ok=True)
+        open_folder(self.folder, self.folder.parent)
         path = self.folder / _MANIFEST
         old = None
         if path.is_file():
