@@ -144,3 +144,14 @@ def test_the_sweep_integrates_every_design_as_the_study_does_and_power_follows_d
     assert np.all(np.diff(disp) > 0) and np.all(np.diff(power) > 0)
     assert power[-1] / power[0] == pytest.approx(disp[-1] / disp[0], rel=0.15)
     assert np.all(ds["peak_pressure_bar"].values < 100)
+
+
+def test_a_section_too_thin_for_any_cycle_is_refused_naming_its_key(capsys, tmp_path):
+    from rotorkin.cli import main
+
+    code = main(["run", "-e", "elliptic-gear-engine", "--set",
+                 'machine.outer_radius="40.001 mm"', "--out", str(tmp_path / "o")])  # fmt: skip
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    assert "machine.outer_radius = 40.001 mm" in err[0] and "hydraulic diameter" in err[0]
+    assert not (tmp_path / "o").exists()

@@ -234,6 +234,27 @@ def walls_of(section, inner_radius, outer_radius, axial_width, mean_radius, sect
                     seconds=seconds, temperature=temperature)  # fmt: skip
 
 
+def _thin_section(machine, wall) -> ParameterError:
+    """The refusal of a chamber whose walls take the heat faster than the cycle can follow.
+
+    A section a few micrometres thin has a hydraulic diameter so small that Woschni's
+    coefficient (which grows as ``D^-0.2`` and with the wetted area over the volume)
+    empties the charge's heat within one integration step: no cycle exists there.
+    """
+    d = float(np.min(wall.diameter)) if wall is not None else float("nan")
+    if machine.section == "circular":
+        key, value = "machine.section_diameter", machine.section_diameter
+    elif machine.outer_radius - machine.inner_radius <= machine.axial_width:
+        key, value = "machine.outer_radius", machine.outer_radius
+    else:
+        key, value = "machine.axial_width", machine.axial_width
+    return ParameterError(key, f"{value * 1e3:.6g} mm",
+                          f"a chamber section whose walls leave a gas cycle: the hydraulic "
+                          f"diameter {d * 1e3:.3g} mm is so small that the heat transfer to "
+                          "the walls has no solution (loads.heat_transfer = none leaves the "
+                          "walls out)")  # fmt: skip
+
+
 def steps_per_stroke(loads: FuelAirLoads) -> int:
     """Runge-Kutta steps per stroke: 0.5 deg, or finer so that a short burn gets its steps."""
     return int(
@@ -361,6 +382,8 @@ def charge_cycle(machine, loads: FuelAirLoads, chambers_at, counter, turning, pe
     res = cb.closed_cycle(half, volume, dvolume, mass=mass, heat=heat, gas=gas,
                           temperature=loads.intake_temperature, burn=loads.burn(),
                           walls=wall)  # fmt: skip
+    if not np.all(np.isfinite(res["p"])):
+        raise _thin_section(machine, wall)
     return ChargeCycle(
         loads=loads,
         gas_label=gas.label,
