@@ -121,7 +121,14 @@ def test_a_rerun_into_the_same_folder_leaves_no_stale_files(tmp_path, capsys):
     assert (out / "my-notes.txt").read_text() == "keep me"
     summary = json.loads((out / "summary.json").read_text())
     assert summary["name"] == "eccentric-reactor"
-    expected = {"summary.json", "motion.csv", "config.toml", "README.txt", "my-notes.txt"}
+    expected = {
+        "summary.json",
+        "motion.csv",
+        "config.toml",
+        "checks.csv",
+        "README.txt",
+        "my-notes.txt",
+    }
     figures = {n for n in second if n.endswith(".png")}
     assert second == expected | figures
     assert figures == {n for n in (out / "README.txt").read_text().split() if n.endswith(".png")}
