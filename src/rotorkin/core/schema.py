@@ -141,8 +141,9 @@ class ExportSection(Section):
         le=0.5,
         description="vane pump: bore of impeller 2, which sits on a hollow shaft around the "
         "shaft of impeller 1 (the hollow shaft's outer diameter); default: the largest that "
-        "fits its hub, rounded down like bore (1 mm <= sleeve_bore <= 500 mm; its hollow shaft "
-        "keeps a wall of max(1 mm, sleeve_bore/10) under its keyseat around bore)",
+        "fits its hub, rounded down like bore; the hollow shaft keeps a wall of max(1 mm, "
+        "sleeve_bore/10) under its keyseat around the shaft of bore "
+        "(1 mm <= sleeve_bore <= 500 mm)",
     )
     keyway: bool = Field(
         True,

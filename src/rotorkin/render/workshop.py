@@ -45,6 +45,7 @@ __all__ = [
     "settings",
     "part_hub",
     "pair_gap",
+    "configured",
     "with_hub",
     "key_angle",
     "floor_mm",
@@ -339,6 +340,13 @@ def settings(cfg: dict, check_only: bool = False) -> Settings:
     return Settings(**{k: e[k] for k in names if k in e}, check_only=bool(check_only))
 
 
+def configured(cfg: dict) -> bool:
+    """Whether the config sets a bore or a running gap (``[export]``): only then do the checks
+    of every command (``check_only``) build the parts to check them."""
+    e = cfg.get("export") or {}
+    return any(e.get(k) is not None for k in ("bore", "sleeve_bore", "running_clearance"))
+
+
 def floor_mm(x: float) -> str:
     """A length [m] rounded down to 0.01 mm, as people read it: ``'35.61 mm'``."""
     return f"{np.floor(float(x) * 1e5 + 1e-6) / 100:g} mm"
@@ -374,14 +382,14 @@ def part_hub(s: Settings, outline, what: str, bore: float | None, key: str = "ex
         than :func:`wall_needed` (the message states the largest that fits); a part too
         small for any bore.
     """
-    d = bore
+    d, short = bore, key.rsplit(".", 1)[-1]
     if d == 0.0:
         return None
     if s.keyway and d is not None and not KEYWAY_RANGE[0] <= d <= KEYWAY_RANGE[1]:
-        raise ParameterError(key, fmt_mm(d), "6 mm <= bore <= 230 mm for a DIN 6885-1 keyway "
-                             "(or export.keyway = false)")  # fmt: skip
+        raise ParameterError(key, fmt_mm(d), f"6 mm <= {short} <= 230 mm for a DIN 6885-1 "
+                             "keyway (or export.keyway = false)")  # fmt: skip
     d_max = largest_bore(outline, s.bore_fit, s.keyway, angle, centre)
-    rule = "a wall of max(1 mm, bore/4) beyond the " + ("keyway" if s.keyway else "bore")
+    rule = f"a wall of max(1 mm, {short}/4) beyond the " + ("keyway" if s.keyway else "bore")
     if d_max <= 0.0:
         if d is None and s.check_only:
             return None
@@ -392,7 +400,7 @@ def part_hub(s: Settings, outline, what: str, bore: float | None, key: str = "ex
     if d is None:
         d = max(round_bore(d_max), KEYWAY_RANGE[0] if s.keyway else 0.0)
     elif d > d_max + 1e-12:
-        raise ParameterError(key, fmt_mm(d), f"bore <= {floor_mm(d_max)}, the largest that "
+        raise ParameterError(key, fmt_mm(d), f"{short} <= {floor_mm(d_max)}, the largest that "
                              f"leaves {what} {rule}")  # fmt: skip
     return make_hub(d, s.bore_fit, s.keyway, angle, centre)
 

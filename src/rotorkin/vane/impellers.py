@@ -212,7 +212,7 @@ def impeller_parts(pump: vp.VanePump, motion0, cfg: dict, tolerance: float,
             hub=hubs[k],
             notes=notes,
             gaps=(("vane tip to casing", g.tip), ("vane root to hub, hub to hub", g.hub),
-                  ("vane side to end cover", g.side), ("vane flank to vane", 2.0 * g.flank)),
+                  ("vane side to end cover", g.side), ("each flank moved in", g.flank)),
         ))  # fmt: skip
     return parts
 

@@ -30,6 +30,8 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     thickness = check_thickness(cfg, 2.0 * float(params.disc_radius), "the disc's diameter")
     tol = check_tolerance(cfg, float(params.disc_radius))
     check = eccentric.profile_check(params)
+    if not (with_parts or ws.configured(cfg)):
+        return [], [("eccentric discs", check)]
     s = ws.settings(cfg, check_only=not with_parts)
     parts = []
     for k, part in enumerate(eccentric.cam_parts(params, thickness, tol)):

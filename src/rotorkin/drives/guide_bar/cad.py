@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from rotorkin.drives.guide_bar import cam as impeller
 from rotorkin.drives.guide_bar.study import drive_params, pump_params
+from rotorkin.render import workshop as ws
 from rotorkin.render.cad import check_tolerance
 
 __all__ = ["cad_parts", "check_cam"]
@@ -20,6 +21,8 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     params = drive_params(cfg)
     pump = pump_params(cfg, params)
     tol = check_tolerance(cfg, float(pump.hub_radius))
+    if not (with_parts or ws.configured(cfg)):
+        return [], []
     parts = impeller.impeller_parts(params, pump, cfg, tol, check_only=not with_parts)
     return (parts if with_parts else []), []
 

@@ -51,6 +51,8 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     params = drive_params(cfg)
     r_min = float(np.min(ng.pitch_radius(params, "driven", np.linspace(0, 2 * np.pi, 721))))
     tol = check_tolerance(cfg, r_min)
+    if not (with_parts or ws.configured(cfg)):
+        return [], []
     width = float(cfg["drive"].get("face_width", 0.02))
     s = ws.settings(cfg, check_only=not with_parts)
     a = float(params.centre_distance)

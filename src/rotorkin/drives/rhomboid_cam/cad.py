@@ -35,6 +35,8 @@ def cad_parts(cfg: dict, with_parts: bool = True):
     diameter = 2.0 * float(np.max(np.hypot(q[0], q[1])))
     thickness = check_thickness(cfg, diameter, "the cam's outer diameter")
     tol = check_tolerance(cfg, check.extra["pitch_radius_min"])
+    if not (with_parts or ws.configured(cfg)):
+        return [], [("rhomboid cam", check)]
     s = ws.settings(cfg, check_only=not with_parts)
     gap = ws.pair_gap(s, diameter)
     part = rhomboid.cam_part(params, r, thickness, tol, gap)
