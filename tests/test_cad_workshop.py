@@ -163,6 +163,21 @@ def test_every_step_part_is_one_valid_named_solid(rhomboid, pump, gears):
         assert re.search(r"FILE_DESCRIPTION\(\(\s*'" + re.escape(cfg["title"]) + "'", head)
 
 
+def test_a_title_beyond_ascii_is_encoded_for_step(tmp_path):
+    title = "Pompe à palettes 摆盘 'JHIT' 2012"
+    box = bd.Solid.make_box(10, 20, 5)
+    path = ws.write_step(tmp_path / "t.step", [("box_1", box, (0.0, 0.0, 0.0, 0.0))], "t",
+                         title, assembly=False)  # fmt: skip
+    raw = path.read_bytes()
+    assert raw.isascii()  # ISO 10303-21: \X2\ hex for what is not ASCII
+    head = raw.decode().split("ENDSEC;")[0].replace("\n", "")
+    assert f"\\X2\\{ord('à'):04X}\\X0\\" in head
+    assert f"\\X2\\{ord('摆'):04X}{ord('盘'):04X}\\X0\\" in head
+    assert ws.read_step(path)[1]["description"] == title
+    (solid,) = _read_solids(path)
+    assert _volume(solid) == pytest.approx(1000.0)
+
+
 def _rhomboid_exact(cfg, n=400_000):
     """Dense exact actual profile [mm] (eq. 3 offset by r + gap, FD normals) and its area."""
     d = cfg["drive"]

@@ -10,8 +10,8 @@ print them) and in the files.
   depth ``t1`` and the hub keyway depth ``t2``; the hub keyway's bottom is
   ``d + t2`` from the far side of the bore, i.e. ``d/2 + t2`` from the axis along
   the key's centre line. Hub keyway width: ISO JS9 (normal fit; symmetric, so the
-  model carries the nominal ``b``), depth tolerance ``+0.1 mm`` (``d <= 22 mm``) or
-  ``+0.2 mm`` (larger), modelled at the nominal depth.
+  model carries the nominal ``b``), depth tolerance ``+0.1 mm`` (``d <= 22 mm``),
+  ``+0.2 mm`` (to 130 mm) or ``+0.3 mm``, modelled at the nominal depth.
 * **Fits**: :data:`IT` (standard tolerance grades IT6..IT9) and the fundamental
   deviations of the shafts ``d e f g h js k`` (:data:`SHAFT_DEVIATIONS`), ISO
   286-1:2010 / ISO 286-2:2010, sizes up to 500 mm; holes of position H
@@ -23,22 +23,23 @@ print them) and in the files.
   d/4)`` beyond the keyway's bottom (a keyed steel hub of about 1.7 d outer
   diameter, at the lean end of common practice), and :func:`largest_bore` finds the
   largest bore that leaves it (stated in the error when a bore does not fit).
-* **STEP**: :func:`write_step` writes named solids as one product each, or as one
-  assembly of placed components, with the title in the header (``FILE_DESCRIPTION``),
-  units mm; :func:`read_step` reads names, placed solids and the header back.
+* **STEP** (:mod:`rotorkin.render.step`, re-exported here): :func:`write_step` writes
+  named solids as one product each, or as one assembly of placed components, with the
+  title in the header (``FILE_DESCRIPTION``), units mm; :func:`read_step` reads names,
+  placed solids and the header back.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
 from rotorkin.cams import edges as ce
 from rotorkin.cams.planar import Curve
 from rotorkin.core.angles import fmt_mm
-from rotorkin.core.errors import ParameterError, RotorkinError
+from rotorkin.core.errors import ParameterError
+from rotorkin.render.step import read_step, write_step
 
 __all__ = [
     "Settings",
@@ -433,181 +434,3 @@ def pair_gap(s: Settings, size: float, given: float = 0.0) -> float:
     if s.running_clearance is not None:
         return float(s.running_clearance)
     return running_gap(s.running_fit, min(float(size), 0.5))
-
-
-# --- STEP -------------------------------------------------------------------------------------
-def _location(placement):
-    from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
-    from OCP.TopLoc import TopLoc_Location
-
-    x, y, angle, z = (float(v) for v in placement)
-    rot, move = gp_Trsf(), gp_Trsf()
-    rot.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), angle)
-    move.SetTranslation(gp_Vec(x / _MM, y / _MM, z / _MM))
-    return TopLoc_Location(move.Multiplied(rot))
-
-
-def _quiet() -> None:
-    """OpenCascade's messages to the console: failures only (as build123d sets them)."""
-    from OCP.Message import Message, Message_Gravity
-
-    for printer in Message.DefaultMessenger_s().Printers():
-        printer.SetTraceLevel(Message_Gravity.Message_Fail)
-
-
-def _unlocated(shape):
-    """The shape with its location baked into its geometry: XCAF files a located shape as an
-    instance of an unnamed product, which would lose the part's name."""
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
-    from OCP.TopLoc import TopLoc_Location
-
-    if shape.Location().IsIdentity():
-        return shape
-    base = shape.Located(TopLoc_Location())
-    return BRepBuilderAPI_Transform(base, shape.Location().Transformation(), True).Shape()
-
-
-def write_step(path, solids, name: str, title: str = "", assembly: bool = True) -> Path:
-    """Write named solids [mm] to a STEP file (AP214), one product per solid.
-
-    Parameters
-    ----------
-    path : path-like
-    solids : sequence of (str, shape, placement)
-        Product name (e.g. ``"impeller_2"``), a build123d shape or OCP ``TopoDS_Shape``
-        in mm, and its placement ``(x, y, angle, z)`` [m, rad] (rotation about z, then
-        the shift), e.g. the part's place in its machine.
-    name : str
-        The assembly's product name and the header's ``FILE_NAME``.
-    title : str
-        Written as the header's ``FILE_DESCRIPTION`` (e.g. the config's title).
-    assembly : bool
-        True: one assembly product ``name`` holding every solid as a placed component;
-        False (one solid only): the solid itself as the file's one product, unplaced.
-
-    Returns
-    -------
-    Path
-    """
-    from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
-    from OCP.IFSelect import IFSelect_ReturnStatus
-    from OCP.Interface import Interface_Static
-    from OCP.STEPCAFControl import STEPCAFControl_Writer
-    from OCP.STEPControl import STEPControl_Controller, STEPControl_StepModelType
-    from OCP.TCollection import TCollection_ExtendedString, TCollection_HAsciiString
-    from OCP.TDataStd import TDataStd_Name
-    from OCP.TDocStd import TDocStd_Document
-    from OCP.XCAFApp import XCAFApp_Application
-    from OCP.XCAFDoc import XCAFDoc_DocumentTool
-
-    if not assembly and len(solids) != 1:
-        raise ValueError("a STEP file without assembly holds one solid")
-    doc = TDocStd_Document(TCollection_ExtendedString("XmlOcaf"))
-    app = XCAFApp_Application.GetApplication_s()
-    app.NewDocument(TCollection_ExtendedString("MDTV-XCAF"), doc)
-    XCAFDoc_DocumentTool.SetLengthUnit_s(doc, 0.001)
-    tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
-    tool.SetAutoNaming_s(False)
-    top = tool.NewShape() if assembly else None
-    if assembly:
-        TDataStd_Name.Set_s(top, TCollection_ExtendedString(name))
-    for part_name, shape, placement in solids:
-        label = tool.AddShape(_unlocated(getattr(shape, "wrapped", shape)), False)
-        TDataStd_Name.Set_s(label, TCollection_ExtendedString(part_name))
-        if assembly:
-            comp = tool.AddComponent(top, label, _location(placement))
-            TDataStd_Name.Set_s(comp, TCollection_ExtendedString(part_name))
-    tool.UpdateAssemblies()
-    _quiet()
-    STEPControl_Controller.Init_s()
-    writer = STEPCAFControl_Writer()
-    writer.SetNameMode(True)
-    Interface_Static.SetCVal_s("write.step.unit", "MM")
-    Interface_Static.SetIVal_s("write.surfacecurve.mode", 1)
-    writer.Transfer(doc, STEPControl_StepModelType.STEPControl_AsIs)
-    header = APIHeaderSection_MakeHeader(writer.Writer().Model())
-    header.SetName(TCollection_HAsciiString(Path(path).name))
-    header.SetOriginatingSystem(TCollection_HAsciiString("rotorkin"))
-    if title:
-        header.SetDescriptionValue(1, TCollection_HAsciiString(title))
-    path = Path(path)
-    if writer.Write(str(path)) != IFSelect_ReturnStatus.IFSelect_RetDone:  # pragma: no cover
-        raise RotorkinError(f"could not write the STEP file {path.name}")
-    return path
-
-
-def read_step(path) -> tuple[list[tuple[str, object]], dict]:
-    """The named solids of a STEP file, placed, and its header.
-
-    Returns
-    -------
-    (solids, header)
-        ``[(product name, TopoDS_Shape in mm, placed)]`` for every leaf product, in
-        file order, and ``{"name", "description", "unit"}`` of the header
-        (``unit``: the length unit's name in the file, e.g. ``"MILLI"``).
-    """
-    from OCP.collections import Sequence_TDF_Label as TDF_LabelSequence
-    from OCP.IFSelect import IFSelect_ReturnStatus
-    from OCP.STEPCAFControl import STEPCAFControl_Reader
-    from OCP.TCollection import TCollection_ExtendedString
-    from OCP.TDataStd import TDataStd_Name
-    from OCP.TDF import TDF_Label
-    from OCP.TDocStd import TDocStd_Document
-    from OCP.XCAFApp import XCAFApp_Application
-    from OCP.XCAFDoc import XCAFDoc_DocumentTool, XCAFDoc_ShapeTool
-
-    doc = TDocStd_Document(TCollection_ExtendedString("XmlOcaf"))
-    XCAFApp_Application.GetApplication_s().NewDocument(TCollection_ExtendedString("MDTV-XCAF"),
-                                                       doc)  # fmt: skip
-    _quiet()
-    reader = STEPCAFControl_Reader()
-    reader.SetNameMode(True)
-    if reader.ReadFile(str(path)) != IFSelect_ReturnStatus.IFSelect_RetDone:
-        raise RotorkinError(f"cannot read the STEP file {path}")
-    reader.Transfer(doc)
-    tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
-
-    def name_of(label) -> str:
-        attr = TDataStd_Name()
-        if label.FindAttribute(TDataStd_Name.GetID_s(), attr):
-            return attr.Get().ToExtString()
-        return ""
-
-    out = []
-
-    def walk(label, loc):
-        if XCAFDoc_ShapeTool.IsAssembly_s(label):
-            comps = TDF_LabelSequence()
-            XCAFDoc_ShapeTool.GetComponents_s(label, comps)
-            for i in range(1, comps.Length() + 1):
-                comp = comps.Value(i)
-                ref = TDF_Label()
-                XCAFDoc_ShapeTool.GetReferredShape_s(comp, ref)
-                walk(ref, loc.Multiplied(XCAFDoc_ShapeTool.GetLocation_s(comp)))
-            return
-        shape = XCAFDoc_ShapeTool.GetShape_s(label)
-        out.append((name_of(label), shape.Moved(loc)))
-
-    from OCP.TopLoc import TopLoc_Location
-
-    free = TDF_LabelSequence()
-    tool.GetFreeShapes(free)
-    for i in range(1, free.Length() + 1):
-        walk(free.Value(i), TopLoc_Location())
-    return out, _step_header(path)
-
-
-def _step_header(path) -> dict:
-    """``FILE_NAME`` name, ``FILE_DESCRIPTION`` text and the length unit, read as text."""
-    import re
-
-    text = Path(path).read_text(errors="replace")
-    head = re.sub(r"[\r\n]", "", text.split("ENDSEC;", 1)[0])  # ISO 10303-21: line ends void
-    desc = re.search(r"FILE_DESCRIPTION\s*\(\s*\(\s*'((?:[^']|'')*)'", head)
-    name = re.search(r"FILE_NAME\s*\(\s*'((?:[^']|'')*)'", head)
-    unit = re.search(r"SI_UNIT\s*\(\s*\.(\w+)\.\s*,\s*\.METRE\.", text)
-    return {
-        "description": desc.group(1).replace("''", "'") if desc else "",
-        "name": name.group(1).replace("''", "'") if name else "",
-        "unit": unit.group(1) if unit else "",
-    }
