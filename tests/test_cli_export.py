@@ -54,7 +54,8 @@ def test_every_planar_example_step(tmp_path, capsys, example):
     code, out, err = _run(capsys, "-e", example, "-f", "step", "-o", str(tmp_path))
     assert code == 0, err
     names = _files(tmp_path)
-    assert names == sorted(f"{example}_{s}.step" for s in EXPECTED[example])
+    parts = [*EXPECTED[example], "assembly"]  # one file per part and the assembly of them all
+    assert names == sorted(f"{example}_{s}.step" for s in parts)
     assert all(n in out for n in names)
 
 
@@ -127,6 +128,9 @@ def test_roller_limit_is_stated_and_right(tmp_path, capsys):
     below = f"cam.roller_radius={limit * (1 - 1e-4):.6f} mm"
     code, _, err = _run(capsys, "-e", "rhomboid-engine", "-s", below, "-f", "csv",
                         "-o", str(tmp_path / "b"))  # fmt: skip
+    assert code == 2 and "export.bore = (default)" in err  # a cam that leaves no room for a bore
+    code, _, err = _run(capsys, "-e", "rhomboid-engine", "-s", below, "-s", "export.bore=0 mm",
+                        "-f", "csv", "-o", str(tmp_path / "b"))  # fmt: skip
     assert code == 0, err
     above = f"cam.roller_radius={limit + 0.01:.6f} mm"  # the limit is rounded down to 0.01 mm
     code, _, err = _run(capsys, "-e", "rhomboid-engine", "-s", above, "-f", "csv",

@@ -3,6 +3,9 @@
 The model curves are rebuilt here from the paper's equations (eq. 3 of the
 rhomboid cam, the disc and impeller geometry) with finite-difference normals;
 areas come from quadrature (Steiner's formula for the offset) or closed form.
+The bare geometry: ``export.bore = 0 mm`` (no bore) and ``export.running_clearance =
+0 mm`` (the nominal profiles); bores, keyways and gaps are tested in
+``test_cad_workshop.py``.
 """
 
 import sys
@@ -23,8 +26,11 @@ trimesh = pytest.importorskip("trimesh")
 TOL_MM = 0.01  # the default export.tolerance
 
 
+BARE = ("export.bore=0 mm", "export.running_clearance=0 mm")
+
+
 def _cfg(example, *sets):
-    return load_config(None, example, list(sets))
+    return load_config(None, example, [*BARE, *sets])
 
 
 def _rhomboid_curves(cfg, n=300_000):
@@ -98,14 +104,22 @@ def test_rhomboid_dxf(tmp_path):
     assert doc.header["$INSUNITS"] == 4  # mm
     msp = doc.modelspace()
     polys = {e.dxf.layer: e for e in msp.query("LWPOLYLINE")}
-    assert {"PROFILE", "PITCH", "LINKAGE"} <= set(polys)
+    assert {"PITCH", "LINKAGE"} <= set(polys)
     pitch_dense, prof_dense = _rhomboid_curves(cfg)
-    for layer, dense in (("PROFILE", prof_dense), ("PITCH", pitch_dense)):
-        e = polys[layer]
-        assert e.closed
-        pts = np.array([(x, y) for x, y, *_ in e.get_points()])
-        assert len(pts) > 100
-        _check_polyline(pts, dense)
+    e = polys["PITCH"]
+    assert e.closed
+    pts = np.array([(x, y) for x, y, *_ in e.get_points()])
+    assert len(pts) > 100
+    _check_polyline(pts, pitch_dense)
+    # the profile to cut: B-spline pieces within the tolerance, joined end to end
+    splines = list(msp.query("SPLINE[layer=='PROFILE']"))
+    assert len(splines) >= 8 and not msp.query("LWPOLYLINE[layer=='PROFILE']")
+    tools = [s.construction_tool() for s in splines]
+    ends = np.array([[tuple(t.point(t.max_t))[:2], tuple(u.point(u.knots()[0]))[:2]]
+                     for t, u in zip(tools, tools[1:] + tools[:1], strict=True)])  # fmt: skip
+    assert np.abs(ends[:, 0] - ends[:, 1]).max() < 1e-9
+    q = np.concatenate([np.array(list(t.approximate(500)))[:, :2] for t in tools])
+    assert _distance(cKDTree(prof_dense), prof_dense, q).max() <= TOL_MM
     circles = list(msp.query("CIRCLE"))
     assert len(circles) == 4 and all(c.dxf.layer == "ROLLER" for c in circles)
     r_mm = cfg["cam"]["roller_radius"] * 1e3
@@ -163,18 +177,19 @@ def test_eccentric_dxf_stl_csv(tmp_path, follower):
 
 
 def test_impeller_stl_and_dxf(tmp_path):
+    """Without gaps: each impeller is its vanes over the width and its hub over half of it."""
     cfg, _, name = _cfg("guide-bar-pump")
     m = cfg["machine"]
     rh, rcas, w = m["hub_radius"] * 1e3, m["casing_radius"] * 1e3, m["axial_width"] * 1e3
     z = m["vanes_per_impeller"]
     gamma = np.arctan(2.0)  # the drive's gamma_0 for lambda = 0.5, u = 2 (63.43 deg)
-    area = np.pi * rh * rh + z * gamma * 0.5 * (rcas**2 - rh**2)
+    volume = np.pi * rh * rh * w / 2 + z * gamma * 0.5 * (rcas**2 - rh**2) * w
     for f in ("stl", "dxf"):
         export(cfg, f, tmp_path, name)
     for k in (1, 2):
         mesh = trimesh.load(tmp_path / f"{name}_impeller_{k}.stl")
         assert mesh.is_watertight
-        assert mesh.volume == pytest.approx(area * w, rel=1e-2)
+        assert mesh.volume == pytest.approx(volume, rel=1e-4)
         doc = ezdxf.readfile(tmp_path / f"{name}_impeller_{k}.dxf")
         assert not doc.audit().has_errors
         (poly,) = doc.modelspace().query("LWPOLYLINE[layer=='PROFILE']")
@@ -202,7 +217,8 @@ def _has_bd():
 def test_rhomboid_step(tmp_path):
     bd = pytest.importorskip("build123d", reason="STEP export needs the [cad] extra (build123d)")
     cfg, _, name = _cfg("rhomboid-engine")
-    (path,) = export(cfg, "step", tmp_path, name)
+    assembly, path = export(cfg, "step", tmp_path, name)
+    assert assembly.name == f"{name}_assembly.step"
     shape = bd.import_step(str(path))
     solids = shape.solids()
     assert len(solids) == 1 and solids[0].is_valid
@@ -217,14 +233,14 @@ def test_eccentric_and_impeller_step(tmp_path):
     cfg, _, name = _cfg("eccentric-reactor")
     for path in export(cfg, "step", tmp_path, name):
         s = bd.import_step(str(path)).solids()
-        assert len(s) == 1 and s[0].is_valid
+        assert len(s) == (2 if path.stem.endswith("assembly") else 1) and s[0].is_valid
         assert s[0].volume == pytest.approx(np.pi * 80.0**2 * 20.0, rel=1e-9)
     cfg, _, name = _cfg("guide-bar-pump")
     for path in export(cfg, "step", tmp_path, name):
         s = bd.import_step(str(path)).solids()
-        assert len(s) == 1 and s[0].is_valid
-        area = np.pi * 30.0**2 + 2 * np.arctan(2.0) * 0.5 * (80.0**2 - 30.0**2)
-        assert s[0].volume == pytest.approx(area * 40.0, rel=1e-2)
+        assert len(s) == (2 if path.stem.endswith("assembly") else 1) and s[0].is_valid
+        vanes = 2 * np.arctan(2.0) * 0.5 * (80.0**2 - 30.0**2) * 40.0
+        assert s[0].volume == pytest.approx(np.pi * 30.0**2 * 20.0 + vanes, rel=1e-9)
 
 
 def test_csv_every_curve(tmp_path):
@@ -232,6 +248,8 @@ def test_csv_every_curve(tmp_path):
     files = export(cfg, "csv", tmp_path, name)
     stems = sorted(f.stem.removeprefix(f"{name}_rhomboid_cam_") for f in files)
     assert stems == ["pitch", "profile", "rhombus", "roller_A", "roller_B", "roller_C", "roller_D"]
+    files = export(load_config(None, "rhomboid-engine", [])[0], "csv", tmp_path / "b", name)
+    assert f"{name}_rhomboid_cam_bore.csv" in [f.name for f in files]  # with its bore
     pitch_dense, prof_dense = _rhomboid_curves(cfg)
     for stem, dense in (("pitch", pitch_dense), ("profile", prof_dense)):
         path = tmp_path / f"{name}_rhomboid_cam_{stem}.csv"

@@ -22,9 +22,9 @@ array shape. Conventions used throughout:
   normal, through the roller centre) and the velocity of the roller centre
   relative to the member that guides it, in ``(-pi/2, pi/2]``.
 
-The frozen dataclasses :class:`Curve`, :class:`Part` and :class:`ProfileCheck`
-carry finished geometry to the CAD writers (:mod:`rotorkin.render.cad`) and
-the checks to the command line.
+The frozen dataclasses :class:`Curve`, :class:`Part` (with its :class:`Slab` s and
+:class:`Placement`) and :class:`ProfileCheck` carry finished geometry to the CAD
+writers (:mod:`rotorkin.render.cad`) and the checks to the command line.
 """
 
 from __future__ import annotations
@@ -37,6 +37,8 @@ import numpy as np
 __all__ = [
     "Curve",
     "Part",
+    "Placement",
+    "Slab",
     "ProfileCheck",
     "arc_points",
     "chordal_deviation",
@@ -74,6 +76,11 @@ class Curve:
     circle : tuple of float or None
         ``(cx, cy, r)`` [m] when the curve is an exact circle (written to DXF as
         a CIRCLE entity; ``points`` then holds its polygon within the tolerance).
+    edges : tuple
+        The exact edges of a closed contour that is cut (:mod:`rotorkin.cams.edges`:
+        lines, arcs, B-splines within the export tolerance), counter-clockwise; the
+        STEP and DXF writers use them, ``points`` is then their polygon (STL, CSV).
+        Empty: the curve is drawn from ``points`` (or ``circle``).
     """
 
     name: str
@@ -81,6 +88,45 @@ class Curve:
     points: np.ndarray
     closed: bool = True
     circle: tuple[float, float, float] | None = None
+    edges: tuple = ()
+
+
+@dataclass(frozen=True)
+class Slab:
+    """An axial slab of a part: closed regions of its section extruded over ``z0 <= z <= z1``.
+
+    Attributes
+    ----------
+    z0, z1 : float
+        Axial extent in the part's frame [m], ``z0 < z1``.
+    outlines : tuple of Curve
+        Outer contours of the regions (disjoint), counter-clockwise.
+    holes : tuple of Curve
+        Contours cut out of them (a bore), counter-clockwise too.
+    name : str
+        What the slab is (``"relief"``), for people.
+    """
+
+    z0: float
+    z1: float
+    outlines: tuple[Curve, ...]
+    holes: tuple[Curve, ...] = ()
+    name: str = ""
+
+
+@dataclass(frozen=True)
+class Placement:
+    """Where a part sits in its machine at ``theta = 0``: turned by ``angle`` [rad] about z,
+    then shifted by ``(x, y, z)`` [m]."""
+
+    x: float = 0.0
+    y: float = 0.0
+    angle: float = 0.0
+    z: float = 0.0
+
+    def as_tuple(self) -> tuple[float, float, float, float]:
+        """``(x, y, angle, z)``."""
+        return (self.x, self.y, self.angle, self.z)
 
 
 @dataclass(frozen=True)
@@ -90,15 +136,31 @@ class Part:
     Attributes
     ----------
     name : str
-        File-name stem (``"cam"``, ``"disc_left"``, ``"impeller_1"``).
+        File-name stem and STEP product name (``"disc_left"``, ``"impeller_1"``).
     outline : Curve
         The closed profile of the part (layer ``"PROFILE"``), counter-clockwise.
     thickness : float
-        Axial thickness of the extruded solid [m].
+        Axial thickness of the extruded solid [m] (from z = 0).
     curves : tuple of Curve
         Every curve of the drawing, the outline first.
     title : str
         One line saying what the part is.
+    holes : tuple of Curve
+        Contours cut through the whole thickness (the shaft bore with its keyway).
+    slabs : tuple of Slab
+        The solid as axial slabs joined, when its section changes along the axis; empty:
+        one slab, ``outline`` less ``holes`` over the thickness.
+    cuts : tuple of Slab
+        Regions cut out of the slabs afterwards (a relief turned into the impellers'
+        vane roots); a cut that reaches an end face of the part runs through it.
+    placement : Placement
+        The part's place in the machine at ``theta = 0`` (the STEP assembly).
+    hub : object or None
+        The bore's :class:`rotorkin.render.workshop.Hub` (None: no bore).
+    notes : tuple of str
+        Lines for the drawing (fits, clearances), below the title.
+    gaps : tuple of (str, float)
+        The running gaps cut into the part, by pair (``("vane tip to casing", 4.7e-5)``) [m].
     """
 
     name: str
@@ -106,6 +168,19 @@ class Part:
     thickness: float
     curves: tuple[Curve, ...]
     title: str = ""
+    holes: tuple[Curve, ...] = ()
+    slabs: tuple[Slab, ...] = ()
+    cuts: tuple[Slab, ...] = ()
+    placement: Placement = Placement()
+    hub: object = None
+    notes: tuple[str, ...] = ()
+    gaps: tuple[tuple[str, float], ...] = ()
+
+    def solid_slabs(self) -> tuple[Slab, ...]:
+        """The slabs of the solid (:attr:`slabs`, or the one slab of the plain plate)."""
+        if self.slabs:
+            return self.slabs
+        return (Slab(0.0, float(self.thickness), (self.outline,), tuple(self.holes)),)
 
 
 @dataclass(frozen=True)

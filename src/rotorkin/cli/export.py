@@ -1,12 +1,14 @@
 """The ``rotorkin export`` command (CAD files of a config's cams or impellers).
 
 Registered on the main app by :func:`register`. Writes DXF, STL, STEP or CSV
-through :func:`rotorkin.io.export.export`, then prints the files written and the
-profile checks in a short table.
+through :func:`rotorkin.io.export.export` (a progress bar per part on a terminal's
+stderr, none with ``--quiet``), then prints the files written, the parts' bores,
+keyways and running gaps, and the profile checks in short tables.
 """
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
 from typing import Annotated
 
@@ -25,7 +27,7 @@ from rotorkin.cli.tables import print_checks
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import design_checks, get
 from rotorkin.io.config import load_config
-from rotorkin.io.export import FORMATS, export, profile_checks
+from rotorkin.io.export import FORMATS, export, profile_checks, workshop_rows
 
 
 def _size(n: int) -> str:
@@ -96,13 +98,36 @@ def register(app) -> None:
         outdir = out if out is not None else Path("rotorkin-out") / name / "cad"
         rows = _check_rows(cfg)
         checks = design_checks(cfg)  # the same checks as run (with their margins)
-        written = export(cfg, fmt_, outdir, name)
+        with _progress_bar(quiet) as progress:
+            written = export(cfg, fmt_, outdir, name, progress=progress)
         if not quiet:
-            _print(name, cfg["drive"]["type"], fmt_, outdir, written, rows)
+            _print(name, cfg["drive"]["type"], fmt_, outdir, written, rows, workshop_rows(cfg))
             print_checks(Console(markup=False, highlight=False), checks)
 
 
-def _print(name, kind, fmt, outdir, written, rows) -> None:
+@contextlib.contextmanager
+def _progress_bar(quiet: bool):
+    """A rich progress bar on stderr, one step per part and format; None (no bar) when
+    quiet or when stderr is no terminal (a pipe, a test)."""
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    console = Console(stderr=True)
+    if quiet or not console.is_terminal:
+        yield None
+        return
+    columns = (TextColumn("{task.description:<28}"), BarColumn(), MofNCompleteColumn(),
+               TimeElapsedColumn())  # fmt: skip
+    with Progress(*columns, console=console, transient=True) as bar:
+        task = bar.add_task("export", total=None)
+
+        def progress(label: str, done: int, total: int) -> None:
+            bar.update(task, description=label, completed=done, total=total, refresh=True)
+
+        yield progress
+
+
+def _print(name, kind, fmt, outdir, written, rows, parts=()) -> None:
     from rich.console import Console
     from rich.table import Table
 
@@ -116,6 +141,13 @@ def _print(name, kind, fmt, outdir, written, rows) -> None:
     for p in written:
         files.add_row(p.name, _size(p.stat().st_size))
     console.print(files)
+    if parts:
+        table = Table(title="workshop")
+        table.add_column("part")
+        table.add_column("value", justify="right")
+        for k, v in parts:
+            table.add_row(k, v)
+        console.print(table)
     if rows:
         checks = Table(title="profile checks")
         checks.add_column("check")

@@ -10,7 +10,7 @@ drive's parameter classes take theirs from here (a test compares them).
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator
 from pydantic_core import PydanticCustomError
@@ -123,6 +123,54 @@ class ExportSection(Section):
         "0.01 mm",
         description="chordal tolerance of exported curves and meshes (DXF, STL, STEP), "
         "0.00001 mm ... 1 mm (and at most 1 % of the part's size, checked by export)",
+    )
+
+    bore: Length | None = Field(
+        None,
+        ge=0.0,
+        le=0.5,
+        description="nominal diameter of the shaft bore of every cam, disc, impeller and gear "
+        "(vane pump: of impeller 1, on the inner shaft); default: the largest that leaves a hub "
+        "wall of max(1 mm, bore/4) beyond the keyway, rounded down (whole mm to 20 mm, even mm "
+        "to 50 mm, 5 mm to 150 mm, 10 mm above); 0: no bore (0 mm <= bore <= 500 mm; "
+        "6 mm <= bore <= 230 mm with a keyway)",
+    )
+    sleeve_bore: Length | None = Field(
+        None,
+        ge=1e-3,
+        le=0.5,
+        description="vane pump: bore of impeller 2, which sits on a hollow shaft around the "
+        "shaft of impeller 1 (the hollow shaft's outer diameter); default: the largest that "
+        "fits its hub, rounded down like bore; the hollow shaft keeps a wall of max(1 mm, "
+        "sleeve_bore/10) under its keyseat around the shaft of bore "
+        "(1 mm <= sleeve_bore <= 500 mm)",
+    )
+    keyway: bool = Field(
+        True,
+        description="cut a DIN 6885-1 (ISO/R 773) parallel-key keyway into every bore, sized by "
+        "the bore (true or false)",
+    )
+    bore_fit: Literal["H7/g6", "H7/h6", "H7/k6"] = Field(
+        "H7/g6",
+        description="ISO 286 fit of each hub on its shaft, hole basis: H7/g6 sliding, H7/h6 "
+        "locational clearance, H7/k6 locational transition; the bore is modelled at the middle "
+        "of its hole zone",
+    )
+    running_fit: Literal["H8/f7", "H9/d9", "H7/g6"] = Field(
+        "H8/f7",
+        description="ISO 286 fit that sets the running gaps: half its mean diametral clearance "
+        "at the size of each pair (a cam's outer diameter, a pump's casing diameter); H8/f7 "
+        "close running, H9/d9 free running, H7/g6 sliding",
+    )
+    running_clearance: Length | None = Field(
+        None,
+        ge=0.0,
+        le=1e-3,
+        description="radial gap of every pair that runs on another in the CAD (roller on a "
+        "form-closed cam, vane tip on the casing, vane root on the other impeller's hub, vane on "
+        "vane, hub on hub), overriding running_fit; a pump's machine.tip_clearance, "
+        "hub_clearance and side_clearance take precedence where > 0 "
+        "(0 mm <= running_clearance <= 1 mm)",
     )
 
     @field_validator("tolerance")

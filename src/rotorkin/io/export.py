@@ -8,7 +8,9 @@ does) written here as DXF, STL, STEP and CSV, or writes its own files
 
 Files are written into a temporary folder beside ``outdir`` and moved into it
 with ``os.replace`` only when all of them are written: a failure leaves nothing.
-File names: ``<name>_<part>.dxf|stl|step`` and ``<name>_<part>_<curve>.csv``.
+File names: ``<name>_<part>.dxf|stl|step`` and ``<name>_<part>_<curve>.csv``; STEP
+adds ``<name>_assembly.step``, every part placed as in the machine at ``theta = 0``
+(one product per part, named after it; the config's title in the header).
 """
 
 from __future__ import annotations
@@ -21,7 +23,8 @@ from rotorkin.io.output import staged_output
 from rotorkin.render import cad as cp
 from rotorkin.render.cad import DEFAULT_TOLERANCE
 
-__all__ = ["FORMATS", "DEFAULT_TOLERANCE", "export", "planar_parts", "profile_checks"]
+__all__ = ["FORMATS", "DEFAULT_TOLERANCE", "export", "planar_parts", "profile_checks",
+           "workshop_rows"]  # fmt: skip
 
 #: Formats of :func:`export` (``all`` writes every one).
 FORMATS = ("dxf", "stl", "step", "csv")
@@ -58,6 +61,29 @@ def profile_checks(cfg: dict) -> list[tuple[str, object]]:
     return planar_parts(cfg, with_parts=False)[1]
 
 
+def workshop_rows(cfg: dict) -> list[tuple[str, str]]:
+    """(item, value) rows of the parts' bores, keyways and running gaps (planar drives)."""
+    if drives.spec_of(cfg).cad_parts is None:
+        return []
+    rows = []
+    for part in planar_parts(cfg)[0]:
+        hub = part.hub
+        if hub is not None:
+            hole, shaft = hub.fit.split("/")
+            d = hub.bore * 1e3
+            drawn = f"drawn {hub.diameter * 1e3:.4f}"
+            rows.append(
+                (f"{part.name}: bore mm", f"{d:g} {hole} on a {d:g} {shaft} shaft ({drawn})")
+            )
+            if hub.key is not None:
+                k = {f: getattr(hub.key, f) * 1e3 for f in ("b", "h", "t2")}
+                rows.append((f"{part.name}: keyway mm",
+                             f"{k['b']:g} JS9 x d + {k['t2']:g}, key {k['b']:g} x {k['h']:g} "
+                             "(DIN 6885-1)"))  # fmt: skip
+        rows += [(f"{part.name}: gap {what} mm", f"{gap * 1e3:.4g}") for what, gap in part.gaps]
+    return rows
+
+
 def _check_format(fmt: str) -> list[str]:
     if fmt == "all":
         return list(FORMATS)
@@ -66,23 +92,37 @@ def _check_format(fmt: str) -> list[str]:
     return [fmt]
 
 
-def _write_planar(parts, fmt: str, stage: Path, name: str) -> list[Path]:
+def _tasks(parts, fmts) -> list[tuple[str, object]]:
+    """The units of work of an export, in order: ``(format, part)`` and the assembly."""
+    out = [(f, p) for f in fmts for p in parts]
+    return out + ([("assembly", None)] if "step" in fmts else [])
 
-    out = []
-    for part in parts:
+
+def _write_planar(parts, fmts, stage: Path, name: str, title: str, progress) -> None:
+    solids = {}
+    tasks = _tasks(parts, fmts)
+    for i, (fmt, part) in enumerate(tasks):
+        if progress is not None:
+            progress(f"{fmt} {part.name}" if part is not None else "step assembly", i, len(tasks))
+        if part is None:
+            cp.write_assembly(parts, stage / f"{name}_assembly.step", name, title,
+                              [solids[p.name] for p in parts])  # fmt: skip
+            continue
         stem = f"{name}_{part.name}"
         if fmt == "dxf":
-            out.append(cp.write_dxf(part, stage / f"{stem}.dxf", name))
+            cp.write_dxf(part, stage / f"{stem}.dxf", name)
         elif fmt == "stl":
-            out.append(cp.write_stl(part, stage / f"{stem}.stl"))
+            cp.write_stl(part, stage / f"{stem}.stl")
         elif fmt == "step":
-            out.append(cp.write_step(part, stage / f"{stem}.step"))
+            solids[part.name] = cp.part_solid(part)
+            cp.write_step(part, stage / f"{stem}.step", title, solids[part.name])
         else:
-            out += cp.write_csv(part, stage, stem)
-    return out
+            cp.write_csv(part, stage, stem)
+    if progress is not None:
+        progress("done", len(tasks), len(tasks))
 
 
-def export(cfg: dict, fmt: str, outdir, name: str) -> list[Path]:
+def export(cfg: dict, fmt: str, outdir, name: str, progress=None) -> list[Path]:
     """Write the CAD files of a validated config (SI) in one format (or ``"all"``).
 
     Parameters
@@ -94,6 +134,9 @@ def export(cfg: dict, fmt: str, outdir, name: str) -> list[Path]:
         Folder to write into (created; files of the same names are replaced).
     name : str
         Stem of the file names (the config's name).
+    progress : callable, optional
+        ``progress(label, done, total)``, called before each part in each format (and
+        the STEP assembly) and once at the end with ``done == total``.
 
     Returns
     -------
@@ -113,10 +156,15 @@ def export(cfg: dict, fmt: str, outdir, name: str) -> list[Path]:
     if "step" in fmts:
         cp.build123d_module()
     parts = planar_parts(cfg)[0] if spec.cad_parts is not None else None
+    title = str(cfg.get("title") or name)
     with staged_output(outdir, "export-" + "-".join(fmts)) as (stage, written):
-        for f in fmts:
-            if parts is None:
+        if parts is None:
+            for i, f in enumerate(fmts):
+                if progress is not None:
+                    progress(f, i, len(fmts))
                 spec.cad_write(cfg, f, stage, name)
-            else:
-                _write_planar(parts, f, stage, name)
+            if progress is not None:
+                progress("done", len(fmts), len(fmts))
+        else:
+            _write_planar(parts, fmts, stage, name, title, progress)
     return written

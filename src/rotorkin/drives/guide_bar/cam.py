@@ -5,10 +5,10 @@ hub of radius ``R_h`` carrying ``Z`` radial vanes of angular width ``gamma``
 that reach the casing radius ``R_c``, over the axial width ``w``. Derived here:
 the outline of one impeller in its cross-section, a closed curve made of
 casing arcs (the vane tips), radial flanks and hub arcs between the vanes,
-counter-clockwise. Each impeller is drawn at ``theta = 0`` in the pump frame, its
-vanes at the angles of :func:`rotorkin.machines.vane_pump.vane_angles`, so the
-two drawings overlaid show the pump assembled. The vane tips are drawn on the
-casing radius itself; running clearance and seals are left to the designer.
+counter-clockwise (:func:`impeller_outline`, :func:`impeller_area`: the nominal
+section). The workshop parts (:func:`impeller_parts`) are those of any drive carrying
+the pump (:mod:`rotorkin.vane.impellers`): drawn at ``theta = 0`` in the pump frame,
+their hubs nested axially, bored and keyed, with the running gaps cut.
 """
 
 from __future__ import annotations
@@ -16,10 +16,10 @@ from __future__ import annotations
 import numpy as np
 
 from rotorkin.cams import planar
-from rotorkin.cams.planar import Curve, Part
-from rotorkin.core.angles import fmt_deg, fmt_mm
+from rotorkin.cams.planar import Part
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.machines import vane_pump as vp
+from rotorkin.vane import impellers
 
 __all__ = ["impeller_outline", "impeller_area", "impeller_parts"]
 
@@ -63,26 +63,10 @@ def impeller_area(vanes, vane_angle, hub_radius, casing_radius):
     return np.pi * rh * rh + int(vanes) * float(vane_angle) * 0.5 * (rc * rc - rh * rh)
 
 
-def impeller_parts(params: gb.GuideBar, pump: vp.VanePump, tolerance) -> list[Part]:
-    """Both impellers as :class:`~rotorkin.cams.planar.Part` s, extruded to ``axial_width``.
+def impeller_parts(params: gb.GuideBar, pump: vp.VanePump, cfg: dict, tolerance,
+                   check_only: bool = False) -> list[Part]:  # fmt: skip
+    """Both impellers as workshop :class:`~rotorkin.cams.planar.Part` s at ``theta = 0``.
 
-    Curves: ``profile`` (PROFILE) and, for reference, the ``casing`` circle (CASING).
+    :func:`rotorkin.vane.impellers.impeller_parts` on the drive's motion at ``theta = 0``.
     """
-    v = vp.vane_angles(pump, gb.motion(params, 0.0))  # (2, Z)
-    rh, rc = float(pump.hub_radius), float(pump.casing_radius)
-    casing = planar.circle_curve("casing", "CASING", (0.0, 0.0), rc, tolerance)
-    parts = []
-    for k in (0, 1):
-        pts = impeller_outline(pump.vane_angle, rh, rc, v[k], tolerance)
-        outline = Curve("profile", "PROFILE", pts)
-        parts.append(
-            Part(
-                name=f"impeller_{k + 1}",
-                outline=outline,
-                thickness=float(pump.axial_width),
-                curves=(outline, casing),
-                title=f"impeller {k + 1}: hub {fmt_mm(rh)}, {pump.vanes_per_impeller} vanes of "
-                f"{fmt_deg(pump.vane_angle)} to {fmt_mm(rc)}, drawn at theta = 0",
-            )
-        )
-    return parts
+    return impellers.impeller_parts(pump, gb.motion(params, 0.0), cfg, tolerance, check_only)

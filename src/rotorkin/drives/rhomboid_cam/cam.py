@@ -35,7 +35,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from rotorkin.cams import planar
+from rotorkin.cams import edges, planar
 from rotorkin.cams.planar import Curve, Part, ProfileCheck
 from rotorkin.core.angles import fmt_deg, fmt_mm
 from rotorkin.core.errors import ParameterError
@@ -401,20 +401,24 @@ def check_profile(link_length, psi_min, a, b, roller_radius, name="roller_radius
     raise ParameterError(name, fmt_mm(r), f"{head}; {detail}")
 
 
-def cam_part(params: rc.RhomboidCam, roller_radius, thickness, tolerance) -> Part:
+def cam_part(params: rc.RhomboidCam, roller_radius, thickness, tolerance, gap=0.0) -> Part:
     """The cam plate as a :class:`~rotorkin.cams.planar.Part` for the CAD writers.
 
-    Curves (drawn at ``alpha = 0``): ``profile`` (the actual profile, layer
-    PROFILE, the outline to extrude), ``pitch`` (PITCH), ``roller_A`` ...
-    ``roller_D`` (ROLLER, exact circles) and ``rhombus`` (LINKAGE, the roller
-    centres ABCD). Polygons follow their curves within ``tolerance`` (chordal).
-    The check is not made here (see :func:`check_profile`).
+    Curves (drawn at ``alpha = 0``): ``profile`` (the outline to cut, layer PROFILE: the
+    pitch curve offset inwards by ``roller_radius + gap``, as clamped cubic B-spline
+    pieces within ``tolerance`` of that offset, :func:`rotorkin.cams.edges.fit_closed`),
+    ``pitch`` (PITCH), ``roller_A`` ... ``roller_D`` (ROLLER, exact circles) and
+    ``rhombus`` (LINKAGE, the roller centres ABCD). Polygons follow their curves within
+    ``tolerance`` (chordal). The check is not made here (see :func:`check_profile`).
 
     Parameters
     ----------
     params : RhomboidCam
     roller_radius, thickness, tolerance : float
         [m].
+    gap : float
+        Running gap between each roller and the cam [m] (the rhombus holds the four
+        rollers on the cam by form closure, so they need one).
     """
     L, law = params.link_length, (params.psi_min, params.a, params.b)
     r = float(roller_radius)
@@ -423,12 +427,13 @@ def cam_part(params: rc.RhomboidCam, roller_radius, thickness, tolerance) -> Par
         return pitch_curve(L, *law, t)[0]
 
     def profile(t):
-        return actual_profile(L, *law, r, t)
+        return actual_profile(L, *law, r + float(gap), t)
 
     two_pi = 2.0 * np.pi
     t_prof = planar.resample_closed(profile, 0.0, two_pi, tolerance)
     t_pitch = planar.resample_closed(pitch, 0.0, two_pi, tolerance)
-    outline = Curve("profile", "PROFILE", profile(t_prof).T.copy())
+    pieces = edges.fit_closed(profile, two_pi, tolerance)[0]
+    outline = Curve("profile", "PROFILE", profile(t_prof).T.copy(), True, None, pieces)
     curves = [outline, Curve("pitch", "PITCH", pitch(t_pitch).T.copy())]
     v = rc.rhombus_vertices(L, *law, 0.0)
     if r > 0.0:
@@ -443,4 +448,9 @@ def cam_part(params: rc.RhomboidCam, roller_radius, thickness, tolerance) -> Par
         thickness=float(thickness),
         curves=tuple(curves),
         title=f"rhomboid cam, roller radius {fmt_mm(r)}, drawn at alpha = 0",
+        notes=(
+            f"profile: the pitch curve offset inwards by roller radius {fmt_mm(r)} + running "
+            f"gap {fmt_mm(gap)}",
+        ),
+        gaps=(("roller on cam", float(gap)),),
     )
