@@ -141,17 +141,12 @@ def _print(name, kind, fmt, outdir, written, rows, parts=()) -> None:
     for p in written:
         files.add_row(p.name, _size(p.stat().st_size))
     console.print(files)
-    if parts:
-        table = Table(title="workshop")
-        table.add_column("part")
+    for title, first, pairs in (("workshop", "part", parts), ("profile checks", "check", rows)):
+        if not pairs:
+            continue
+        table = Table(title=title)
+        table.add_column(first)
         table.add_column("value", justify="right")
-        for k, v in parts:
+        for k, v in pairs:
             table.add_row(k, v)
         console.print(table)
-    if rows:
-        checks = Table(title="profile checks")
-        checks.add_column("check")
-        checks.add_column("value", justify="right")
-        for k, v in rows:
-            checks.add_row(k, v)
-        console.print(checks)
