@@ -152,3 +152,20 @@ def test_printed_summary_says_what_each_metric_is(name, tmp_path, capsys):
         assert key in summary
         assert len(meaning) > 10
         assert key in printed
+
+
+@pytest.mark.parametrize(
+    ("setting", "shown"),
+    [
+        ('drive.plate_tilt="99 deg"', "drive.plate_tilt = 99 deg is not admissible: 0.5 deg <="),
+        ('run.speed="-5 rpm"', "run.speed = -5 rpm is not admissible"),
+        ('cam.roller_radius="-1 mm"', "cam.roller_radius = -1 mm is not admissible: 0.1 mm <="),
+    ],
+)
+def test_a_value_out_of_its_range_is_shown_in_the_unit_it_was_written_in(
+    setting, shown, capsys, tmp_path
+):
+    assert main(["run", "--set", setting, "--out", str(tmp_path / "o"), "-q"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and shown in err[0]
+    assert "1.72" not in err[0] and "rad" not in err[0]  # not the SI value

@@ -17,7 +17,7 @@ from pydantic_core import PydanticCustomError
 
 from rotorkin.core.bounds import INERTIA_MAX, speed_fluctuation
 from rotorkin.core.errors import ConfigError
-from rotorkin.core.units import describe_kind, parse_quantity
+from rotorkin.core.units import describe_kind, display_value, parse_quantity
 
 __all__ = [
     "Angle",
@@ -320,7 +320,34 @@ def _one_line(exc: ValidationError, model: type[BaseModel]) -> str:
     msg = err["msg"]
     if isinstance(value, dict):
         value = "{...}"
+    if kind in _BOUND_ERRORS:
+        # the value is SI here: shown in the unit people read, with the field's own range
+        field = _field(model, err["loc"])
+        unit_kind = _kind(field)
+        described = (field.description or "") if field is not None else ""
+        rng = described[described.rfind("(") + 1 : -1] if described.endswith(")") else ""
+        bound = err.get("ctx", {})
+        limit = ", ".join(f"{_BOUND_ERRORS[kind]} {display_value(v, unit_kind)}"
+                          for v in bound.values())  # fmt: skip
+        return f"{loc} = {display_value(value, unit_kind)} is not admissible: {rng or limit}"
     return f"{loc} = {value!r} is not admissible: {msg[0].lower()}{msg[1:]}"
+
+
+#: pydantic's bound errors -> the relation the value must satisfy.
+_BOUND_ERRORS = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<",
+                 "less_than_equal": "<="}  # fmt: skip
+
+
+def _field(model, loc):
+    parent = _submodel(model, loc[:-1])
+    return next((f for n, f in parent.model_fields.items() if loc[-1] in (n, f.alias)), None)
+
+
+def _kind(field) -> str | None:
+    if field is None:
+        return None
+    kinds = [getattr(m.func, "kind", None) for m in field.metadata if hasattr(m, "func")]
+    return kinds[0] if kinds else None
 
 
 def _submodel(model, loc):

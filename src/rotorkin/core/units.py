@@ -12,7 +12,15 @@ import re
 
 from rotorkin.core.errors import ConfigError
 
-__all__ = ["KINDS", "to_si", "parse_quantity", "describe_kind", "metric_units"]
+__all__ = [
+    "KINDS",
+    "DISPLAY_UNITS",
+    "to_si",
+    "parse_quantity",
+    "describe_kind",
+    "metric_units",
+    "display_value",
+]
 
 #: quantity kind -> (SI unit name for pint, example for messages, pint dimensionality)
 KINDS = {
@@ -243,3 +251,32 @@ _UNITS = (
 def metric_units(name: str) -> str:
     """Unit of a summary key from its suffix ("1" when dimensionless)."""
     return next((u for suffix, u in _UNITS if name.endswith(suffix)), "1")
+
+
+#: quantity kind -> (unit shown in coordinates and messages, factor from SI)
+DISPLAY_UNITS = {
+    "angle": ("deg", 180.0 / math.pi),
+    "length": ("mm", 1e3),
+    "torque": ("N*m", 1.0),
+    "speed": ("rpm", 30.0 / math.pi),
+    "pressure": ("bar", 1e-5),
+    "inertia": ("kg*m^2", 1.0),
+    "mass": ("kg", 1.0),
+    "volume": ("cm^3", 1e6),
+    "energy": ("J", 1.0),
+    "temperature": ("K", 1.0),
+    "modulus": ("GPa", 1e-9),
+}
+
+
+def display_value(value: float, kind: str | None) -> str:
+    """An SI value in the unit people read (``"99 deg"``, ``"80 mm"``); a plain number else.
+
+    A value that is not a number (a text as written in the config) is shown as it is.
+    """
+    if isinstance(value, str) or not isinstance(value, (int, float)):
+        return str(value)
+    if kind in DISPLAY_UNITS:
+        unit, factor = DISPLAY_UNITS[kind]
+        return f"{float(value) * factor:.6g} {unit}"
+    return f"{float(value):.6g}"

@@ -18,7 +18,7 @@ import numpy as np
 
 from rotorkin import drives
 from rotorkin.core.errors import ConfigError, shown
-from rotorkin.core.units import parse_quantity
+from rotorkin.core.units import DISPLAY_UNITS, parse_quantity
 from rotorkin.io.config import validate_config
 
 __all__ = ["Vary", "Field", "DISPLAY_UNITS", "parse_vary", "parse_item", "field_of",
@@ -27,21 +27,6 @@ __all__ = ["Vary", "Field", "DISPLAY_UNITS", "parse_vary", "parse_item", "field_
 #: Most values of one ``--vary`` range (``N``); the whole grid is capped by
 #: :data:`rotorkin.sweep.MAX_DESIGNS` and the result's memory by ``MAX_RESULT_BYTES``.
 MAX_VALUES = 1_000_000
-
-#: quantity kind -> (unit shown in coordinates and messages, factor from SI)
-DISPLAY_UNITS = {
-    "angle": ("deg", 180.0 / np.pi),
-    "length": ("mm", 1e3),
-    "torque": ("N*m", 1.0),
-    "speed": ("rpm", 30.0 / np.pi),
-    "pressure": ("bar", 1e-5),
-    "inertia": ("kg*m^2", 1.0),
-    "mass": ("kg", 1.0),
-    "volume": ("cm^3", 1e6),
-    "energy": ("J", 1.0),
-    "temperature": ("K", 1.0),
-    "modulus": ("GPa", 1e-9),
-}
 
 
 @dataclass(frozen=True)
