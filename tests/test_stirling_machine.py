@@ -117,9 +117,10 @@ def test_displacement_counts_both_sets_and_the_isothermal_model_is_kept():
 
 @pytest.mark.parametrize(
     ("key", "value", "text"),
-    [("regenerator_effectiveness", 1.5, "less than or equal to 1"), ("gas", "argon", "helium"),
-     ("phase_angle", "400 deg", "less than or equal to"),
-     ("cooler_volume", "-1 cm^3", "greater than or equal to 0")],
+    [("regenerator_effectiveness", 1.5, "= 1.5 is not admissible: 0 <= eps <= 1"),
+     ("gas", "argon", "helium"),
+     ("phase_angle", "400 deg", "= 400 deg is not admissible: 0 deg <= phase_angle <= 360 deg"),
+     ("cooler_volume", "-1 cm^3", "= -1 cm^3 is not admissible: 0 <= V <= 1 m^3")],
 )  # fmt: skip
 def test_bad_config_is_refused_in_one_line_naming_the_key(key, value, text):
     with pytest.raises(ConfigError) as err:

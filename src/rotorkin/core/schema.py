@@ -10,6 +10,8 @@ drive's parameter classes take theirs from here (a test compares them).
 
 from __future__ import annotations
 
+import re
+import typing
 from typing import Annotated, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator
@@ -325,7 +327,8 @@ def _one_line(exc: ValidationError, model: type[BaseModel]) -> str:
         field = _field(model, err["loc"])
         unit_kind = _kind(field)
         described = (field.description or "") if field is not None else ""
-        rng = described[described.rfind("(") + 1 : -1] if described.endswith(")") else ""
+        ranges = re.findall(r"\(([^()]*<[^()]*)\)", described)
+        rng = ranges[-1] if ranges else ""
         bound = err.get("ctx", {})
         limit = ", ".join(f"{_BOUND_ERRORS[kind]} {display_value(v, unit_kind)}"
                           for v in bound.values())  # fmt: skip
@@ -344,10 +347,23 @@ def _field(model, loc):
 
 
 def _kind(field) -> str | None:
+    """The quantity kind of a field (its unit validator's), in its metadata or annotation."""
     if field is None:
         return None
     kinds = [getattr(m.func, "kind", None) for m in field.metadata if hasattr(m, "func")]
-    return kinds[0] if kinds else None
+    return kinds[0] if kinds and kinds[0] else _annotation_kind(field.annotation)
+
+
+def _annotation_kind(annotation) -> str | None:
+    for meta in getattr(annotation, "__metadata__", ()):
+        kind = getattr(getattr(meta, "func", None), "kind", None)
+        if kind:
+            return kind
+    for arg in typing.get_args(annotation):
+        kind = _annotation_kind(arg)
+        if kind:
+            return kind
+    return None
 
 
 def _submodel(model, loc):
