@@ -23,6 +23,7 @@ from rotorkin.core.units import describe_kind, display_value, parse_quantity
 
 __all__ = [
     "Angle",
+    "annotation_kind",
     "Length",
     "Torque",
     "Pressure",
@@ -351,16 +352,17 @@ def _kind(field) -> str | None:
     if field is None:
         return None
     kinds = [getattr(m.func, "kind", None) for m in field.metadata if hasattr(m, "func")]
-    return kinds[0] if kinds and kinds[0] else _annotation_kind(field.annotation)
+    return kinds[0] if kinds and kinds[0] else annotation_kind(field.annotation)
 
 
-def _annotation_kind(annotation) -> str | None:
+def annotation_kind(annotation) -> str | None:
+    """Quantity kind carried by a unit validator anywhere in an annotation, or None."""
     for meta in getattr(annotation, "__metadata__", ()):
         kind = getattr(getattr(meta, "func", None), "kind", None)
         if kind:
             return kind
     for arg in typing.get_args(annotation):
-        kind = _annotation_kind(arg)
+        kind = annotation_kind(arg)
         if kind:
             return kind
     return None

@@ -1,10 +1,10 @@
 """Multi-objective search over config keys: NSGA-II (pymoo) on the sweep kernels.
 
 >>> from rotorkin.io.config import load_config
->>> _, raw, _ = load_config(None, "guide-bar-pump")
->>> spec = build_spec(raw, ["drive.lambda=0.1:0.8", "machine.casing_radius=40mm:100mm"],
-...                   ["max:flow_mean_l_per_min", "min:input_torque_fluctuation_ratio"],
-...                   population=16, generations=10, seed=1)
+>>> _, raw, _ = load_config()  # the default example
+>>> spec = build_spec(raw, ["machine.axial_width=20mm:60mm", "drive.plate_tilt=30deg:50deg"],
+...                   ["max:displacement_cm3_per_rev", "min:rotor_accel_peak_per_rad"],
+...                   population=16, generations=5, seed=1)
 >>> res = optimize(spec)
 >>> res.size > 0
 True

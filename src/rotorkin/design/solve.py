@@ -1,10 +1,10 @@
 """Solve for one config key so that one summary metric hits a target value.
 
 >>> from rotorkin.io.config import load_config
->>> _, raw, _ = load_config(None, "guide-bar-pump")
->>> res = solve(raw, "machine.casing_radius", "flow_mean_l_per_min", 20.0)
+>>> _, raw, _ = load_config()  # the default example
+>>> res = solve(raw, "machine.axial_width", "displacement_cm3_per_rev", 800.0)
 >>> round(res.value * 1e3, 6)                                 # [mm]
-35.48899
+30.651958
 
 The search runs over the key's admissible range: the schema field's bounds
 (``ge``/``gt``/``le``/``lt``), narrowed where the drive refuses a design (a design

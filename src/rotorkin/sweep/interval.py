@@ -1,7 +1,7 @@
 """The admissible interval of one config key, every other key held: ``rotorkin limits``.
 
 A design is admissible when the study accepts it (every refusal of the drive and the
-machine: ranges, geometric limits such as the wobble plate's eq. 20 or the compression
+machine: ranges, a drive's geometric limits, the compression
 ratio its chamber gaps allow), every check of the drive passes (cam undercut, profile
 clearance: :func:`rotorkin.drives.design_checks`) and, when asked, no plausibility
 limit is passed (``[limits]``, ``contact.allowable_stress``: results of the study at the

@@ -18,6 +18,7 @@ import numpy as np
 
 from rotorkin import drives
 from rotorkin.core.errors import ConfigError, shown
+from rotorkin.core.schema import annotation_kind
 from rotorkin.core.units import DISPLAY_UNITS, parse_quantity
 from rotorkin.io.config import validate_config
 
@@ -94,19 +95,6 @@ def display(field: Field, value) -> str:
     return f"{value:.6g}" if isinstance(value, float) else str(value)
 
 
-def _kind_of(annotation) -> str | None:
-    """Quantity kind carried by a BeforeValidator anywhere in an annotation."""
-    for meta in getattr(annotation, "__metadata__", ()):
-        kind = getattr(getattr(meta, "func", None), "kind", None)
-        if kind:
-            return kind
-    for arg in typing.get_args(annotation):
-        kind = _kind_of(arg)
-        if kind:
-            return kind
-    return None
-
-
 def _model_field(drive_type: str, key: str, machine: str | None):
     """The pydantic field of ``key`` (``section.name``) in the drive's config model, or None."""
     section, _, name = key.partition(".")
@@ -147,7 +135,7 @@ def field_of(drive_type: str, key: str, machine: str | None = None) -> Field | N
     field = _model_field(drive_type, key, machine)
     if field is None:
         return None
-    kind = _kind_of(field.annotation) or next(
+    kind = annotation_kind(field.annotation) or next(
         (getattr(getattr(m, "func", None), "kind", None) for m in field.metadata
          if getattr(getattr(m, "func", None), "kind", None)), None)  # fmt: skip
     bounded = any(type(m).__name__ in ("Ge", "Gt", "Le", "Lt", "Interval")
