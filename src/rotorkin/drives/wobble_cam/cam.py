@@ -437,17 +437,18 @@ def check_roller_radius(drive: wc.WobbleCam, cam: SphericalCam) -> float:
     Returns
     -------
     float
-        The largest admissible roller radius [m] (the roller radius is below it).
+        The limit of the walls' offset [m] (the groove's half-width ``h`` is below it; the
+        roller radius below it less ``c/2``).
     """
     _check_pair(drive, cam)
     kmax, theta, roller = sharpest_bend(drive)
     limit = cam.inner_radius / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
-    limit -= 0.5 * cam.running_clearance
-    if cam.roller_radius >= limit:
+    if cam.groove_half_width >= limit:
         raise ParameterError(
             "roller_radius",
             fmt_mm(cam.roller_radius),
-            f"roller_radius < {fmt_mm(limit)}: at shaft angle theta = {fmt_deg(theta)} "
+            f"roller_radius < {fmt_mm(limit - 0.5 * cam.running_clearance)}: at shaft angle "
+            f"theta = {fmt_deg(theta)} "
             f"(roller {ROLLER_NAMES[roller]}) the groove centre-line bends with radius "
             f"{fmt_mm(1.0 / kmax)} in the tangent plane, and a larger roller makes a cusp in "
             f"the inner groove wall at the shell's inner radius {fmt_mm(cam.inner_radius)}",
