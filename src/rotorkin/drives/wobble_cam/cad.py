@@ -424,7 +424,47 @@ def check_rows(cfg: dict) -> list[tuple[str, str]]:
         )
     rows.append((f"{label}: closest approach of two grooves mm",
                  _fmt(float(s["cam_groove_separation_mm"]))))  # fmt: skip
+    rows += [
+        (f"{label}: groove width mm (roller + running clearance)",
+         f"{_fmt(s['cam_groove_width_mm'], 6)} ({_fmt(2e3 * cam.roller_radius)} + "
+         f"{_fmt(s['cam_running_clearance_mm'])})"),
+        (f"{label}: both walls along a roller's contact lines, share of the turn",
+         f"{100.0 * s['cam_both_walls_fraction']:.2f} %"),
+        (f"{label}: regions freed by the shaft slots (no part turning with the cam holds them)",
+         str(freed_regions(drive))),
+    ]  # fmt: skip
     return rows
+
+
+def freed_regions(drive) -> int:
+    """Pieces of the shell a through slot along every groove cuts off the main body.
+
+    The grooves' centre-lines split the sphere into ``F = E - V + 1 + C`` regions (Euler on
+    the sphere): V crossings, E arcs between the passes (2 per crossing; a groove that
+    crosses nothing is a closed arc of its own), C connected sets of grooves. A slot
+    through the shell along every groove makes each region a piece of its own; all but
+    one are freed (8 lobes for the paper's 4 figure-eights).
+    """
+    crossings = sph.groove_crossings(drive)
+    rollers = sph.distinct_grooves(drive)
+    parent = {i: i for i in rollers}
+
+    def root(i):
+        while parent[i] != i:
+            i = parent[i]
+        return i
+
+    for c in crossings:
+        parent[root(c.rollers[0])] = root(c.rollers[1])
+    passes = {i: 0 for i in rollers}
+    for c in crossings:
+        for i in c.rollers:
+            passes[i] += 1
+    v = len(crossings)
+    e = sum(max(p, 1) for p in passes.values())
+    loops = sum(1 for p in passes.values() if p == 0)  # closed arcs with no vertex
+    comps = len({root(i) for i in rollers})
+    return e - (v + loops) + 1 + comps - 1
 
 
 def check_cam(cfg: dict) -> None:

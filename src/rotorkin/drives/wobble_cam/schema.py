@@ -90,7 +90,7 @@ class WobbleCamSection(Section):
         le=1.0,
         description="diameter of the cam's bores on its axis, around the Z-shaft; default the "
         "Z-shaft's diameter plus twice cad.gap (cad.shaft_diameter < bore_diameter <= the "
-        "largest clear of the grooves, 66.5 mm in the example; <= 1 m)",
+        "largest clear of the grooves, 68.4 mm in the example; <= 1 m)",
     )
     slot_clearance: Length = Field(
         "1 mm",
