@@ -142,6 +142,7 @@ def test_every_part_a_named_valid_solid_in_mm(cfg, step):
     }
     lobes = {f"cam_lobe_{s}_{h}" for s in SLUGS for h in (1, 2)}
     assert set(parts) == fixed | per_roller | lobes
+    assert len(lobes) == cw.freed_regions(sph.from_config(cfg)[0])  # the slots free 8 lobes
     for name, shape in parts.items():
         solids = _solids(shape)
         assert len(solids) == 1, name
@@ -348,6 +349,23 @@ def test_slots_are_the_shafts_swept_region_with_its_clearance(rays):
         assert np.all(slot[k][:, ~away] >= 2.5 - 1e-3)
 
 
+def test_iso_286_close_running_fit_from_the_tables():
+    """H8/f7 clearances against ISO 286-2's tables (hole H8: 0..IT8, shaft f7: es-IT7..es)."""
+    from rotorkin.analysis.fits import running_fit_clearance
+
+    # diameter [mm]: (smallest, largest) clearance [um]; 10 mm still in the range 6..10
+    table = {2: (6, 30), 8: (13, 50), 10: (13, 50), 10.5: (16, 61), 25: (20, 74),
+             50: (25, 89), 100: (36, 125), 400: (62, 208)}  # fmt: skip
+    for d, (lo, hi) in table.items():
+        assert running_fit_clearance(d * 1e-3, "min") == pytest.approx(lo * 1e-6, abs=1e-12)
+        assert running_fit_clearance(d * 1e-3, "max") == pytest.approx(hi * 1e-6, abs=1e-12)
+        mean = running_fit_clearance(d * 1e-3)
+        assert mean == pytest.approx(0.5 * (lo + hi) * 1e-6, abs=1e-12)
+    assert running_fit_clearance(np.array([0.008, 0.004, 0.012])) == pytest.approx(
+        [FIT_8, FIT_4, FIT_12], abs=1e-12
+    )
+
+
 # --------------------------------------------------------------------------------------------
 # refusals
 # --------------------------------------------------------------------------------------------
@@ -365,7 +383,9 @@ def test_roller_too_long_refused_in_one_line(tmp_path, capsys):
 @pytest.mark.parametrize(
     ("key", "value"),
     [("cam.bore_diameter", '"80 mm"'), ("cam.slot_clearance", '"5 mm"'),
-     ("cad.roller_shaft_diameter", '"8 mm"'), ("cad.plate_radius", '"53.5 mm"')],
+     ("cad.roller_shaft_diameter", '"8 mm"'), ("cad.plate_radius", '"53.5 mm"'),
+     ("cam.running_clearance", '"2.5 mm"'), ("cam.roller_end_gap", '"7.9 mm"'),
+     ("drive.plate_bearing_span", '"45 mm"')],
 )  # fmt: skip
 def test_sizes_that_do_not_fit_refused_in_one_line(tmp_path, capsys, key, value):
     code = main(["export", "-e", "wobble-cam-engine", "--set", f"{key}={value}", "-f", "step",
@@ -497,6 +517,7 @@ def _quadrants(shape) -> list:
     return out
 
 
+@pytest.mark.slow
 def test_no_interference_over_the_turn(step):
     """Boolean common volume 0 between every two parts that can meet, over the turn.
 
