@@ -144,12 +144,10 @@ def cam_parts(layout: Layout, tol: float) -> list:
     axis = bd.Plane.YZ  # sphere poles on the cam axis, inside the bores
     shell = bd.Solid.make_sphere(ro * _MM, axis) - bd.Solid.make_sphere(ri * _MM, axis)
     body = shell.cut(*tools, *windows, bore)
-    pieces = []
-    for part in body.split(bd.Plane.YZ, keep=bd.Keep.BOTH):
-        pieces += [s for p in (part if isinstance(part, list) else [part]) for s in p.solids()]
+    big = 2.0 * ro + 0.01
     out = []
-    for k, sign in ((1, 1.0), (2, -1.0)):
-        side = [s for s in pieces if sign * _box_centre(s)[0] > 0.0]
+    for k, xs in ((1, (0.0, big)), (2, (-big, 0.0))):
+        side = (body & _box(xs, (-big, big), (-big, big))).solids()
         solids = sorted(side, key=lambda s: -s.bounding_box().diagonal)
         out.append((f"cam_half_{k}", solids[0]))
         out.extend(_lobe_names(drive, solids[1:], k))
