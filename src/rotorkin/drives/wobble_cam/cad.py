@@ -1,29 +1,25 @@
-"""CAD export of the wobble-cam drive's spherical cam: STL, STEP, CSV and DXF, in mm.
+"""CAD export of the wobble-cam drive: the spherical cam as STL, CSV and DXF, the engine as STEP.
 
-The solid is the shell ``R_i <= |p| <= R_o`` (``R_i, R_o = r -+ shell_thickness/2``)
+The cam is the shell ``R_i <= |p| <= R_o`` (``R_i, R_o = r -+ shell_thickness/2``)
 minus the 4 grooves (:mod:`rotorkin.drives.wobble_cam.cam`). A groove is the region swept by
 its cross-section in the normal plane of the centre-line, the plane spanned by the
 radial direction ``e_r`` and the wall normal ``n``: between the walls
-``lambda e_r +- rho n`` and from just inside the inner surface out to the groove bottom,
-the sphere ``R_b = R_i + groove_depth``. Where the figure-eight crosses itself the two
-branches overlap and the groove is cut through.
+``lambda e_r +- h n`` (``h = rho + c/2``, the roller radius plus half the running
+clearance) and from just inside the inner surface out to the groove bottom at
+``R_b = R_i + groove_depth``. Where the figure-eight crosses itself the two branches
+overlap and the groove is cut through. The pieces of the sweeps:
+:mod:`rotorkin.drives.wobble_cam.cad_grooves`.
 
-A closed swept tube that crosses itself is not a valid solid (neither for manifold3d
-nor for OpenCascade), so every groove is split into open pieces at the middles
-between its self-crossings (2 pieces for a figure-eight, cut at the lobe tips); the
-pieces share their end sections and are united.
-
-* STL (trimesh + manifold3d): the shells are icospheres refined until their chordal
-  deviation is within ``export.tolerance`` (default 0.01 mm); the groove pieces are
-  triangulated sweeps whose sections are spaced so that every vertex path stays within
-  half the tolerance, and the groove-bottom arc too (a facet of the doubly curved
-  groove bottom deviates by about the sum).
-* STEP (build123d, optional ``[cad]`` extra): exact spheres; each piece is lofted
-  through rectangular sections at the same parameters (the walls exact at the
-  sections, B-spline between); the pieces of a groove are fused, cut to the layer
-  ``R_i..R_b`` (exact spherical bottom) and subtracted from the shell. Sweeps
-  (``BRepOffsetAPI_MakePipeShell`` in Frenet, corrected-Frenet or auxiliary-spine mode)
-  failed to make a solid of these pieces, hence the loft.
+* STL (trimesh + manifold3d): the closed shell with its blind grooves; the shells are
+  icospheres refined until their chordal deviation is within ``export.tolerance``
+  (default 0.01 mm); the groove pieces are triangulated sweeps whose sections are spaced
+  so that every vertex path stays within half the tolerance, and the groove-bottom arc
+  (the sphere R_b) too (a facet of the doubly curved groove bottom deviates by about the
+  sum).
+* STEP (build123d, optional ``[cad]`` extra): the engine as one assembly of named parts
+  at theta = 0 (:mod:`rotorkin.drives.wobble_cam.cad_assembly`): the cam in two halves
+  with bores, shaft slots and assembly windows, the lobes the slots free, the plate and
+  its shafts and rollers, the rails, the rotors, the Z-shaft and a casing.
 * CSV: one point list per curve (``x_mm,y_mm,z_mm``, closed curves, first point not
   repeated), plus ``<name>_crossings.csv``.
 * DXF (ezdxf): the same curves as closed 3D polylines on layers ``CENTRELINE``,
