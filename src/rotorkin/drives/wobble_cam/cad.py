@@ -61,6 +61,7 @@ __all__ = [
     "groove_pieces",
     "cam_mesh",
     "solid_volume",
+    "freed_regions",
     "FORMATS",
 ]
 

@@ -46,7 +46,14 @@ from rotorkin.drives.wobble_cam.grooves import (
     groove_period,
 )
 
-__all__ = ["WallGap", "CONTACT_POINTS", "contact_radii", "wall_gaps", "walls_present"]
+__all__ = [
+    "WallGap",
+    "CONTACT_POINTS",
+    "contact_radii",
+    "wall_gaps",
+    "walls_present",
+    "unguided_stretches",
+]
 
 #: Points on a contact line (between the roller's end faces) that are tested.
 CONTACT_POINTS = 5
