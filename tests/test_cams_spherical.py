@@ -149,7 +149,9 @@ def test_walls_are_the_envelope_of_the_roller(example):
 
     drive, cam = example
     ex = Explicit()
-    rho = cam.roller_radius
+    # half the groove: the 4 mm roller plus half the ISO 286 H8/f7 clearance at 8 mm
+    # (IT8 = 22 um, IT7 = 15 um, es = -13 um: mean clearance 11 + 13 + 7.5 = 31.5 um)
+    half = cam.roller_radius + 0.5 * 31.5e-6
     theta = np.radians([5.0, 40.0, 61.0, 100.0, 140.0])  # away from the crossings
     for rad in (cam.inner_radius, drive.sphere_radius, cam.bottom_radius):
         w = sph.groove_walls(drive, cam, theta, rad)
@@ -170,7 +172,7 @@ def test_walls_are_the_envelope_of_the_roller(example):
                         method="bounded",
                         options={"xatol": 1e-12},
                     )
-                    assert best.fun == pytest.approx(rho, abs=1e-10)
+                    assert best.fun == pytest.approx(half, abs=1e-10)
                     assert best.x == pytest.approx(th, abs=1e-6)
 
 
@@ -259,7 +261,9 @@ def test_check_roller_radius(example):
     with pytest.raises(ParameterError) as err:
         sph.check_roller_radius(drive, big)
     msg = str(err.value)
-    assert msg.startswith("roller_radius = 6 mm is not admissible: roller_radius < 5.04")
+    # the walls' undercut limit 5.045 mm, less half the running clearance of a 12 mm roller
+    # (ISO 286 H8/f7 over 10 up to 18 mm: 27/2 + 16 + 18/2 = 38.5 um)
+    assert msg.startswith("roller_radius = 6 mm is not admissible: roller_radius < 5.026 mm")
     assert "theta = 22.5 deg" in msg and "roller 2" in msg
 
 
@@ -358,7 +362,8 @@ def test_summary(example):
     assert s["cam_pressure_angle_best_roller_max_deg"] <= s["cam_pressure_angle_max_deg"]
     assert s["cam_roller_radius_limit_mm"] < s["cam_curvature_radius_min_mm"]
     assert s["cam_self_crossings"] == 4 and s["cam_crossings_between_grooves"] == 0
-    assert s["cam_groove_width_mm"] == pytest.approx(8.0)
+    assert s["cam_groove_width_mm"] == pytest.approx(8.0315)  # 8 mm H8/f7: 31.5 um more
+    assert s["cam_running_clearance_mm"] == pytest.approx(0.0315)
     assert all(isinstance(v, (int, float)) for v in s.values())
 
 
@@ -386,30 +391,76 @@ def test_figure(example, tmp_path):
         plot_spherical_cam(drive, tmp_path)
 
 
-def test_guided_leaves_out_the_unguided_stretch(example):
-    """Around each crossing the roller is unguided over 2 rho / sin(angle) of its path."""
+def _brute_walls(ex, cam, roller, theta, count=4000, own=0.2):
+    """Walls (+n, -n) of ``roller`` present along its contact lines: a dense search here.
+
+    A contact point ``q = lambda e_r +- h n`` is cut away where it lies within ``h`` of a
+    groove axis (the radial line through a centre-line point) other than its own branch
+    near theta: a k-d tree on the axes' unit vectors, sampled every period/count.
+    """
+    from scipy.spatial import cKDTree
+
+    period = np.pi
+    t = np.linspace(0.0, period, count, endpoint=False)
+    axes = np.vstack([ex.groove(t, i) for i in range(4)])
+    axes /= np.linalg.norm(axes, axis=1, keepdims=True)
+    tree = cKDTree(axes)
+    owner, at = np.repeat(np.arange(4), count), np.tile(t, 4)
+    g = ex.groove(theta, roller)
+    e = g / np.linalg.norm(g, axis=1, keepdims=True)
+    tan = ex.d(ex.groove, theta, roller)
+    n = np.cross(e, tan / np.linalg.norm(tan, axis=1, keepdims=True))
+    h = cam.groove_half_width
+    lo, hi = cam.roller_span
+    out = np.ones((2, len(theta)), bool)
+    for k, side in enumerate((1.0, -1.0)):
+        for lam in np.linspace(lo, hi, 5):
+            q = lam * e + side * h * n
+            rad = np.linalg.norm(q, axis=1)
+            chord = 2.0 * np.sin(0.5 * np.arcsin(h / rad))
+            for j, hits in enumerate(tree.query_ball_point(q / rad[:, None], chord)):
+                d = (at[hits] - theta[j] + 0.5 * period) % period - 0.5 * period
+                if np.any((owner[hits] != roller) | (np.abs(d) > own)):
+                    out[k, j] = False
+    return out
+
+
+def test_guided_against_a_dense_search_of_the_other_channels(example):
+    """Both walls along the contact lines: guided() against a brute-force channel test."""
     drive, cam = example
+    ex = Explicit()
     crossings = sph.groove_crossings(drive)
-    theta = np.linspace(0.0, np.pi, 180_001)
-    ok = sph.guided(drive, cam, theta, crossings)
-    dg = sph.groove_derivatives(drive, theta)[1]
-    speed = np.linalg.norm(dg, axis=1)  # |dg/dtheta| (4, n)
-    step = theta[1] - theta[0]
-    for c in crossings:
-        i = c.rollers[0]
-        for t0 in c.theta:
-            near = np.abs(theta - t0) < np.radians(20)
-            off = near & ~ok[i]
-            assert off.any() and not ok[i, np.argmin(np.abs(theta - t0))]
-            length = np.sum(speed[i, off]) * step  # path length left out
-            assert length == pytest.approx(c.gap_length(cam.roller_radius), rel=2e-3)
-    # away from every crossing (more than 20 deg of shaft angle) every roller is guided
-    far = np.ones_like(ok)
+    step = np.radians(0.02)
     for c in crossings:
         for k in (0, 1):
-            for t0 in c.shaft_angles(k, np.pi):
-                far[c.rollers[k]] &= np.abs(theta - t0) > np.radians(20)
-    assert ok[far].all()
+            i, t0 = c.rollers[k], c.theta[k]
+            theta = t0 + np.arange(-450, 451) * step  # +-9 deg
+            want = _brute_walls(ex, cam, i, theta)
+            got = sph.guided(drive, cam, theta)[i]
+            both = want.all(axis=0)
+            assert not both[450] and both[0] and both[-1]
+            # the two agree except within one sample of where a wall begins or ends
+            edge = np.zeros_like(both)
+            for w in want:
+                flips = np.flatnonzero(np.diff(w))
+                for f in flips:
+                    edge[max(f - 1, 0) : f + 3] = True
+            assert np.array_equal(got[~edge], both[~edge])
+            # one wall or the other is missing over about 2 h (cot a + 1/sin a) r/lambda_in
+            speed = np.linalg.norm(ex.d(ex.groove, theta[~both], i), axis=1)
+            length = np.sum(speed) * step
+            a = c.angle
+            flat = 2 * cam.groove_half_width * (1 / np.tan(a) + 1 / np.sin(a))
+            assert length == pytest.approx(flat * R / cam.roller_span[0], rel=0.1)
+    # every roller is guided while more than 10 deg of shaft angle from its crossings
+    theta = np.linspace(0.0, 2 * np.pi, 7201)
+    far = np.ones((4, len(theta)), bool)
+    for c in crossings:
+        for k in (0, 1):
+            for t0 in c.shaft_angles(k):
+                d = (theta - t0 + np.pi) % (2 * np.pi) - np.pi
+                far[c.rollers[k]] &= np.abs(d) > np.radians(10)
+    assert sph.guided(drive, cam, theta)[far].all()
 
 
 def test_pressure_angle_peaks(example):

@@ -800,7 +800,9 @@ def test_every_dataclass_default_is_the_schema_default():
         for name, ours in _dataclass_defaults(cls).items():
             assert name in section, f"{cls.__name__}.{name} has no config key"
             theirs = section[name]
-            if isinstance(ours, (tuple, list)):
+            if ours is None or theirs is None:  # a size derived from the others
+                same = ours is None and theirs is None
+            elif isinstance(ours, (tuple, list)):
                 same = tuple(ours) == tuple(theirs)
             elif isinstance(ours, str):
                 same = ours == theirs

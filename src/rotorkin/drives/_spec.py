@@ -74,8 +74,9 @@ class DriveSpec:
         ``cad_parts(cfg, with_parts) -> (parts, checks)``: planar parts
         (:class:`rotorkin.cams.planar.Part`) and their profile checks.
     cad_write : callable, optional
-        ``cad_write(cfg, fmt, folder, name) -> list[Path]`` for parts that are not
-        planar (writes its own files).
+        ``cad_write(cfg, fmt, folder, name, progress=None) -> list[Path]`` for parts that
+        are not planar (writes its own files; ``progress(label, done, total)`` per part
+        where a format has several).
     check_cam : callable, optional
         ``check_cam(cfg)``: the cam and part checks of ``export`` without building
         anything; :func:`rotorkin.drives.evaluate` makes them before the study, so every

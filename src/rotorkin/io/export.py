@@ -122,6 +122,28 @@ def _write_planar(parts, fmts, stage: Path, name: str, title: str, progress) -> 
         progress("done", len(tasks), len(tasks))
 
 
+def _write_own(spec, cfg: dict, fmts, stage, name: str, progress) -> None:
+    """A drive that writes its own files: one step per format, or one per part where the
+    drive reports its parts (``progress(label, done, total)`` counts them as they come)."""
+    if progress is None:
+        for f in fmts:
+            spec.cad_write(cfg, f, stage, name)
+        return
+    done = 0
+    for i, f in enumerate(fmts):
+        left = len(fmts) - i - 1
+        steps = [1]
+
+        def step(label, k, n, base=done, left=left, steps=steps):
+            steps[0] = max(n, 1)
+            progress(label, base + k, base + n + left)
+
+        progress(f, done, done + 1 + left)
+        spec.cad_write(cfg, f, stage, name, progress=step)
+        done += steps[0]
+    progress("done", done, done)
+
+
 def export(cfg: dict, fmt: str, outdir, name: str, progress=None) -> list[Path]:
     """Write the CAD files of a validated config (SI) in one format (or ``"all"``).
 
@@ -159,12 +181,7 @@ def export(cfg: dict, fmt: str, outdir, name: str, progress=None) -> list[Path]:
     title = str(cfg.get("title") or name)
     with staged_output(outdir, "export-" + "-".join(fmts)) as (stage, written):
         if parts is None:
-            for i, f in enumerate(fmts):
-                if progress is not None:
-                    progress(f, i, len(fmts))
-                spec.cad_write(cfg, f, stage, name)
-            if progress is not None:
-                progress("done", len(fmts), len(fmts))
+            _write_own(spec, cfg, fmts, stage, name, progress)
         else:
             _write_planar(parts, fmts, stage, name, title, progress)
     return written

@@ -12,12 +12,12 @@ print them) and in the files.
   the key's centre line. Hub keyway width: ISO JS9 (normal fit; symmetric, so the
   model carries the nominal ``b``), depth tolerance ``+0.1 mm`` (``d <= 22 mm``),
   ``+0.2 mm`` (to 130 mm) or ``+0.3 mm``, modelled at the nominal depth.
-* **Fits**: :data:`IT` (standard tolerance grades IT6..IT9) and the fundamental
-  deviations of the shafts ``d e f g h js k`` (:data:`SHAFT_DEVIATIONS`), ISO
-  286-1:2010 / ISO 286-2:2010, sizes up to 500 mm; holes of position H
-  (``EI = 0``). A bore is modelled at the middle of its hole zone (``H7``: ``d +
-  IT7/2``), the usual basis of a CAM program; a running gap at half the mean
-  diametral clearance of a running fit (:func:`running_gap`).
+* **Fits**: the ISO 286 tables and limits of :mod:`rotorkin.analysis.fits`
+  (re-exported here: :data:`IT`, :data:`SHAFT_DEVIATIONS`, :func:`fit_limits`,
+  :func:`running_gap`); holes of position H (``EI = 0``). A bore is modelled at the
+  middle of its hole zone (``H7``: ``d + IT7/2``), the usual basis of a CAM program;
+  a running gap at half the mean diametral clearance of a running fit
+  (:func:`running_gap`).
 * **Hub wall**: :func:`hub_wall` measures the smallest wall between a bore with its
   keyway and a part's outline; rotorkin asks for :func:`wall_needed`, ``max(1 mm,
   d/4)`` beyond the keyway's bottom (a keyed steel hub of about 1.7 d outer
@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rotorkin.analysis.fits import IT, SHAFT_DEVIATIONS, fit_limits, running_gap
 from rotorkin.cams import edges as ce
 from rotorkin.cams.planar import Curve
 from rotorkin.core.angles import fmt_mm
@@ -85,25 +86,6 @@ KEYWAYS = (
 #: Smallest and largest bore with a keyway from :data:`KEYWAYS` [m].
 KEYWAY_RANGE = (KEYWAYS[0][0] * _MM, KEYWAYS[-1][1] * _MM)
 
-#: Upper ends of the ISO 286 size ranges [mm] (each range over the previous end).
-_SIZES = np.array([3, 6, 10, 18, 30, 50, 80, 120, 180, 250, 315, 400, 500], dtype=float)
-#: ISO 286-1 standard tolerance grades [um] per size range of :data:`_SIZES`.
-IT = {
-    6: (6, 8, 9, 11, 13, 16, 19, 22, 25, 29, 32, 36, 40),
-    7: (10, 12, 15, 18, 21, 25, 30, 35, 40, 46, 52, 57, 63),
-    8: (14, 18, 22, 27, 33, 39, 46, 54, 63, 72, 81, 89, 97),
-    9: (25, 30, 36, 43, 52, 62, 74, 87, 100, 115, 130, 140, 155),
-}
-#: ISO 286-2 fundamental deviations of shafts [um]: upper deviation es of d..h, lower
-#: deviation ei of k (grades 4 to 7); js is +-IT/2.
-SHAFT_DEVIATIONS = {
-    "d": (-20, -30, -40, -50, -65, -80, -100, -120, -145, -170, -190, -210, -230),
-    "e": (-14, -20, -25, -32, -40, -50, -60, -72, -85, -100, -110, -125, -135),
-    "f": (-6, -10, -13, -16, -20, -25, -30, -36, -43, -50, -56, -62, -68),
-    "g": (-2, -4, -5, -6, -7, -9, -10, -12, -14, -15, -17, -18, -20),
-    "h": (0,) * 13,
-    "k": (0, 1, 1, 1, 2, 2, 2, 3, 3, 4, 4, 4, 5),
-}
 #: Fits of a hub on its shaft (``export.bore_fit``): what each is for.
 BORE_FITS = {
     "H7/g6": "sliding fit: slides on by hand, locates accurately (ISO 286 hole basis)",
@@ -141,45 +123,6 @@ def keyway_for(bore: float) -> Key | None:
         if (lo < d or (lo == KEYWAYS[0][0] and d >= lo)) and d <= hi + 1e-9:
             return Key(b * _MM, h * _MM, t1 * _MM, t2 * _MM)
     return None
-
-
-def _range(size: float) -> int:
-    s = float(size) / _MM
-    if not 0.0 < s <= _SIZES[-1]:
-        raise ParameterError("size", fmt_mm(size), "0 mm < size <= 500 mm (ISO 286 tables)")
-    return int(np.searchsorted(_SIZES, s - 1e-9))
-
-
-def fit_limits(fit: str, size: float) -> tuple[tuple[float, float], tuple[float, float]]:
-    """Limit deviations of a hole-basis fit ``"H7/g6"`` at ``size`` [m].
-
-    Returns
-    -------
-    ((EI, ES), (ei, es))
-        Lower and upper deviations of the hole and the shaft [m].
-    """
-    hole, shaft = fit.split("/")
-    if hole[0] != "H" or shaft[0] not in (*SHAFT_DEVIATIONS, "j"):
-        raise ParameterError("fit", repr(fit), "a hole-basis fit such as 'H7/g6'")
-    i = _range(size)
-    um = 1e-6
-    it_h, it_s = IT[int(hole[1:])][i] * um, IT[int(shaft.lstrip("jsdefghk"))][i] * um
-    if shaft.startswith("js"):
-        es = 0.5 * it_s
-        return (0.0, it_h), (-es, es)
-    dev = SHAFT_DEVIATIONS[shaft[0]][i] * um
-    if shaft[0] == "k":
-        return (0.0, it_h), (dev, dev + it_s)
-    return (0.0, it_h), (dev - it_s, dev)
-
-
-def running_gap(fit: str, size: float) -> float:
-    """Radial running gap [m]: half the mean diametral clearance of ``fit`` at ``size`` [m].
-
-    ``((ES + EI) - (es + ei)) / 4`` with the limits of :func:`fit_limits`.
-    """
-    (ei_h, es_h), (ei_s, es_s) = fit_limits(fit, size)
-    return 0.25 * ((ei_h + es_h) - (ei_s + es_s))
 
 
 def round_bore(d: float) -> float:

@@ -1,29 +1,25 @@
-"""CAD export of the wobble-cam drive's spherical cam: STL, STEP, CSV and DXF, in mm.
+"""CAD export of the wobble-cam drive: the spherical cam as STL, CSV and DXF, the engine as STEP.
 
-The solid is the shell ``R_i <= |p| <= R_o`` (``R_i, R_o = r -+ shell_thickness/2``)
+The cam is the shell ``R_i <= |p| <= R_o`` (``R_i, R_o = r -+ shell_thickness/2``)
 minus the 4 grooves (:mod:`rotorkin.drives.wobble_cam.cam`). A groove is the region swept by
 its cross-section in the normal plane of the centre-line, the plane spanned by the
 radial direction ``e_r`` and the wall normal ``n``: between the walls
-``lambda e_r +- rho n`` and from just inside the inner surface out to the groove bottom,
-the sphere ``R_b = R_i + groove_depth``. Where the figure-eight crosses itself the two
-branches overlap and the groove is cut through.
+``lambda e_r +- h n`` (``h = rho + c/2``, the roller radius plus half the running
+clearance) and from just inside the inner surface out to the groove bottom at
+``R_b = R_i + groove_depth``. Where the figure-eight crosses itself the two branches
+overlap and the groove is cut through. The pieces of the sweeps:
+:mod:`rotorkin.drives.wobble_cam.cad_grooves`.
 
-A closed swept tube that crosses itself is not a valid solid (neither for manifold3d
-nor for OpenCascade), so every groove is split into open pieces at the middles
-between its self-crossings (2 pieces for a figure-eight, cut at the lobe tips); the
-pieces share their end sections and are united.
-
-* STL (trimesh + manifold3d): the shells are icospheres refined until their chordal
-  deviation is within ``export.tolerance`` (default 0.01 mm); the groove pieces are
-  triangulated sweeps whose sections are spaced so that every vertex path stays within
-  half the tolerance, and the groove-bottom arc too (a facet of the doubly curved
-  groove bottom deviates by about the sum).
-* STEP (build123d, optional ``[cad]`` extra): exact spheres; each piece is lofted
-  through rectangular sections at the same parameters (the walls exact at the
-  sections, B-spline between); the pieces of a groove are fused, cut to the layer
-  ``R_i..R_b`` (exact spherical bottom) and subtracted from the shell. Sweeps
-  (``BRepOffsetAPI_MakePipeShell`` in Frenet, corrected-Frenet or auxiliary-spine mode)
-  failed to make a solid of these pieces, hence the loft.
+* STL (trimesh + manifold3d): the closed shell with its blind grooves; the shells are
+  icospheres refined until their chordal deviation is within ``export.tolerance``
+  (default 0.01 mm); the groove pieces are triangulated sweeps whose sections are spaced
+  so that every vertex path stays within half the tolerance, and the groove-bottom arc
+  (the sphere R_b) too (a facet of the doubly curved groove bottom deviates by about the
+  sum).
+* STEP (build123d, optional ``[cad]`` extra): the engine as one assembly of named parts
+  at theta = 0 (:mod:`rotorkin.drives.wobble_cam.cad_assembly`): the cam in two halves
+  with bores, shaft slots and assembly windows, the lobes the slots free, the plate and
+  its shafts and rollers, the rails, the rotors, the Z-shaft and a casing.
 * CSV: one point list per curve (``x_mm,y_mm,z_mm``, closed curves, first point not
   repeated), plus ``<name>_crossings.csv``.
 * DXF (ezdxf): the same curves as closed 3D polylines on layers ``CENTRELINE``,
@@ -45,6 +41,16 @@ import trimesh
 from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError, RotorkinError
 from rotorkin.drives.wobble_cam import cam as sph
+from rotorkin.drives.wobble_cam.cad_assembly import build_parts, write_assembly
+from rotorkin.drives.wobble_cam.cad_grooves import (
+    groove_pieces,
+    piece_samples,
+    section_uv,
+    solid_volume,
+    tool_floor,
+)
+from rotorkin.drives.wobble_cam.cad_layout import layout_from_config
+from rotorkin.drives.wobble_cam.cam_walls import unguided_stretches
 from rotorkin.render.cad import build123d_module
 
 __all__ = [
@@ -54,8 +60,8 @@ __all__ = [
     "groove_curves",
     "groove_pieces",
     "cam_mesh",
-    "cam_step_solid",
     "solid_volume",
+    "freed_regions",
     "FORMATS",
 ]
 
@@ -191,13 +197,24 @@ def _write_crossings(path: Path, drive, cam) -> None:
                 "unguided_length_mm",
             ]
         )
+        stretches = unguided_stretches(drive, sph.wall_gaps(drive, cam))
         for c in sph.groove_crossings(drive):
             w.writerow(
                 [sph.ROLLER_NAMES[c.rollers[0]], sph.ROLLER_NAMES[c.rollers[1]]]
                 + [f"{np.degrees(x):.6f}" for x in c.theta]
                 + [f"{x * _MM:.6f}" for x in c.point]
-                + [f"{np.degrees(c.angle):.6f}", f"{c.gap_length(cam.roller_radius) * _MM:.6f}"]
+                + [f"{np.degrees(c.angle):.6f}", f"{_unguided(c, stretches) * _MM:.6f}"]
             )
+
+
+def _unguided(crossing, stretches) -> float:
+    """Longest path of either branch's roller with a wall missing at the crossing [m]."""
+    out = 0.0
+    for roller, theta in zip(crossing.rollers, crossing.theta, strict=True):
+        for k, lo, hi, length in stretches:
+            if k == roller and (theta - lo) % crossing.period <= hi - lo:
+                out = max(out, length)
+    return out
 
 
 def _export_dxf(path: Path, curves: dict) -> None:
@@ -211,71 +228,6 @@ def _export_dxf(path: Path, curves: dict) -> None:
             [tuple(p) for p in pts * _MM], close=True, dxfattribs={"layer": _LAYERS[kind][0]}
         )
     doc.saveas(path)
-
-
-# --------------------------------------------------------------------------------------------
-# groove pieces (shared by STL and STEP)
-# --------------------------------------------------------------------------------------------
-def groove_pieces(drive) -> list[tuple[int, float, float]]:
-    """Open pieces ``(roller, theta_start, theta_end)`` [rad] covering every distinct groove.
-
-    Cut at the middles between consecutive self-crossing parameters, so that no piece
-    holds both branches of a crossing (2 pieces for a figure-eight, cut at its lobe
-    tips; 2 halves for a groove that does not cross itself); ends are shared,
-    ``theta_end > theta_start``.
-    """
-    period = sph.groove_period(drive)
-    crossings = sph.groove_crossings(drive)
-    out = []
-    for i in sph.distinct_grooves(drive):
-        own = np.sort([x for c in crossings if c.rollers == (i, i) for x in c.theta])
-        if len(own):
-            cuts = np.sort(0.5 * (own + np.append(own[1:], own[0] + period)) % period)
-        else:
-            cuts = np.array([0.0, 0.5 * period])
-        ends = np.append(cuts[1:], cuts[0] + period)
-        out.extend((i, float(a), float(b)) for a, b in zip(cuts, ends, strict=True))
-    return out
-
-
-def _section_uv(cam, lam_lo: float, tol: float):
-    """Groove cross-section in (lambda, mu) coordinates of the plane (e_r, n), CCW [m]."""
-    rb, rho = cam.bottom_radius, cam.roller_radius
-    beta = np.arcsin(rho / rb)
-    k = max(2, int(np.ceil(beta / np.arccos(1.0 - tol / rb))))
-    a = np.linspace(-beta, beta, k + 1)
-    arc = np.stack([rb * np.cos(a), rb * np.sin(a)], 1)
-    return np.vstack([[lam_lo, -rho], arc, [lam_lo, rho]])
-
-
-def _tool_floor(drive, cam) -> float:
-    """Radius a little inside R_i where the tool starts, still free of wall cusps [m]."""
-    kmax = sph.sharpest_bend(drive)[0]
-    regular = cam.roller_radius * np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
-    return max(cam.inner_radius - 0.05 * cam.shell_thickness, 0.5 * (cam.inner_radius + regular))
-
-
-def _sections(drive, roller, theta, uv):
-    """3D sections at theta: (len(theta), len(uv), 3) [m]."""
-    e_r, _, n = sph.groove_frame(drive, theta)
-    e_r, n = e_r[roller].T, n[roller].T  # (m, 3)
-    return e_r[:, None, :] * uv[None, :, :1] + n[:, None, :] * uv[None, :, 1:]
-
-
-def _piece_samples(drive, roller, t0, t1, uv, tol):
-    """Section parameters on [t0, t1] such that every vertex path is within tol."""
-    n = max(8, int(np.ceil(64 * (t1 - t0) / np.pi)))
-    while True:
-        theta = np.linspace(t0, t1, n + 1)
-        s = _sections(drive, roller, theta, uv)
-        mid = _sections(drive, roller, 0.5 * (theta[1:] + theta[:-1]), uv)
-        e = s[1:] - s[:-1]
-        e /= np.linalg.norm(e, axis=2, keepdims=True)
-        w = mid - s[:-1]
-        sag = float(np.max(np.linalg.norm(w - np.sum(w * e, 2, keepdims=True) * e, axis=2)))
-        if sag <= tol:
-            return theta, s, sag
-        n = int(np.ceil(n * np.sqrt(sag / tol) * 1.1))
 
 
 # --------------------------------------------------------------------------------------------
@@ -309,6 +261,12 @@ def _piece_mesh(sections):
     return mesh
 
 
+def _signed_volume(mesh) -> float:
+    """Enclosed volume of a triangle mesh by its tetrahedra from the origin [its units^3]."""
+    t = mesh.triangles
+    return float(np.einsum("ij,ij->", t[:, 0], np.cross(t[:, 1], t[:, 2])) / 6.0)
+
+
 def cam_mesh(drive, cam, tol: float):
     """The cam shell with its grooves cut, as a watertight trimesh in mm.
 
@@ -325,17 +283,23 @@ def cam_mesh(drive, cam, tol: float):
     """
     outer, dev_o = _sphere_mesh(cam.outer_radius, tol)
     inner, dev_i = _sphere_mesh(cam.inner_radius, tol)
-    floor = _tool_floor(drive, cam)
-    uv = _section_uv(cam, np.sqrt(floor**2 - cam.roller_radius**2), 0.5 * tol)
-    beta = np.arcsin(cam.roller_radius / cam.bottom_radius)
+    floor = tool_floor(drive, cam)
+    h = cam.groove_half_width
+    uv = section_uv(cam, np.sqrt(floor**2 - h**2), 0.5 * tol)
+    beta = np.arcsin(h / cam.bottom_radius)
     dev_arc = cam.bottom_radius * (1.0 - np.cos(beta / (len(uv) - 3)))
     tools, devs, count = [], [dev_o, dev_i], 0
     for roller, t0, t1 in groove_pieces(drive):
-        _, s, sag = _piece_samples(drive, roller, t0, t1, uv, 0.5 * tol)
+        _, s, sag = piece_samples(drive, roller, t0, t1, uv, 0.5 * tol)
         tools.append(_piece_mesh(s))
         devs.append(sag + dev_arc)
         count += len(s)
     mesh = trimesh.boolean.difference([outer, inner, *tools], engine="manifold")
+    # a sliver the boolean may leave where two pieces' shared end sections meet a wall
+    parts = mesh.split(only_watertight=False)
+    keep = [m for m in parts if abs(_signed_volume(m)) > 1e-9 * abs(_signed_volume(mesh))]
+    if len(keep) < len(parts):
+        mesh = trimesh.util.concatenate(keep)
     mesh.apply_scale(_MM)
     facts = {
         "deviation_mm": max(devs) * _MM,
@@ -347,83 +311,9 @@ def cam_mesh(drive, cam, tol: float):
 
 
 # --------------------------------------------------------------------------------------------
-# STEP
-# --------------------------------------------------------------------------------------------
-def cam_step_solid(drive, cam, tol: float):
-    """The cam shell with its grooves cut, as one build123d Solid in mm.
-
-    Each groove piece (:func:`groove_pieces`) is lofted (smooth B-spline faces)
-    through rectangular sections in the normal planes of the centre-line, the sections
-    of :func:`cam_mesh` without the bottom arc, at the same parameters: the walls
-    ``lambda e_r +- rho n`` exactly at the sections. Every piece reaches from its
-    own floor just inside ``R_i`` to its own top between ``R_b`` and ``R_o``: where two
-    pieces cross, their floors and tops would otherwise touch tangentially, which
-    OpenCascade's booleans miss. The pieces of a groove are fused, cut to the layer
-    ``R_i <= |p| <= R_b`` (exact spherical bottom) and subtracted from the shell.
-    Sweeps (``BRepOffsetAPI_MakePipeShell``: Frenet, corrected Frenet, auxiliary
-    spine) fail to build a solid of these pieces, hence the loft.
-
-    Returns
-    -------
-    build123d.Solid
-    """
-    bd = build123d_module()
-    s = _MM
-    pieces = groove_pieces(drive)
-    low = _tool_floor(drive, cam)
-    margin = cam.inner_radius - low
-    rho = cam.roller_radius
-    tools: dict[int, list] = {}
-    for k, (roller, t0, t1) in enumerate(pieces):
-        frac = (k + 1.0) / (len(pieces) + 1.0)
-        floor = cam.inner_radius - frac * margin
-        top = cam.bottom_radius + frac * (cam.outer_radius - cam.bottom_radius)
-        lam = np.sqrt(floor**2 - rho**2)
-        rect = np.array([[lam, -rho], [top, -rho], [top, rho], [lam, rho]])
-        uv = _section_uv(cam, lam, 0.5 * tol)
-        theta, _, _ = _piece_samples(drive, roller, t0, t1, uv, 0.5 * tol)
-        wires = [
-            bd.Wire.make_polygon([bd.Vector(*c) for c in corners], close=True)
-            for corners in _sections(drive, roller, theta, rect) * s
-        ]
-        tools.setdefault(roller, []).append(bd.Solid.make_loft(wires, ruled=False))
-    axis = bd.Plane.YZ  # sphere poles on the cam axis, away from every groove
-    ri, rb, ro = (
-        bd.Solid.make_sphere(x * s, axis)
-        for x in (cam.inner_radius, cam.bottom_radius, cam.outer_radius)
-    )
-    layer = rb - ri
-    cuts = []
-    for parts in tools.values():
-        tool = parts[0].fuse(*parts[1:]) if len(parts) > 1 else parts[0]
-        cuts.append(tool & layer)
-    result = (ro - ri).cut(*cuts)
-    solids = result.solids()
-    if len(solids) != 1:  # pragma: no cover - a failed boolean
-        raise RotorkinError(
-            f"the STEP cam came out as {len(solids)} solids, not 1; report this config as a bug"
-        )
-    return solids[0]
-
-
-def solid_volume(solid) -> float:
-    """Volume of a build123d solid by adaptive integration (relative error 1e-9) [its units^3].
-
-    ``Shape.volume`` uses a fixed Gauss rule that is off by up to ~5 % on the trimmed
-    B-spline faces of the grooves.
-    """
-    from OCP.BRepGProp import BRepGProp
-    from OCP.GProp import GProp_GProps
-
-    props = GProp_GProps()
-    BRepGProp.VolumeProperties_s(solid.wrapped, props, 1e-9, True)
-    return float(props.Mass())
-
-
-# --------------------------------------------------------------------------------------------
 # entry point
 # --------------------------------------------------------------------------------------------
-def export_wobble(cfg: dict, fmt: str, stage_dir, name: str) -> list[Path]:
+def export_wobble(cfg: dict, fmt: str, stage_dir, name: str, progress=None) -> list[Path]:
     """Write the spherical cam of a wobble-cam config in one CAD format.
 
     Parameters
@@ -437,6 +327,8 @@ def export_wobble(cfg: dict, fmt: str, stage_dir, name: str) -> list[Path]:
         Existing folder to write into (the caller moves the files into place).
     name : str
         Stem of the file names.
+    progress : callable, optional
+        ``progress(label, done, total)`` before each group of parts of the STEP assembly.
 
     Returns
     -------
@@ -477,12 +369,13 @@ def export_wobble(cfg: dict, fmt: str, stage_dir, name: str) -> list[Path]:
         path = stage / f"{name}.stl"
         mesh.export(path)
         return [path]
-    solid = cam_step_solid(drive, cam, tol)
-    if not solid.is_valid:  # pragma: no cover
-        raise RotorkinError("the cam solid is not valid; report this config as a bug")
-    bd = build123d_module()
+    layout = layout_from_config(cfg)
+    parts = build_parts(layout, tol, progress)
+    title = str(cfg.get("title") or name)
     path = stage / f"{name}.step"
-    bd.export_step(solid, str(path))
+    if progress is not None:
+        progress("step file", 6, 7)
+    write_assembly(parts, layout, path, name, title)
     return [path]
 
 
@@ -495,7 +388,7 @@ def check_rows(cfg: dict) -> list[tuple[str, str]]:
     drive, cam = sph.from_config(cfg)
     crossings = sph.groove_crossings(drive)
     s = sph.summary(drive, cam)
-    peaks = sph.pressure_angle_peaks(drive, cam, crossings=crossings)
+    peaks = sph.pressure_angle_peaks(drive, cam)
 
     def at(key):
         mu, theta, roller = (float(x) for x in peaks[key])
@@ -532,7 +425,47 @@ def check_rows(cfg: dict) -> list[tuple[str, str]]:
         )
     rows.append((f"{label}: closest approach of two grooves mm",
                  _fmt(float(s["cam_groove_separation_mm"]))))  # fmt: skip
+    rows += [
+        (f"{label}: groove width mm (roller + running clearance)",
+         f"{_fmt(s['cam_groove_width_mm'], 6)} ({_fmt(2e3 * cam.roller_radius)} + "
+         f"{_fmt(s['cam_running_clearance_mm'])})"),
+        (f"{label}: both walls along a roller's contact lines, share of the turn",
+         f"{100.0 * s['cam_both_walls_fraction']:.2f} %"),
+        (f"{label}: regions freed by the shaft slots (no part turning with the cam holds them)",
+         str(freed_regions(drive))),
+    ]  # fmt: skip
     return rows
+
+
+def freed_regions(drive) -> int:
+    """Pieces of the shell a through slot along every groove cuts off the main body.
+
+    The grooves' centre-lines split the sphere into ``F = E - V + 1 + C`` regions (Euler on
+    the sphere): V crossings, E arcs between the passes (2 per crossing; a groove that
+    crosses nothing is a closed arc of its own), C connected sets of grooves. A slot
+    through the shell along every groove makes each region a piece of its own; all but
+    one are freed (8 lobes for the paper's 4 figure-eights).
+    """
+    crossings = sph.groove_crossings(drive)
+    rollers = sph.distinct_grooves(drive)
+    parent = {i: i for i in rollers}
+
+    def root(i):
+        while parent[i] != i:
+            i = parent[i]
+        return i
+
+    for c in crossings:
+        parent[root(c.rollers[0])] = root(c.rollers[1])
+    passes = {i: 0 for i in rollers}
+    for c in crossings:
+        for i in c.rollers:
+            passes[i] += 1
+    v = len(crossings)
+    e = sum(max(p, 1) for p in passes.values())
+    loops = sum(1 for p in passes.values() if p == 0)  # closed arcs with no vertex
+    comps = len({root(i) for i in rollers})
+    return e - (v + loops) + 1 + comps - 1
 
 
 def check_cam(cfg: dict) -> None:

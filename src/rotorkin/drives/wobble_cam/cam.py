@@ -19,19 +19,23 @@ Shell: radii ``r -+ shell_thickness/2``; grooves from ``R_i`` to ``R_i + groove_
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from rotorkin.analysis.fits import fit_clearance
 from rotorkin.core.angles import fmt_deg, fmt_mm
 from rotorkin.core.errors import ParameterError
+from rotorkin.drives.wobble_cam import cam_walls
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam.cam_crossings import (
     GrooveCrossing,
     groove_crossings,
     groove_separation,
 )
+from rotorkin.drives.wobble_cam.cam_walls import walls_present
 from rotorkin.drives.wobble_cam.grooves import (
     _SEARCH_SAMPLES,
     _partials,
@@ -40,7 +44,12 @@ from rotorkin.drives.wobble_cam.grooves import (
     groove_period,
 )
 
+#: The fit of the rollers in their grooves and on their shafts when no clearance is given
+#: (ISO 286 close running fit).
+RUNNING_FIT = "H8/f7"
+
 __all__ = [
+    "RUNNING_FIT",
     "ROLLER_NAMES",
     "ROLLER_SLUGS",
     "SphericalCam",
@@ -57,6 +66,7 @@ __all__ = [
     "sharpest_bend",
     "check_roller_radius",
     "guided",
+    "wall_gaps",
     "pressure_angle_peaks",
     "summary",
     "GrooveCrossing",
@@ -64,6 +74,8 @@ __all__ = [
     "groove_separation",
 ]
 
+#: Shaft angles over a turn at which :func:`summary` measures the share with both walls.
+_TURN_SAMPLES = 72000
 #: People's names of the rollers, in the order of ``wobble_cam.roller_offsets`` (group 1: 1, 1').
 ROLLER_NAMES = ("1", "1'", "2", "2'")
 #: The same names for file names and CSV column stems.
@@ -89,12 +101,29 @@ class SphericalCam:
         ``t/2 < d < t``: the groove must reach the roller centres (radius r) and
         leave a floor (a groove through the shell would cut the figure-eight's
         lobes out) (``cam.groove_depth``).
+    running_clearance : float or None, optional
+        Diametral running clearance c between roller and groove [m]: the groove is
+        ``2 rho + c`` wide (``cam.running_clearance``). None (default): the mean clearance
+        of the ISO 286 close running fit H8/f7 at the roller diameter
+        (:func:`rotorkin.analysis.fits.fit_clearance`; 31.5 um at 8 mm);
+        ``0 <= c <= rho/2``.
+    roller_length : float or None, optional
+        Length L of the inner roller along its (radial) shaft [m] (``cam.roller_length``).
+        Its outer end stands ``roller_end_gap`` inside the groove bottom, its inner end no
+        deeper than the shell's inner radius: ``0 < L <= sqrt((R_b - gap)^2 - rho^2) - R_i``
+        (the largest that fits; the default, None).
+    roller_end_gap : float, optional
+        Gap between the roller's outer end (its rim) and the groove bottom R_b [m]
+        (``cam.roller_end_gap``, default 0.5 mm), ``0 <= gap < R_b - sqrt(R_i^2 + rho^2)``.
     """
 
     sphere_radius: float
     roller_radius: float = 0.004
     shell_thickness: float = 0.012
     groove_depth: float = 0.008
+    running_clearance: float | None = None
+    roller_length: float | None = None
+    roller_end_gap: float = 0.0005
 
     def __post_init__(self):
         r = float(self.sphere_radius)
@@ -127,6 +156,37 @@ class SphericalCam:
             )
         for name in ("sphere_radius", "roller_radius", "shell_thickness", "groove_depth"):
             object.__setattr__(self, name, float(getattr(self, name)))
+        c = self.running_clearance
+        c = float(fit_clearance(RUNNING_FIT, 2.0 * rho)) if c is None else float(c)
+        if not (np.isfinite(c) and 0.0 <= c <= 0.5 * rho):
+            raise ParameterError(
+                "running_clearance",
+                fmt_mm(c),
+                f"0 mm <= running_clearance <= {fmt_mm(0.5 * rho)} (half the roller radius)",
+            )
+        object.__setattr__(self, "running_clearance", c)
+        gap = float(self.roller_end_gap)
+        rb = self.bottom_radius
+        top = rb - np.sqrt(ri * ri + rho * rho)
+        if not (np.isfinite(gap) and 0.0 <= gap < top):
+            raise ParameterError(
+                "roller_end_gap",
+                fmt_mm(gap),
+                f"0 mm <= roller_end_gap < {fmt_mm(top)} (a roller reaching from the shell's "
+                "inner radius must fit below the groove bottom)",
+            )
+        object.__setattr__(self, "roller_end_gap", gap)
+        longest = self.roller_outer_end - ri
+        length = longest if self.roller_length is None else float(self.roller_length)
+        if not (np.isfinite(length) and 0.0 < length <= longest * (1.0 + 1e-12)):
+            raise ParameterError(
+                "roller_length",
+                fmt_mm(length),
+                f"0 mm < roller_length <= {fmt_mm(longest)}, the largest that fits: from the "
+                f"shell's inner radius {fmt_mm(ri)} to roller_end_gap = {fmt_mm(gap)} inside "
+                f"the groove bottom {fmt_mm(rb)}",
+            )
+        object.__setattr__(self, "roller_length", min(length, longest))
 
     @property
     def inner_radius(self) -> float:
@@ -142,6 +202,25 @@ class SphericalCam:
     def bottom_radius(self) -> float:
         """Radius of the groove bottom ``R_b = R_i + groove_depth`` [m]."""
         return self.inner_radius + self.groove_depth
+
+    @property
+    def groove_half_width(self) -> float:
+        """Half the groove width, ``rho + c/2`` [m]: the walls' offset from the roller axis."""
+        return self.roller_radius + 0.5 * self.running_clearance
+
+    @property
+    def roller_outer_end(self) -> float:
+        """Distance of the roller's outer end face from the sphere centre [m].
+
+        Its rim, at ``sqrt(s^2 + rho^2)``, stands ``roller_end_gap`` inside the groove bottom.
+        """
+        rim = self.bottom_radius - float(self.roller_end_gap)
+        return float(np.sqrt(rim * rim - self.roller_radius**2))
+
+    @property
+    def roller_span(self) -> tuple[float, float]:
+        """Distances of the roller's inner and outer end faces from the sphere centre [m]."""
+        return (self.roller_outer_end - self.roller_length, self.roller_outer_end)
 
 
 # --------------------------------------------------------------------------------------------
@@ -172,9 +251,10 @@ def from_config(cfg: dict):
         key = key if "." in key else f"drive.{key}"
         raise ParameterError(key, exc.value, exc.admissible) from None
     c = cfg.get("cam") or {}
-    keys = ("roller_radius", "shell_thickness", "groove_depth")
+    keys = ("roller_radius", "shell_thickness", "groove_depth", "running_clearance",
+            "roller_length", "roller_end_gap")  # fmt: skip
     try:
-        cam = SphericalCam(drive.sphere_radius, **{k: c[k] for k in keys if k in c})
+        cam = SphericalCam(drive.sphere_radius, **{k: c[k] for k in keys if c.get(k) is not None})
     except ParameterError as exc:
         raise ParameterError(config_key(exc.name), exc.value, exc.admissible) from None
     return drive, cam
@@ -213,9 +293,10 @@ def _check_pair(drive: wc.WobbleCam, cam: SphericalCam) -> None:
 def groove_walls(drive: wc.WobbleCam, cam: SphericalCam, theta, radius=None):
     """Wall curves of the 4 grooves on the sphere of ``radius`` (cam frame) [m].
 
-    ``w_+- = sqrt(R^2 - rho^2) e_r +- rho n``: the exact envelope of the roller
-    cylinder (radial axis, radius rho) cut by the sphere R, i.e. the centre-line
-    offset along the sphere by ``arcsin(rho/R)``, perpendicular to its tangent.
+    ``w_+- = sqrt(R^2 - h^2) e_r +- h n``, ``h = rho + c/2`` (``cam.groove_half_width``, the
+    roller radius plus half the running clearance): the exact envelope of a cylinder of
+    radius h on the roller axis (radial) cut by the sphere R, i.e. the centre-line offset
+    along the sphere by ``arcsin(h/R)``, perpendicular to its tangent.
 
     Parameters
     ----------
@@ -223,7 +304,7 @@ def groove_walls(drive: wc.WobbleCam, cam: SphericalCam, theta, radius=None):
     theta : array_like, shape (...)
         Shaft angle [rad].
     radius : float or array_like, optional
-        Sphere radius R [m], ``R > rho``; default ``cam.sphere_radius`` (broadcast with theta).
+        Sphere radius R [m], ``R > h``; default ``cam.sphere_radius`` (broadcast with theta).
 
     Returns
     -------
@@ -233,15 +314,16 @@ def groove_walls(drive: wc.WobbleCam, cam: SphericalCam, theta, radius=None):
     """
     _check_pair(drive, cam)
     rad = cam.sphere_radius if radius is None else np.asarray(radius, dtype=float)
-    if np.any(rad <= cam.roller_radius):
+    h = cam.groove_half_width
+    if np.any(rad <= h):
         raise ParameterError(
             "radius",
             fmt_mm(np.min(rad)),
-            f"radius > {fmt_mm(cam.roller_radius)} (the roller radius)",
+            f"radius > {fmt_mm(h)} (half the groove width)",
         )
     e_r, _, n = groove_frame(drive, theta)
-    lam = np.sqrt(rad * rad - cam.roller_radius**2)
-    return np.stack([lam * e_r + cam.roller_radius * n, lam * e_r - cam.roller_radius * n], 1)
+    lam = np.sqrt(rad * rad - h * h)
+    return np.stack([lam * e_r + h * n, lam * e_r - h * n], 1)
 
 
 # --------------------------------------------------------------------------------------------
@@ -351,23 +433,27 @@ def sharpest_bend(drive: wc.WobbleCam, roller: int | None = None):
 def check_roller_radius(drive: wc.WobbleCam, cam: SphericalCam) -> float:
     """Raise ``ParameterError("roller_radius")`` where the roller undercuts a wall.
 
-    The check is ``rho < R_i / sqrt(1 + (r kappa_g)^2)`` (:func:`roller_radius_limit` at
-    the inner shell radius, the strictest radius where the wall exists) everywhere on
-    every groove; the message names the shaft angle, the roller and both radii.
+    The walls stand ``h = rho + c/2`` off the roller axis (``cam.groove_half_width``); the
+    check is ``h < R_i / sqrt(1 + (r kappa_g)^2)`` (:func:`roller_radius_limit` at the
+    inner shell radius, the strictest radius where the wall exists) everywhere on every
+    groove, i.e. ``rho`` below that limit less half the running clearance; the message
+    names the shaft angle, the roller and both radii.
 
     Returns
     -------
     float
-        The smallest admissible limit [m] (the roller radius is below it).
+        The limit of the walls' offset [m] (the groove's half-width ``h`` is below it; the
+        roller radius below it less ``c/2``).
     """
     _check_pair(drive, cam)
     kmax, theta, roller = sharpest_bend(drive)
     limit = cam.inner_radius / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
-    if cam.roller_radius >= limit:
+    if cam.groove_half_width >= limit:
         raise ParameterError(
             "roller_radius",
             fmt_mm(cam.roller_radius),
-            f"roller_radius < {fmt_mm(limit)}: at shaft angle theta = {fmt_deg(theta)} "
+            f"roller_radius < {fmt_mm(limit - 0.5 * cam.running_clearance)}: at shaft angle "
+            f"theta = {fmt_deg(theta)} "
             f"(roller {ROLLER_NAMES[roller]}) the groove centre-line bends with radius "
             f"{fmt_mm(1.0 / kmax)} in the tangent plane, and a larger roller makes a cusp in "
             f"the inner groove wall at the shell's inner radius {fmt_mm(cam.inner_radius)}",
@@ -378,39 +464,37 @@ def check_roller_radius(drive: wc.WobbleCam, cam: SphericalCam) -> float:
 # --------------------------------------------------------------------------------------------
 # crossings
 # --------------------------------------------------------------------------------------------
-def guided(drive: wc.WobbleCam, cam: SphericalCam, theta, crossings=None):
+def guided(drive: wc.WobbleCam, cam: SphericalCam, theta):
     """Whether each roller runs between both walls of its groove at ``theta``.
 
-    Where two groove branches cross at the angle ``a`` each loses its walls over
-    ``2 rho / sin a`` (:meth:`GrooveCrossing.gap_length`), centred on the crossing: a
-    roller is taken as unguided while its centre is closer than ``rho / sin a`` to a
-    crossing point (straight distance; the branch is nearly straight there).
+    Both walls must be there along the roller's whole contact lines, at the configured
+    running clearance (:func:`rotorkin.drives.wobble_cam.cam_walls.walls_present`: another
+    branch's channel, intersected with the contact lines, cuts a gap into each wall around
+    every crossing; one wall or the other is missing over about ``2 h (cot a + 1/sin a)``
+    of the path at a crossing angle ``a``, ``h`` the groove's half-width, measured at the
+    roller's inner end). The gaps are kept for the last 16 drive and cam pairs.
 
     Parameters
     ----------
     drive, cam : WobbleCam, SphericalCam
     theta : array_like, shape (...)
         Shaft angle [rad].
-    crossings : list of GrooveCrossing, optional
-        Default :func:`groove_crossings` of ``drive``.
 
     Returns
     -------
     ndarray of bool, shape (4, ...)
     """
     _check_pair(drive, cam)
-    crossings = groove_crossings(drive) if crossings is None else crossings
-    g = groove_derivatives(drive, theta)[0]  # (4, 3, ...)
-    out = np.ones(g.shape[:1] + g.shape[2:], dtype=bool)
-    for c in crossings:
-        point = np.asarray(c.point, dtype=float).reshape((1, 3) + (1,) * (g.ndim - 2))
-        out &= np.linalg.norm(g - point, axis=1) >= 0.5 * c.gap_length(cam.roller_radius)
-    return out
+    return walls_present(drive, cam, theta, wall_gaps(drive, cam)).all(axis=1)
 
 
-def pressure_angle_peaks(
-    drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881, crossings=None
-) -> dict:
+@functools.lru_cache(maxsize=16)
+def wall_gaps(drive: wc.WobbleCam, cam: SphericalCam) -> tuple:
+    """:func:`rotorkin.drives.wobble_cam.cam_walls.wall_gaps` of a drive and its cam (kept)."""
+    return tuple(cam_walls.wall_gaps(drive, cam))
+
+
+def pressure_angle_peaks(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict:
     """Largest pressure angles over one turn, where and of which roller.
 
     Sampled at ``samples`` shaft angles over ``[0, 2 pi]`` (as :func:`summary`).
@@ -431,7 +515,7 @@ def pressure_angle_peaks(
         the roller is the one reaching the angle (for the best: the best-placed one).
     """
     theta = np.linspace(0.0, 2.0 * np.pi, samples)
-    ok = guided(drive, cam, theta, crossings)
+    ok = guided(drive, cam, theta)
     mu = pressure_angle(drive, theta)
     fixed = pressure_angle(drive, theta, "fixed")
 
@@ -474,9 +558,12 @@ def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict
     ``cam_roller_radius_limit_mm``: undercut limit at the inner radius R_i;
     ``cam_groove_period_deg``; ``cam_distinct_grooves``; ``cam_self_crossings``
     and ``cam_crossings_between_grooves`` (counts over the distinct grooves);
-    ``cam_crossing_angle_min_deg``; ``cam_unguided_length_max_mm``
-    (``2 rho / sin`` of the crossing angle); ``cam_groove_separation_mm`` (closest
-    centre-lines of two different grooves, 0 where they cross); ``cam_groove_width_mm``.
+    ``cam_crossing_angle_min_deg``; ``cam_unguided_length_max_mm`` (the longest path of a
+    roller centre with one wall or the other missing at a crossing, :func:`wall_gaps`);
+    ``cam_both_walls_fraction`` (share of the turn with both walls along a roller's
+    contact lines, mean of the 4 rollers, :func:`guided` on 72000 angles);
+    ``cam_groove_separation_mm`` (closest centre-lines of two different grooves, 0 where
+    they cross); ``cam_groove_width_mm`` (``2 rho + c``); ``cam_running_clearance_mm``.
     """
     _check_pair(drive, cam)
     period = groove_period(drive)
@@ -487,7 +574,9 @@ def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict
     crossings = groove_crossings(drive)
     distinct = distinct_grooves(drive)
     n_self = sum(c.rollers[0] == c.rollers[1] for c in crossings)
-    peaks = pressure_angle_peaks(drive, cam, samples, crossings)
+    peaks = pressure_angle_peaks(drive, cam, samples)
+    gaps = wall_gaps(drive, cam)
+    turn = np.linspace(0.0, 2.0 * np.pi, _TURN_SAMPLES, endpoint=False)
     return {
         "cam_roller_radius_mm": cam.roller_radius * 1e3,
         "cam_pressure_angle_max_deg": float(np.degrees(mu[:, k].max())),
@@ -505,8 +594,10 @@ def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict
         "cam_curvature_radius_min_mm": 1e3 / kmax,
         "cam_curvature_min_theta_deg": float(np.degrees(th_k)),
         "cam_roller_radius_limit_mm": 1e3
-        * cam.inner_radius
-        / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2),
+        * (
+            cam.inner_radius / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
+            - 0.5 * cam.running_clearance
+        ),
         "cam_groove_period_deg": float(np.degrees(period)),
         "cam_distinct_grooves": len(distinct),
         "cam_self_crossings": int(n_self),
@@ -515,7 +606,9 @@ def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict
             np.degrees(min((c.angle for c in crossings), default=np.nan))
         ),
         "cam_unguided_length_max_mm": 1e3
-        * max((c.gap_length(cam.roller_radius) for c in crossings), default=0.0),
+        * max((x[3] for x in cam_walls.unguided_stretches(drive, gaps)), default=0.0),
+        "cam_both_walls_fraction": float(np.mean(walls_present(drive, cam, turn, gaps).all(1))),
         "cam_groove_separation_mm": groove_separation(drive)[0] * 1e3,
-        "cam_groove_width_mm": 2e3 * cam.roller_radius,
+        "cam_groove_width_mm": 2e3 * cam.groove_half_width,
+        "cam_running_clearance_mm": 1e3 * cam.running_clearance,
     }

@@ -60,6 +60,104 @@ class WobbleCamSection(Section):
         description="radial depth of the grooves, from the shell's inner surface "
         "(0 < groove_depth <= 1 m, below shell_thickness)",
     )
+    running_clearance: Length | None = Field(
+        None,
+        ge=0.0,
+        le=0.05,
+        description="diametral running clearance between roller and groove: the groove is "
+        "2 roller_radius + running_clearance wide; default the mean clearance of the ISO 286 "
+        "close running fit H8/f7 at the roller diameter, 0.0315 mm at 8 mm "
+        "(0 mm <= running_clearance <= roller_radius/2, and <= 50 mm)",
+    )
+    roller_length: Length | None = Field(
+        None,
+        gt=0.0,
+        le=1.0,
+        description="length of the inner rollers along their radial shafts; default the "
+        "largest that fits, from the shell's inner radius to roller_end_gap inside the groove "
+        "bottom (0 mm < roller_length <= that largest, 7.37 mm in the example; <= 1 m)",
+    )
+    roller_end_gap: Length = Field(
+        "0.5 mm",
+        ge=0.0,
+        le=0.1,
+        description="gap between a roller's outer rim and the groove bottom "
+        "(0 mm <= roller_end_gap <= 100 mm, below the groove depth)",
+    )
+    bore_diameter: Length | None = Field(
+        None,
+        gt=0.0,
+        le=1.0,
+        description="diameter of the cam's bores on its axis, around the Z-shaft; default the "
+        "Z-shaft's diameter plus twice cad.gap (cad.shaft_diameter < bore_diameter <= the "
+        "largest clear of the grooves, 68.4 mm in the example; <= 1 m)",
+    )
+    slot_clearance: Length = Field(
+        "1 mm",
+        ge=0.0,
+        le=0.1,
+        description="diametral clearance of the roller shafts in the slots through the shell: "
+        "each slot is the shaft's swept region widened by half of it on both sides "
+        "(0 mm <= slot_clearance < 2 roller_radius + running_clearance - "
+        "cad.roller_shaft_diameter, and <= 100 mm)",
+    )
+
+
+class WobbleCadSection(Section):
+    """Sizes of the parts of the STEP assembly (``rotorkin export --format step``)."""
+
+    shaft_diameter: Length | None = Field(
+        None,
+        gt=0.0,
+        le=1.0,
+        description="diameter of the Z-shaft's journals and crank; default sphere_radius/4, "
+        "15 mm in the example (0 mm < shaft_diameter <= 1 m, and the crank's webs inside the "
+        "shell)",
+    )
+    roller_shaft_diameter: Length | None = Field(
+        None,
+        gt=0.0,
+        le=0.2,
+        description="diameter of the roller shafts; default the roller radius "
+        "(0 mm < roller_shaft_diameter <= 2 cam.roller_radius - 0.5 mm, and <= 200 mm)",
+    )
+    plate_thickness: Length | None = Field(
+        None,
+        gt=0.0,
+        le=1.0,
+        description="thickness of the wobble plate's disc; default 2.5 roller shaft "
+        "diameters (roller_shaft_diameter + 1 mm <= plate_thickness <= "
+        "drive.plate_bearing_span + wall_thickness, and <= 1 m)",
+    )
+    plate_radius: Length | None = Field(
+        None,
+        gt=0.0,
+        le=10.0,
+        description="radius of the wobble plate's disc; default 0.8 times the shell's inner "
+        "radius (the hub plus 2 roller shaft diameters <= plate_radius <= the largest turning "
+        "inside the shell, and <= 10 m)",
+    )
+    rail_roller_length: Length | None = Field(
+        None,
+        gt=0.0,
+        le=1.0,
+        description="length of the rail rollers along their shafts; default twice "
+        "drive.rail_roller_radius (0 mm < rail_roller_length <= 1 m, the rail outside the "
+        "shell)",
+    )
+    wall_thickness: Length | None = Field(
+        None,
+        gt=0.0,
+        le=1.0,
+        description="wall thickness of the rails, rotor discs, spokes and casing; default "
+        "sphere_radius/10, 6 mm in the example (0 mm < wall_thickness <= 1 m)",
+    )
+    gap: Length = Field(
+        "1 mm",
+        ge=1e-5,
+        le=0.01,
+        description="clearance between parts that do not touch (0.01 mm <= gap <= 10 mm)",
+    )
 
 
 # --- wobble plate + spherical cam -----------------------------------------------------------
@@ -189,6 +287,7 @@ class WobbleConfig(Section):
     machine: WobbleMachine = Field(default_factory=WobbleMachine)
     loads: EngineLoads = Field(default_factory=EngineLoads)
     cam: WobbleCamSection = Field(default_factory=WobbleCamSection)
+    cad: WobbleCadSection = Field(default_factory=WobbleCadSection)
     contact: ContactSection = Field(default_factory=ContactSection)
     limits: LimitsSection = Field(default_factory=LimitsSection)
     export: ExportSection = Field(default_factory=ExportSection)
