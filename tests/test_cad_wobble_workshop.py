@@ -407,11 +407,17 @@ def test_roller_too_long_refused_in_one_line(tmp_path, capsys):
      ("drive.plate_bearing_span", '"45 mm"')],
 )  # fmt: skip
 def test_sizes_that_do_not_fit_refused_in_one_line(tmp_path, capsys, key, value):
+    """export refuses them, and run refuses them alike (the same line)."""
     code = main(["export", "-e", "wobble-cam-engine", "--set", f"{key}={value}", "-f", "step",
                  "-o", str(tmp_path / "out")])  # fmt: skip
     err = capsys.readouterr().err.strip().removeprefix("rotorkin: error: ")
     assert code == 2 and "\n" not in err and err.startswith(f"{key} = ")
     assert not (tmp_path / "out").exists()
+    code = main(["run", "-e", "wobble-cam-engine", "--set", f"{key}={value}",
+                 "-o", str(tmp_path / "run")])  # fmt: skip
+    err_run = capsys.readouterr().err.strip().removeprefix("rotorkin: error: ")
+    assert code == 2 and err_run == err
+    assert not (tmp_path / "run").exists()
 
 
 # --------------------------------------------------------------------------------------------

@@ -34,13 +34,12 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
-import ezdxf
 import numpy as np
-import trimesh
 
 from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError, RotorkinError
 from rotorkin.drives.wobble_cam import cam as sph
+from rotorkin.drives.wobble_cam import checks as cam_checks
 from rotorkin.drives.wobble_cam.cad_assembly import build_parts, write_assembly
 from rotorkin.drives.wobble_cam.cad_grooves import (
     groove_pieces,
@@ -218,6 +217,8 @@ def _unguided(crossing, stretches) -> float:
 
 
 def _export_dxf(path: Path, curves: dict) -> None:
+    import ezdxf  # the [cad] extra; imported where it is used
+
     doc = ezdxf.new("R2010", setup=True)
     doc.units = ezdxf.units.MM
     for layer, colour in _LAYERS.values():
@@ -235,6 +236,8 @@ def _export_dxf(path: Path, curves: dict) -> None:
 # --------------------------------------------------------------------------------------------
 def _sphere_mesh(radius: float, tol: float):
     """Icosphere with vertices on the sphere, refined until within tol; (mesh, deviation)."""
+    import trimesh  # the [cad] extra; imported where it is used
+
     for sub in range(1, 9):
         m = trimesh.creation.icosphere(subdivisions=sub, radius=radius)
         dev = radius - float(np.min(np.abs(np.sum(m.face_normals * m.triangles[:, 0], 1))))
@@ -245,6 +248,8 @@ def _sphere_mesh(radius: float, tol: float):
 
 def _piece_mesh(sections):
     """Closed triangle mesh of swept sections (m, k, 3), ends capped, outward normals."""
+    import trimesh  # the [cad] extra; imported where it is used
+
     m, k, _ = sections.shape
     idx = np.arange(m * k).reshape(m, k)
     a, b = idx[:-1], np.roll(idx[:-1], -1, axis=1)
@@ -281,6 +286,8 @@ def cam_mesh(drive, cam, tol: float):
         construction: the spheres' facets; sweep sag plus arc sag on the groove bottom),
         ``pieces``, ``sections``, ``faces``.
     """
+    import trimesh  # the [cad] extra; imported where it is used
+
     outer, dev_o = _sphere_mesh(cam.outer_radius, tol)
     inner, dev_i = _sphere_mesh(cam.inner_radius, tol)
     floor = tool_floor(drive, cam)
@@ -466,6 +473,17 @@ def freed_regions(drive) -> int:
     loops = sum(1 for p in passes.values() if p == 0)  # closed arcs with no vertex
     comps = len({root(i) for i in rollers})
     return e - (v + loops) + 1 + comps - 1
+
+
+def checks(cfg: dict) -> list:
+    """The cam's checks with their margins (:func:`rotorkin.drives.wobble_cam.checks.checks`),
+    after the sizes of the STEP assembly (:func:`cad_layout.layout_from_config`): a bore,
+    slot, shaft or plate that does not fit is refused by every command, as ``export``
+    refuses it."""
+    found = cam_checks.checks(cfg)
+    if "cam" in cfg:
+        layout_from_config(cfg)
+    return found
 
 
 def check_cam(cfg: dict) -> None:

@@ -6,7 +6,6 @@ from pathlib import Path
 
 from rotorkin.drives._spec import DriveSpec
 from rotorkin.drives.wobble_cam import cad, published, scene, schema, study, synthesis
-from rotorkin.drives.wobble_cam import checks as cam_checks
 from rotorkin.drives.wobble_cam import sweep as batch
 from rotorkin.drives.wobble_cam.figures_sweep import sweep_recipes
 
@@ -42,7 +41,7 @@ SPEC = DriveSpec(
     cad_write=cad.export_wobble,
     check_cam=cad.check_cam,
     check_rows=cad.check_rows,
-    checks=cam_checks.checks,
+    checks=cad.checks,
     machine="twin_rotor",
     law=study.law,
     pairs=study.pairs_of,
