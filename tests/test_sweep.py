@@ -11,6 +11,7 @@ from rotorkin.core.errors import ConfigError, ParameterError, RotorkinError
 from rotorkin.drives import evaluate
 from rotorkin.io.config import load_config
 from rotorkin.sweep import SweepFallbackWarning, reason_text, run_sweep
+from rotorkin.sweep.checks import is_check, metric_name
 
 # Each case: example, base --set items, --vary items (lists, so that the test can rebuild every
 # design from the same strings), some combinations inadmissible on purpose.
@@ -78,9 +79,12 @@ def test_sweep_equals_the_designs_run_one_by_one(example):
             continue
         seen_ok += 1
         assert int(d["reason"]) == 0
+        # the checks run prints, by the name the sweep gives their margins
+        margins = {metric_name(c.name, c.unit): c.margin for c in res.checks}
         for m in metrics:
             scale = max(np.nanmax(np.abs(ds[m].values)), 1e-300)
-            assert _close(float(d[m]), float(res.summary[m]), scale), (m, items)
+            expect = margins[m] if is_check(m) else float(res.summary[m])
+            assert _close(float(d[m]), expect, scale), (m, items)
         for c in curves:
             expect = res.columns[c]
             assert np.allclose(d[c].values, expect, rtol=1e-12, atol=1e-12 * np.abs(expect).max())

@@ -27,6 +27,7 @@ from rotorkin.io.config import apply_sets, load_config
 from rotorkin.io.output import check_out, staged_output
 from rotorkin.report import figures_sweep as fs
 from rotorkin.sweep import build_spec, execute
+from rotorkin.sweep.checks import skipped as skipped_checks
 from rotorkin.sweep.engine import SweepFallbackWarning, coverage
 from rotorkin.sweep.store import write_dataset
 from rotorkin.tolerance import run_tolerance, summarize
@@ -165,6 +166,9 @@ def register(app) -> None:
             )[2]
             if why:
                 _note(f"{why}: evaluated design by design by the scalar study (slow)", quiet)
+            unchecked = skipped_checks(spec.base_cfg, spec.varies)
+            if unchecked:
+                _note(unchecked, quiet)
         written, main_ds = [], None
         with _client(workers, scheduler) as client, staged_output(outdir, "sweep") as (stage, _):
             for recipe, spec in specs:

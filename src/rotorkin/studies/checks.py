@@ -25,7 +25,7 @@ import numpy as np
 
 from rotorkin.studies.limits import LIMITS, limit_value, worst_result
 
-__all__ = ["Check", "limit_checks", "profile_checks", "failed", "rows"]
+__all__ = ["Check", "LIMIT_NAMES", "limit_checks", "profile_checks", "failed", "rows"]
 
 
 @dataclass(frozen=True)
@@ -97,7 +97,8 @@ def _number(value) -> float | None:
     return value if math.isfinite(value) else None
 
 
-_NAMES = {
+#: What each plausibility limit's check is called.
+LIMIT_NAMES = {
     "limits.peak_pressure": "peak gas pressure",
     "limits.peak_temperature": "peak gas temperature",
     "limits.pressure_angle": "peak pressure angle",
@@ -116,7 +117,7 @@ def limit_checks(summary: dict, cfg: dict, columns: dict | None = None) -> list[
         worst = worst_result(key, summary, columns)
         if worst is not None:
             limit = limit_value(cfg, key) * scale
-            out.append(Check(_NAMES[key], key, worst[1], limit, unit, True, worst[0]))
+            out.append(Check(LIMIT_NAMES[key], key, worst[1], limit, unit, True, worst[0]))
     return out
 
 

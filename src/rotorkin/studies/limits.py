@@ -59,6 +59,10 @@ LIMITS: dict[str, tuple[str, str | None, str, float]] = {
     "contact.allowable_stress": (r"contact_stress\w*_MPa$", None, "MPa", 1e-6),
 }
 
+#: Limits whose motion columns are signed and checked by their magnitude (the others by
+#: their largest value: a liquid's negative pressure is no peak pressure).
+MAGNITUDES = frozenset({"limits.pressure_angle"})
+
 #: config key -> its bit in a sweep's ``violations`` mask.
 BITS: dict[str, int] = {key: 1 << i for i, key in enumerate(LIMITS)}
 
@@ -85,8 +89,9 @@ def _number(value) -> float | None:
 def worst_result(key: str, summary: dict, columns: dict | None = None) -> tuple | None:
     """``(name, value)`` of the largest result that limit ``key`` measures, or None.
 
-    Summary values and the largest magnitude of the matching motion columns, in the
-    limit's unit (:data:`LIMITS`); values that are not finite are not counted.
+    Summary values and the largest value of the matching motion columns (the largest
+    magnitude for the limits of :data:`MAGNITUDES`), in the limit's unit
+    (:data:`LIMITS`); values that are not finite are not counted.
     """
     pattern, col_pattern, _, _ = LIMITS[key]
     worst = None
@@ -97,7 +102,9 @@ def worst_result(key: str, summary: dict, columns: dict | None = None) -> tuple 
     for name, values in (columns or {}).items() if col_pattern else ():
         if not re.search(col_pattern, name):
             continue
-        arr = np.abs(np.asarray(values, dtype=float))
+        arr = np.asarray(values, dtype=float)
+        if key in MAGNITUDES:  # a signed angle: its size; a pressure: its highest value
+            arr = np.abs(arr)
         arr = arr[np.isfinite(arr)]
         if arr.size and (worst is None or float(arr.max()) > worst[1]):
             worst = (f"max of {name}", float(arr.max()))

@@ -29,6 +29,7 @@ from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, block_progress
 from rotorkin.core.errors import ConfigError, ParameterError, shown
 from rotorkin.drives import evaluate, spec_of
 from rotorkin.io.config import validate_config
+from rotorkin.sweep.checks import check_metrics
 from rotorkin.sweep.engine import (
     SweepFallbackWarning,
     SweepSpec,
@@ -173,8 +174,12 @@ def _check_size(varies, size: int, n_metrics: int, n_curves: int, points: int) -
 
 def build_spec(base_cfg_raw: dict, vary, *, keep_curves=False, chunk_size=None, metrics=None,
                samples=None, memory_budget=MEMORY_BUDGET, name="sweep", extra=None,
-               check=True) -> SweepSpec:  # fmt: skip
-    """Validate a sweep and return its :class:`SweepSpec` (arguments of :func:`run_sweep`)."""
+               check=True, design_checks=True) -> SweepSpec:  # fmt: skip
+    """Validate a sweep and return its :class:`SweepSpec` (arguments of :func:`run_sweep`).
+
+    With ``design_checks`` (default) the checks of ``rotorkin run`` are recorded as
+    variables (:mod:`rotorkin.sweep.checks`) and what they refuse is inadmissible.
+    """
 
     cfg = validate_config(base_cfg_raw)
     varies = _varies(base_cfg_raw, vary)
@@ -186,6 +191,9 @@ def build_spec(base_cfg_raw: dict, vary, *, keep_curves=False, chunk_size=None, 
     size = math.prod(len(v) for v in varies)
     n_curves = len(kernel_of(cfg["drive"]["type"], cfg).CURVES) if keep_curves else 0
     _check_size(varies, size, len(names), n_curves, points)
+    if design_checks:
+        names = names + check_metrics(cfg, varies, names)
+        _check_size(varies, size, len(names), n_curves, points)
     if size * samples > MAX_WORK:
         raise ParameterError(
             "samples",

@@ -21,6 +21,7 @@ from rotorkin.core.errors import ParameterError, RotorkinError, shown
 from rotorkin.core.units import metric_units
 from rotorkin.io.config import glossary
 from rotorkin.studies import limits
+from rotorkin.sweep import checks as sweep_checks
 from rotorkin.sweep.spec import display
 
 __all__ = [
@@ -174,6 +175,7 @@ def coverage(drive_type: str, cfg: dict, keys, metrics) -> tuple[list, list, str
         ``why`` is None when nothing falls back.
     """
     kern = kernel_of(drive_type, cfg)
+    metrics = [m for m in metrics if not sweep_checks.is_check(m)]
     why = kern.unsupported(cfg)
     if why is None:
         outside = sorted(set(keys) - kern.KEYS)
@@ -207,7 +209,7 @@ def evaluate_designs(p: Designs, metrics, samples: int = DEFAULT_SAMPLES, thread
     ----------
     p : Designs
     metrics : sequence of str
-        Summary keys wanted.
+        Summary keys wanted, and check variables (:mod:`rotorkin.sweep.checks`).
     samples : int
         Angles per period of the sampled peaks.
     threads : int, optional
@@ -226,6 +228,7 @@ def evaluate_designs(p: Designs, metrics, samples: int = DEFAULT_SAMPLES, thread
     kern = kernel_of(drive_type, p.cfg)
     keys = reason_keys(drive_type)
     code = {k: i for i, k in enumerate(keys)}
+    checks = [m for m in metrics if sweep_checks.is_check(m)]
     fast, slow, why = coverage(drive_type, p.cfg, p.table, metrics)
     n = p.n
     out = {m: np.full(n, np.nan) for m in metrics}
@@ -247,6 +250,8 @@ def evaluate_designs(p: Designs, metrics, samples: int = DEFAULT_SAMPLES, thread
                 curve_out[c][ok] = cv[c]
     else:
         reason = np.zeros(n, dtype=np.int16)
+    if checks:  # the drive's checks, once per geometry; what they refuse is inadmissible
+        sweep_checks.fill_drive_checks(p, checks, out, reason, code)
     # plausibility limits: from the metrics at hand (every design), or from the whole
     # summary of the scalar study (the designs that went through it)
     flags = limits.violation_codes(out, p.cfg, n, {k: v for k, v in p.table.items()
@@ -255,7 +260,14 @@ def evaluate_designs(p: Designs, metrics, samples: int = DEFAULT_SAMPLES, thread
         scalar_curves = curve_out if curves and not kernel_ok else None
         for i in np.flatnonzero(reason == 0):
             _fallback(p, int(i), slow, out, reason, code, scalar_curves, flags)
-    flags[reason != 0] = 0
+    if checks:
+        sweep_checks.fill_limit_checks(p, checks, out)
+    refused = reason != 0
+    flags[refused] = 0
+    for m in out:
+        out[m][refused] = np.nan
+    for c in curve_out:
+        curve_out[c][refused] = np.nan
     result = {"metrics": out, "reason": reason, "violations": flags}
     if curves:
         period = np.asarray(kern.period(p), dtype=float)
@@ -332,8 +344,11 @@ def to_dataset(spec: SweepSpec, flat: dict):
             "spec": v.text})  # fmt: skip
     data = {}
     for m in spec.metrics:
-        data[m] = xr.Variable(dims, flat["metrics"][m].reshape(shape),
-                              attrs={"units": metric_units(m)})  # fmt: skip
+        attrs = {"units": metric_units(m)}
+        if sweep_checks.is_check(m):
+            attrs["long_name"] = ("margin of a design check of rotorkin run: positive where the "
+                                  "design passes, negative where it fails")  # fmt: skip
+        data[m] = xr.Variable(dims, flat["metrics"][m].reshape(shape), attrs=attrs)
     reasons = reason_keys(spec.drive_type)
     data["reason"] = xr.Variable(dims, flat["reason"].reshape(shape).astype(np.int16), attrs={
         "long_name": "why a design is inadmissible: 0 ok, else the config key whose admissible "
@@ -377,6 +392,7 @@ def to_dataset(spec: SweepSpec, flat: dict):
         "inadmissible_designs": inadmissible,
         "implausible_designs": int(np.count_nonzero(violations)),
         "samples_per_period": spec.samples,
+        "design_checks": sweep_checks.note(spec.base_cfg, spec.varies, spec.metrics),
         "spec": json.dumps(spec.manifest(), sort_keys=True),
         "conventions": "coordinates in the units of their 'units' attribute; metrics are the "
                        "summary keys of rotorkin run (unit = suffix); integers and booleans "
