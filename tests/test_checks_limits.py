@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import csv
 import math
+import re
 
 import numpy as np
 import pytest
@@ -20,13 +21,16 @@ from rotorkin.cli import main
 from rotorkin.core.errors import ConfigError, ParameterError
 from rotorkin.drives import design_checks, evaluate
 from rotorkin.drives.wobble_cam import cad as wcad
+from rotorkin.drives.wobble_cam.cad_layout import layout_from_config
 from rotorkin.drives.wobble_cam import cam as cs
 from rotorkin.io.config import load_config, validate_config
 from rotorkin.studies.checks import Check, failed, rows
 from rotorkin.studies.limits import LIMITS
 from rotorkin.sweep.interval import admissible_interval
 
-TILT_AT_75 = ['drive.roller_axis_angle="75 deg"']
+# a plate bearing span that fits the shell at every tilt here (the default 40 mm binds the
+# assembly above about 46 deg: see the test of the default below)
+TILT_AT_75 = ['drive.roller_axis_angle="75 deg"', 'drive.plate_bearing_span="20 mm"']
 
 
 def _admissible(raw: dict, key: str, text, with_limits: bool = False) -> bool:
@@ -56,13 +60,16 @@ def test_the_wobble_cam_check_is_the_closed_form_undercut_limit():
     cfg, _, _ = load_config(None, "wobble-cam-engine", [])
     drive, cam = cs.from_config(cfg)
     kmax, _, _ = cs.sharpest_bend(drive)
-    limit = cam.inner_radius / math.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
-    (check,) = design_checks(cfg)
+    walls = cam.inner_radius / math.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
+    # the roller stands half the running clearance (ISO 286 H8/f7 at 8 mm: 31.5 um) inside
+    limit = walls - 0.5 * 31.5e-6
+    check, assembly = design_checks(cfg)
     assert check.key == "cam.roller_radius"
     assert check.limit == pytest.approx(limit * 1e3, rel=1e-12)
     assert check.value == pytest.approx(4.0, rel=1e-12)
-    # the same limit as the refusal of export (check_roller_radius returns it)
-    assert cs.check_roller_radius(drive, cam) * 1e3 == pytest.approx(check.limit, rel=1e-12)
+    # the same limit as the refusal of export (check_roller_radius returns the walls')
+    assert cs.check_roller_radius(drive, cam) == pytest.approx(walls, rel=1e-12)
+    assert assembly.passed and assembly.value == 0.0  # the example's assembly fits
 
 
 _CAM = st.tuples(
@@ -85,7 +92,8 @@ def test_run_refuses_or_flags_every_cam_that_export_refuses(values):
     except (ParameterError, ConfigError):
         return  # refused by the schema: every command refuses it alike
     try:
-        wcad.setup(cfg)
+        wcad.setup(cfg)  # the cam in every format
+        layout_from_config(cfg)  # and the sizes of the STEP assembly
         export_refuses = False
     except ParameterError:
         export_refuses = True
@@ -115,9 +123,12 @@ def test_run_writes_and_prints_the_checks(tmp_path, capsys):
         float(roller["limit"]) - float(roller["value"]), rel=1e-9
     )
     cfg, _, _ = load_config(None, "wobble-cam-engine", ['drive.plate_tilt="35 deg"'])
-    with pytest.raises(ParameterError, match=r"roller_radius < 2\.60"):
+    with pytest.raises(ParameterError) as info:
         wcad.setup(cfg)
-    assert float(roller["limit"]) == pytest.approx(2.6045, abs=1e-4)
+    refused = float(re.search(r"roller_radius < ([0-9.]+) mm", str(info.value)).group(1))
+    assert float(roller["limit"]) == pytest.approx(refused, abs=1e-3)
+    # the walls' limit 2.6045 mm less half the running clearance (31.5 um)
+    assert float(roller["limit"]) == pytest.approx(2.6045 - 0.01575, abs=1e-4)
 
 
 @pytest.mark.parametrize("example", ["rhomboid-engine", "eccentric-reactor"])
@@ -167,8 +178,20 @@ def test_the_lower_end_is_where_the_undercut_limit_meets_the_roller(tilt_interva
     cfg, _, _ = load_config(
         None, "wobble-cam-engine", [*TILT_AT_75, f'drive.plate_tilt="{r.lo!r} deg"']
     )
-    (check,) = design_checks(cfg)
+    check = design_checks(cfg)[0]
     assert check.limit == pytest.approx(check.value, abs=1e-6)  # mm
+
+
+def test_the_default_plate_bearings_bind_the_tilt_where_they_stop_fitting(capsys):
+    """With the default 40 mm plate bearing span the hub leaves the shell above about 46 deg:
+    the interval's upper end is where the assembly's own limit of the span reaches 40 mm."""
+    _, raw, _ = load_config(None, "wobble-cam-engine", [])
+    r = admissible_interval(raw, "drive.plate_tilt")
+    assert "drive.plate_bearing_span" in r.hi_binds
+    cfg, _, _ = load_config(None, "wobble-cam-engine", [f'drive.plate_tilt="{r.hi + 1e-3!r} deg"'])
+    where = design_checks(cfg)[1].where
+    span = float(re.search(r"plate_bearing_span <= ([0-9.]+) mm", where).group(1))
+    assert span == pytest.approx(40.0, abs=0.01)
 
 
 def test_casing_radius_with_the_contact_limit(capsys):
@@ -209,10 +232,11 @@ def test_bad_limits_requests_are_one_line_exit_2(capsys, args, words):
 
 
 def test_limits_command_prints_the_interval_and_what_binds(capsys):
-    assert main(["limits", "-e", "wobble-cam-engine", "--set", *TILT_AT_75,
+    sets = [a for item in TILT_AT_75 for a in ("--set", item)]
+    assert main(["limits", "-e", "wobble-cam-engine", *sets,
                  "--key", "drive.plate_tilt", "--points", "41"]) == 0  # fmt: skip
     out = capsys.readouterr().out
-    assert "admissible from 41.13" in out and "to 51.8" in out
+    assert "admissible from 41.19" in out and "to 51.8" in out
     assert "machine.compression_ratio" in out
 
 

@@ -212,9 +212,24 @@ def evaluate(cfg: dict):
     # plausibility limits passed (rotorkin.studies.limits): one warning line each
     # the limits passed, comma-separated ("" when none): a summary value stays a plain string
     result.summary["limits_passed"] = ", ".join(line.split(":", 1)[0] for line in lines)
+    # the drive's own checks that fail: one warning line each, unless the study's own
+    # warnings already name the check's key
+    said = list(result.warnings)
+    lines += [_failed_line(c) for c in checks
+              if not c.passed and not any(w.startswith(f"{c.key} ") for w in said)]  # fmt: skip
     result.warnings = (*result.warnings, *lines)
     result.checks = (*checks, *limit_checks(result.summary, cfg, result.columns))
     return result
+
+
+def _failed_line(c) -> str:
+    if c.where.startswith(f"{c.key} = "):  # the refusal's own line says it all
+        return f"{c.where} ({c.name})"
+    unit = f" {c.unit}" if c.unit else ""
+    sense = "<=" if c.upper else ">="
+    where = f": {c.where}" if c.where else ""
+    return (f"{c.key}: {c.name} fails ({c.value:.4g}{unit}, admissible {sense} "
+            f"{c.limit:.4g}{unit}){where}")  # fmt: skip
 
 
 def design_checks(cfg: dict) -> list:

@@ -51,6 +51,7 @@ from rotorkin.drives.wobble_cam.cad_grooves import (
 from rotorkin.drives.wobble_cam.cad_layout import layout_from_config
 from rotorkin.drives.wobble_cam.cam_walls import unguided_stretches
 from rotorkin.render.cad import build123d_module
+from rotorkin.studies.checks import Check
 
 __all__ = [
     "export_wobble",
@@ -475,14 +476,27 @@ def freed_regions(drive) -> int:
     return e - (v + loops) + 1 + comps - 1
 
 
+#: Name of the check of the STEP assembly's sizes.
+ASSEMBLY_CHECK = "wobble cam: STEP assembly parts that do not fit"
+
+
 def checks(cfg: dict) -> list:
-    """The cam's checks with their margins (:func:`rotorkin.drives.wobble_cam.checks.checks`),
-    after the sizes of the STEP assembly (:func:`cad_layout.layout_from_config`): a bore,
-    slot, shaft or plate that does not fit is refused by every command, as ``export``
-    refuses it."""
+    """The cam's checks with their margins (:func:`rotorkin.drives.wobble_cam.checks.checks`)
+    and the sizes of the STEP assembly (:func:`cad_layout.layout_from_config`).
+
+    A bore, slot, shaft, plate or bearing span that does not fit makes
+    :data:`ASSEMBLY_CHECK` fail (value 1 against 0; ``where`` holds the line ``export``
+    refuses it with, naming the key and what is admissible): every command flags what
+    ``export --format step`` refuses.
+    """
     found = cam_checks.checks(cfg)
     if "cam" in cfg:
-        layout_from_config(cfg)
+        try:
+            layout_from_config(cfg)
+            bad, key, where = 0.0, "cam.bore_diameter", ""
+        except ParameterError as exc:
+            bad, key, where = 1.0, exc.name, str(exc)
+        found.append(Check(ASSEMBLY_CHECK, key, bad, 0.0, "", True, where))
     return found
 
 

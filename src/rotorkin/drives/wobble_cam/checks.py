@@ -21,16 +21,19 @@ __all__ = ["checks"]
 def checks(cfg: dict) -> list[Check]:
     """The cam's checks: the roller radius against the grooves' undercut limit.
 
-    The limit is ``R_i / sqrt(1 + (r kappa_g)^2)`` at the sharpest bend of any groove
-    (:func:`rotorkin.drives.wobble_cam.cam.check_roller_radius`): a larger roller makes a
-    cusp in the inner groove wall. Raises :class:`ParameterError` for proportions that
+    The walls' offset ``h = rho + c/2`` (running clearance ``c``) must stay below
+    ``R_i / sqrt(1 + (r kappa_g)^2)`` at the sharpest bend of any groove
+    (:func:`rotorkin.drives.wobble_cam.cam.check_roller_radius`): the roller radius below
+    that less ``c/2``; a larger roller makes a cusp in the inner groove wall. Raises :class:`ParameterError` for proportions that
     no tilt admits (named by config key).
     """
     if "cam" not in cfg:
         return []
     drive, cam = cs.from_config(cfg)
     kmax, theta, roller = cs.sharpest_bend(drive)
-    limit = cam.inner_radius / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
+    # the walls' offset h = rho + c/2 must stay below the limit: rho below it less c/2
+    walls = cam.inner_radius / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
+    limit = walls - 0.5 * cam.running_clearance
     where = (f"sharpest groove bend at theta = {np.degrees(theta):.4g} deg, "
              f"roller {cs.ROLLER_NAMES[roller]}")  # fmt: skip
     return [Check("wobble cam: roller radius against undercut", "cam.roller_radius",
