@@ -21,8 +21,8 @@ from rotorkin.cli import main
 from rotorkin.core.errors import ConfigError, ParameterError
 from rotorkin.drives import design_checks, evaluate
 from rotorkin.drives.wobble_cam import cad as wcad
-from rotorkin.drives.wobble_cam.cad_layout import layout_from_config
 from rotorkin.drives.wobble_cam import cam as cs
+from rotorkin.drives.wobble_cam.cad_layout import layout_from_config
 from rotorkin.io.config import load_config, validate_config
 from rotorkin.studies.checks import Check, failed, rows
 from rotorkin.studies.limits import LIMITS

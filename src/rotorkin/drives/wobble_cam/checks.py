@@ -24,8 +24,8 @@ def checks(cfg: dict) -> list[Check]:
     The walls' offset ``h = rho + c/2`` (running clearance ``c``) must stay below
     ``R_i / sqrt(1 + (r kappa_g)^2)`` at the sharpest bend of any groove
     (:func:`rotorkin.drives.wobble_cam.cam.check_roller_radius`): the roller radius below
-    that less ``c/2``; a larger roller makes a cusp in the inner groove wall. Raises :class:`ParameterError` for proportions that
-    no tilt admits (named by config key).
+    that less ``c/2``; a larger roller makes a cusp in the inner groove wall. Raises
+    :class:`ParameterError` for proportions that no tilt admits (named by config key).
     """
     if "cam" not in cfg:
         return []
