@@ -27,7 +27,7 @@ from rotorkin.drives import (
     wobble_cam,
 )
 from rotorkin.drives._spec import DriveSpec
-from rotorkin.studies.checks import limit_checks, profile_checks
+from rotorkin.studies.checks import failure_line, limit_checks, profile_checks
 from rotorkin.studies.limits import limit_value, violations
 from rotorkin.synthesis import SynthesisResult
 from rotorkin.vane import MACHINES
@@ -215,21 +215,11 @@ def evaluate(cfg: dict):
     # the drive's own checks that fail: one warning line each, unless the study's own
     # warnings already name the check's key
     said = list(result.warnings)
-    lines += [_failed_line(c) for c in checks
+    lines += [failure_line(c) for c in checks
               if not c.passed and not any(w.startswith(f"{c.key} ") for w in said)]  # fmt: skip
     result.warnings = (*result.warnings, *lines)
     result.checks = (*checks, *limit_checks(result.summary, cfg, result.columns))
     return result
-
-
-def _failed_line(c) -> str:
-    if c.where.startswith(f"{c.key} = "):  # the refusal's own line says it all
-        return f"{c.where} ({c.name})"
-    unit = f" {c.unit}" if c.unit else ""
-    sense = "<=" if c.upper else ">="
-    where = f": {c.where}" if c.where else ""
-    return (f"{c.key}: {c.name} fails ({c.value:.4g}{unit}, admissible {sense} "
-            f"{c.limit:.4g}{unit}){where}")  # fmt: skip
 
 
 def design_checks(cfg: dict) -> list:

@@ -25,7 +25,15 @@ import numpy as np
 
 from rotorkin.studies.limits import LIMITS, limit_value, worst_result
 
-__all__ = ["Check", "LIMIT_NAMES", "limit_checks", "profile_checks", "failed", "rows"]
+__all__ = [
+    "Check",
+    "LIMIT_NAMES",
+    "limit_checks",
+    "profile_checks",
+    "failed",
+    "failure_line",
+    "rows",
+]
 
 
 @dataclass(frozen=True)
@@ -88,6 +96,18 @@ def rows(checks) -> list[tuple[str, str, str, str, str]]:
 def failed(checks) -> list[Check]:
     """The checks of ``checks`` that do not pass."""
     return [c for c in checks if not c.passed]
+
+
+def failure_line(c: Check) -> str:
+    """One line saying why ``c`` fails, led by its config key (a refusal's own line when the
+    check carries one in ``where``)."""
+    if c.where.startswith(f"{c.key} = "):
+        return f"{c.where} ({c.name})"
+    unit = f" {c.unit}" if c.unit else ""
+    sense = "<=" if c.upper else ">="
+    where = f": {c.where}" if c.where else ""
+    return (f"{c.key}: {c.name} fails ({c.value:.6g}{unit}, admissible {sense} "
+            f"{c.limit:.6g}{unit}){where}")  # fmt: skip
 
 
 def _number(value) -> float | None:

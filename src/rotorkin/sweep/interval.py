@@ -27,7 +27,7 @@ import numpy as np
 from rotorkin import drives
 from rotorkin.core.errors import ConfigError, ParameterError
 from rotorkin.io.config import validate_config
-from rotorkin.studies.checks import failed
+from rotorkin.studies.checks import failed, failure_line
 from rotorkin.studies.limits import LIMITS
 from rotorkin.sweep.spec import DISPLAY_UNITS, bounds_of, field_of
 
@@ -117,18 +117,12 @@ class _Judge:
             checks = drives.design_checks(cfg)
             if not full:
                 bad = failed(checks)
-                return "; ".join(_check_line(c) for c in bad)
+                return "; ".join(failure_line(c) for c in bad)
             result = drives.evaluate(cfg)
         except (ParameterError, ConfigError) as exc:
             return str(exc)
         bad = [c for c in failed(result.checks) if self.with_limits or c.key not in LIMITS]
-        return "; ".join(_check_line(c) for c in bad)
-
-
-def _check_line(c) -> str:
-    unit = f" {c.unit}" if c.unit else ""
-    sense = "<=" if c.upper else ">="
-    return f"{c.key}: {c.name} fails ({c.value:.6g}{unit} against {sense} {c.limit:.6g}{unit})"
+        return "; ".join(failure_line(c) for c in bad)
 
 
 def _scan(raw: dict, key: str, values: np.ndarray, judge: _Judge) -> np.ndarray:
