@@ -38,9 +38,7 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
-import ezdxf
 import numpy as np
-import trimesh
 
 from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError, RotorkinError
@@ -201,6 +199,8 @@ def _write_crossings(path: Path, drive, cam) -> None:
 
 
 def _export_dxf(path: Path, curves: dict) -> None:
+    import ezdxf  # the [cad] extra, imported when a DXF is written
+
     doc = ezdxf.new("R2010", setup=True)
     doc.units = ezdxf.units.MM
     for layer, colour in _LAYERS.values():
@@ -283,6 +283,8 @@ def _piece_samples(drive, roller, t0, t1, uv, tol):
 # --------------------------------------------------------------------------------------------
 def _sphere_mesh(radius: float, tol: float):
     """Icosphere with vertices on the sphere, refined until within tol; (mesh, deviation)."""
+    import trimesh  # the [cad] extra, imported when a mesh is built
+
     for sub in range(1, 9):
         m = trimesh.creation.icosphere(subdivisions=sub, radius=radius)
         dev = radius - float(np.min(np.abs(np.sum(m.face_normals * m.triangles[:, 0], 1))))
@@ -293,6 +295,8 @@ def _sphere_mesh(radius: float, tol: float):
 
 def _piece_mesh(sections):
     """Closed triangle mesh of swept sections (m, k, 3), ends capped, outward normals."""
+    import trimesh
+
     m, k, _ = sections.shape
     idx = np.arange(m * k).reshape(m, k)
     a, b = idx[:-1], np.roll(idx[:-1], -1, axis=1)
@@ -323,6 +327,8 @@ def cam_mesh(drive, cam, tol: float):
         construction: the spheres' facets; sweep sag plus arc sag on the groove bottom),
         ``pieces``, ``sections``, ``faces``.
     """
+    import trimesh
+
     outer, dev_o = _sphere_mesh(cam.outer_radius, tol)
     inner, dev_i = _sphere_mesh(cam.inner_radius, tol)
     floor = _tool_floor(drive, cam)
