@@ -122,7 +122,7 @@ def main(argv: list[str] | None = None) -> int:
     if not args:
         args = ["--help"]
     console.reset()
-    running.command = None
+    running.command, running.load_seconds = None, 0.0
     try:
         # numpy's floating-point warnings are not for the user (LazyGroup.invoke silences
         # numpy's own): every number that could be non-finite is checked before it is shown

@@ -152,7 +152,13 @@ def stages(command: str):
 
             bar = Progress(SpinnerColumn(), TextColumn("{task.description}"),
                            TimeElapsedColumn(), console=console, transient=True)  # fmt: skip
+    from rotorkin.cli.lazy import running
+
+    loaded, running.load_seconds = running.load_seconds, 0.0
+    if loaded:
+        note(f"importing the library behind {running.command}: {loaded:.2f} s")
     steps = _Steps(bar)
+    steps.t0 -= loaded  # "in all" counts the imports too
     if bar is not None:
         bar.start()
     try:

@@ -11,6 +11,7 @@ registered on an app of its own, and the command is taken from there.
 from __future__ import annotations
 
 import importlib
+import time
 
 import typer
 from typer.core import TyperGroup
@@ -54,9 +55,11 @@ COMMANDS = {
 
 
 class _Running:
-    """The name of the command being resolved or run (for the missing-extra message)."""
+    """The command being resolved or run (for the missing-extra message and --verbose)."""
 
     command: str | None = None
+    #: Seconds its module took to import (the library behind it).
+    load_seconds: float = 0.0
 
 
 #: The command being run (None before one is chosen).
@@ -91,7 +94,9 @@ class LazyGroup(TyperGroup):
     def get_command(self, ctx, cmd_name: str):
         if cmd_name not in self.commands and cmd_name in COMMANDS:
             running.command = cmd_name
+            t0 = time.perf_counter()
             self.commands[cmd_name] = _load(cmd_name)
+            running.load_seconds = time.perf_counter() - t0
         return self.commands.get(cmd_name)
 
     def format_commands(self, ctx, formatter) -> None:
