@@ -114,9 +114,9 @@ def register(app) -> None:
             res = solve_for(raw, for_, metric, value, within=_within(within), scan=scan)
         seconds = time.perf_counter() - t0
         written = []
+        doc = {"name": name, "drive_type": cfg["drive"]["type"],
+               "rotorkin_version": __version__, **res.to_dict()}  # fmt: skip
         if out is not None:
-            doc = {"name": name, "drive_type": cfg["drive"]["type"],
-                   "rotorkin_version": __version__, **res.to_dict()}  # fmt: skip
             with staged_output(out, "solve") as (stage, written):
                 (stage / "config.toml").write_text(to_toml(res.raw))
                 (stage / "solve.json").write_text(json.dumps(doc, indent=2) + "\n")
@@ -127,7 +127,7 @@ def register(app) -> None:
         if fmt == "table":
             _print(name, res, out, written, seconds)
             return
-        doc = {"name": name, **res.to_dict(), "files": [p.name for p in written]}
+        doc["files"] = [p.name for p in written]
         if fmt == "json":
             print_json(doc)
         else:
