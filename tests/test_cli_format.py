@@ -261,3 +261,19 @@ def test_help_imports_no_command():
     assert "numpy" not in loaded and "rotorkin.drives" not in loaded
     assert not [m for m in loaded if m.startswith("rotorkin.cli.") and m.rsplit(".", 1)[1] in
                 {mod.rsplit(".", 1)[1] for mod, _ in COMMANDS.values()}]  # fmt: skip
+
+
+def test_shell_completion_of_command_names_and_options():
+    """bash completion (typer's protocol): command names from the list, each once."""
+
+    def complete(words: str) -> list[str]:
+        env = {**os.environ, "_ROTORKIN_COMPLETE": "complete_bash", "COMP_WORDS": words,
+               "COMP_CWORD": str(len(words.split()) - 1)}  # fmt: skip
+        proc = subprocess.run([sys.executable, "-m", "rotorkin.cli"], env=env,
+                              capture_output=True, text=True, timeout=60)  # fmt: skip
+        assert proc.returncode == 0, proc.stderr
+        return proc.stdout.split()
+
+    assert complete("rotorkin ex") == ["examples", "export"]
+    assert complete("rotorkin s") == [n for n in COMMANDS if n.startswith("s")]
+    assert "--format" in complete("rotorkin run --fo")

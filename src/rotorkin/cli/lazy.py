@@ -113,4 +113,7 @@ class LazyGroup(TyperGroup):
 
         items = [CompletionItem(name, help=help_) for name, (_, help_) in COMMANDS.items()
                  if name.startswith(incomplete)]  # fmt: skip
-        return items + super(TyperGroup, self).shell_complete(ctx, incomplete)
+        names = {item.value for item in items}
+        # the group's options (a typer on an installed click also lists commands: once here)
+        base = super(TyperGroup, self).shell_complete(ctx, incomplete)
+        return items + [item for item in base if item.value not in names]
