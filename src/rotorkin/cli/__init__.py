@@ -10,40 +10,28 @@ from __future__ import annotations
 
 import contextlib
 import errno
-import math
 import os
 import signal
 import sys
 import threading
 import warnings
-from pathlib import Path
 from typing import Annotated
 
-import numpy as np
 import typer
 
 from rotorkin import __version__
-from rotorkin.cli import compare as cli_compare
-from rotorkin.cli import export as cli_export
-from rotorkin.cli import limits as cli_limits
-from rotorkin.cli import optimize as cli_optimize
-from rotorkin.cli import report as cli_report
-from rotorkin.cli import solve as cli_solve
-from rotorkin.cli import sweep as cli_sweep
-from rotorkin.cli import synthesize as cli_synthesize
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, out_folder
-from rotorkin.cli.tables import print_checks
+from rotorkin.cli import console
+from rotorkin.cli.console import one_line as _one_line
+from rotorkin.cli.lazy import COMMANDS, LazyGroup, running
 from rotorkin.core.errors import RotorkinError
-from rotorkin.drives import REGISTRY, evaluate
-from rotorkin.io.config import example_names, example_path, glossary, load_config, read_toml
-from rotorkin.io.output import check_out, write_outputs
-from rotorkin.report.html import write_report
-from rotorkin.studies.limits import refuse
+
+__all__ = ["app", "main", "COMMANDS", "EXTRAS", "ENVIRONMENT_ERROR"]
 
 app = typer.Typer(
     name="rotorkin",
+    cls=LazyGroup,
     help="Design the drives of rotary variable-volume machines: kinematics, volumes, torques.",
-    add_completion=False,
+    add_completion=True,
     pretty_exceptions_enable=False,
     rich_markup_mode=None,
 )
@@ -64,109 +52,30 @@ def _root(
     """rotorkin: exact kinematics, volumes and torques of the drives of rotary machines."""
 
 
-@app.command()
-def run(
-    config: ConfigArg = None,
-    example: ExampleOpt = None,
-    set_: SetOpt = None,
-    out: Annotated[
-        Path | None,
-        typer.Option(
-            "--out", "-o", parser=out_folder, help="Output folder; default ./rotorkin-out/<name>."
-        ),
-    ] = None,
-    quiet: QuietOpt = False,
-    report: Annotated[
-        bool, typer.Option("--report", help="Also write report.html (interactive, offline).")
-    ] = False,
-    strict: Annotated[
-        bool,
-        typer.Option(
-            "--strict", help="Refuse a design past a plausibility limit ([limits]), exit 2."
-        ),
-    ] = False,
-):
-    """Evaluate a drive over one period; write summary.json, motion.csv and figures."""
-
-    cfg, raw, name = load_config(config, example, set_ or [])
-    outdir = out if out is not None else Path("rotorkin-out") / name
-    check_out(outdir)  # before any work
-    result = evaluate(cfg)
-    if strict:
-        refuse(result)  # before anything is written
-    meta = {"name": name, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
-    written = write_outputs(result, outdir, raw, meta)
-    if report:
-        written = [*written, write_report(result, cfg, raw, meta, outdir / "report.html")]
-    for line in result.warnings:  # once the outputs stand: a failure stays one line
-        print(f"rotorkin: warning: {_one_line(line)}", file=sys.stderr)
-    if not quiet:
-        _print_summary(result, name, outdir, written)
+#: The optional extra that provides a module (its top-level name) the core install lacks.
+EXTRAS = {
+    "plotly": "report",
+    "ezdxf": "cad",
+    "trimesh": "cad",
+    "manifold3d": "cad",
+    "build123d": "cad",
+    "OCP": "cad",
+    "dask": "dask",
+    "distributed": "dask",
+    "cantera": "thermo",
+    "pymoo": "optimize",
+}
 
 
-@app.command()
-def examples():
-    """List the built-in examples (run one with: rotorkin run --example NAME)."""
-
-    for name in example_names():
-        title = read_toml(example_path(name)).get("title", "")
-        typer.echo(f"{name:20s} {title}")
-
-
-@app.command()
-def keys(
-    drive_type: Annotated[
-        str | None, typer.Argument(help=f"Only this drive type ({', '.join(REGISTRY)}).")
-    ] = None,
-):
-    """List every config key with its default and meaning (the glossary)."""
-
-    if drive_type is not None and drive_type not in REGISTRY:
-        choices = ", ".join(REGISTRY)
-        raise RotorkinError(
-            f"DRIVE_TYPE = {drive_type!r} is not admissible: choose one of {choices}"
-        )
-    for kind, key, default, doc in glossary():
-        if drive_type in (None, kind):
-            typer.echo(f"{kind:14s} {key:28s} {default:14s} {doc}")
-
-
-def _print_summary(result, name, outdir, written):
-    from rich.console import Console
-    from rich.table import Table
-
-    console = Console(markup=False, highlight=False)
-    console.print(f"{name}: {result.title}", highlight=False, soft_wrap=True)
-    table = Table()
-    table.add_column("metric", no_wrap=True)
-    table.add_column("value", justify="right")
-    meanings = result.headline if isinstance(result.headline, dict) else {}
-    if meanings:
-        table.add_column("meaning")
-    for key in result.headline:
-        value = result.summary[key]
-        if isinstance(value, float):
-            shown = f"{value:.6g}" if math.isfinite(value) else "n/a"
-        else:
-            shown = str(value)
-        table.add_row(key, shown, *([meanings[key]] if meanings else []))
-    console.print(table)
-    print_checks(console, result.checks)
-    figures = [p.name for p in written if p.suffix == ".png"]
-    checks = "checks.csv, " if result.checks else ""
-    console.print(
-        f"wrote {outdir}/: summary.json, motion.csv, config.toml, {checks}README.txt, "
-        f"{len(figures)} figures ({', '.join(figures)})",
-        highlight=False,
-        soft_wrap=True,
-    )
-
-
-# Commands that live in their own modules (cad export, synthesis, html report, sweeps):
-# each module has register(app), which adds its commands.
-for _module in (cli_export, cli_synthesize, cli_report, cli_sweep, cli_compare, cli_limits,
-                cli_solve, cli_optimize):  # fmt: skip
-    _module.register(app)
+def _missing_extra(exc: ModuleNotFoundError) -> str | None:
+    """One line naming the extra (and its pip command) that provides the missing module."""
+    module = (exc.name or "").split(".")[0]
+    extra = EXTRAS.get(module)
+    if extra is None:
+        return None
+    command = f"rotorkin {running.command}" if running.command else "this command"
+    return (f'{command} needs the {extra} extra: pip install "rotorkin[{extra}]" '
+            f"({module} is not installed)")  # fmt: skip
 
 
 class Terminated(BaseException):
@@ -197,15 +106,6 @@ _WHAT_TO_DO = {
 }
 
 
-#: Characters that end a line for Python's ``str.splitlines`` (and for terminals).
-_LINE_BREAKS = "\n\r\x0b\x0c\x1c\x1d\x1e\x85\u2028\u2029"
-
-
-def _one_line(text: str) -> str:
-    """A message on one line: line breaks a user typed are shown escaped (``\\n``)."""
-    return "".join(c.encode("unicode_escape").decode() if c in _LINE_BREAKS else c for c in text)
-
-
 def _environment_message(exc: OSError) -> str:
     """One line: what failed and what to do; nothing was left behind."""
     what = _WHAT_TO_DO.get(exc.errno, "the system refused; check the output folder and retry")
@@ -221,10 +121,12 @@ def main(argv: list[str] | None = None) -> int:
     args = sys.argv[1:] if argv is None else list(argv)
     if not args:
         args = ["--help"]
+    console.reset()
+    running.command, running.load_seconds = None, 0.0
     try:
-        # numpy's floating-point warnings are not for the user: every number that could be
-        # non-finite is checked before it is written or printed
-        with warnings.catch_warnings(), np.errstate(all="ignore"):
+        # numpy's floating-point warnings are not for the user (LazyGroup.invoke silences
+        # numpy's own): every number that could be non-finite is checked before it is shown
+        with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
             app(args=args, prog_name="rotorkin", standalone_mode=False)
     except RotorkinError as exc:
@@ -249,6 +151,12 @@ def main(argv: list[str] | None = None) -> int:
         with contextlib.suppress(OSError):
             sys.stderr.close()
         return ENVIRONMENT_ERROR
+    except ModuleNotFoundError as exc:  # an optional extra that is not installed: exit 2
+        message = _missing_extra(exc)
+        if message is None:
+            return _internal_error(exc)
+        print(f"rotorkin: error: {message}", file=sys.stderr)
+        return 2
     except OSError as exc:  # the machine, not the input: disk full, permission, ...
         print(f"rotorkin: {_environment_message(exc)}", file=sys.stderr)
         return ENVIRONMENT_ERROR
@@ -256,16 +164,24 @@ def main(argv: list[str] | None = None) -> int:
         if hasattr(exc, "format_message") and hasattr(exc, "exit_code"):  # a usage error
             print(f"rotorkin: error: {_one_line(exc.format_message())}", file=sys.stderr)
             return 2
-        # an internal error: one line, the traceback on request
-        if os.environ.get("ROTORKIN_DEBUG"):
-            raise
-        print(
-            f"rotorkin: internal error: {type(exc).__name__}: {exc} "
-            "(set ROTORKIN_DEBUG=1 for the traceback, and please report it)",
-            file=sys.stderr,
-        )
-        return 1
+        return _internal_error(exc)
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
     return 0
+
+
+def _internal_error(exc: BaseException) -> int:
+    """An internal error: one line; the traceback with ``--verbose`` or ``ROTORKIN_DEBUG=1``."""
+    if os.environ.get("ROTORKIN_DEBUG"):
+        raise exc
+    if console.STATE.verbose:
+        import traceback
+
+        traceback.print_exception(exc, file=sys.stderr)
+    print(
+        f"rotorkin: internal error: {type(exc).__name__}: {_one_line(str(exc))} "
+        "(run with --verbose or set ROTORKIN_DEBUG=1 for the traceback, and please report it)",
+        file=sys.stderr,
+    )
+    return 1

@@ -9,17 +9,19 @@ keyways and running gaps, and the profile checks in short tables.
 from __future__ import annotations
 
 import contextlib
+import time
 from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.console import Console
 
+from rotorkin.cli.console import err_console, note, out_console, require, stages
 from rotorkin.cli.options import (
     ConfigArg,
     ExampleOpt,
     QuietOpt,
     SetOpt,
+    VerboseOpt,
     flag_names,
     out_option,
 )
@@ -28,6 +30,10 @@ from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import design_checks, get
 from rotorkin.io.config import load_config
 from rotorkin.io.export import FORMATS, export, profile_checks, workshop_rows
+
+#: The modules (of the optional ``cad`` extra) each format is written with.
+NEEDS = {"dxf": ("ezdxf",), "stl": ("trimesh", "manifold3d"), "step": ("build123d",),
+         "csv": ()}  # fmt: skip
 
 
 def _size(n: int) -> str:
@@ -81,12 +87,14 @@ def register(app) -> None:
         fmt: Annotated[
             str,
             typer.Option(
-                "--format", "-f", help="dxf, stl, step (needs rotorkin[cad]), csv or all."
-            ),  # fmt: skip
+                "--format", "-f", metavar="dxf|stl|step|csv|all",
+                help='The file format; dxf, stl and step need the "cad" extra.',
+            ),
         ] = "dxf",
         out: out_option("./rotorkin-out/<name>/cad") = None,
         quiet: QuietOpt = False,
-    ):
+        verbose: VerboseOpt = False,
+    ):  # fmt: skip
         """Write CAD files of the cam(s): DXF profiles, STL/STEP solids, CSV point lists (mm)."""
 
         fmt_ = fmt.strip().lower()
@@ -94,25 +102,31 @@ def register(app) -> None:
             raise RotorkinError(
                 f"--format = {fmt!r} is not admissible: choose one of {', '.join(FORMATS)}, all"
             )
-        cfg, _, name = load_config(config, example, set_ or [])
-        outdir = out if out is not None else Path("rotorkin-out") / name / "cad"
-        rows = _check_rows(cfg)
-        checks = design_checks(cfg)  # the same checks as run (with their margins)
+        for f in FORMATS if fmt_ == "all" else (fmt_,):
+            require(*NEEDS[f])  # before any work
+        with stages("export checks") as step:
+            step("reading the config")
+            cfg, _, name = load_config(config, example, set_ or [])
+            outdir = out if out is not None else Path("rotorkin-out") / name / "cad"
+            step("checking the profiles")
+            rows = _check_rows(cfg)
+            checks = design_checks(cfg)  # the same checks as run (with their margins)
+        t0 = time.perf_counter()
         with _progress_bar(quiet) as progress:
             written = export(cfg, fmt_, outdir, name, progress=progress)
+        note(f"writing {len(written)} {fmt_} file(s): {time.perf_counter() - t0:.2f} s")
         if not quiet:
             _print(name, cfg["drive"]["type"], fmt_, outdir, written, rows, workshop_rows(cfg))
-            print_checks(Console(markup=False, highlight=False), checks)
+            print_checks(out_console(), checks)
 
 
 @contextlib.contextmanager
 def _progress_bar(quiet: bool):
     """A rich progress bar on stderr, one step per part and format; None (no bar) when
     quiet or when stderr is no terminal (a pipe, a test)."""
-    from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-    console = Console(stderr=True)
+    console = err_console()
     if quiet or not console.is_terminal:
         yield None
         return
@@ -128,10 +142,9 @@ def _progress_bar(quiet: bool):
 
 
 def _print(name, kind, fmt, outdir, written, rows, parts=()) -> None:
-    from rich.console import Console
     from rich.table import Table
 
-    console = Console(markup=False, highlight=False)
+    console = out_console()
     what = "file(s) in every format" if fmt == "all" else f"{fmt} file(s)"
     console.print(f"{name} ({kind}): wrote {len(written)} {what} to {outdir}/",
                   highlight=False, soft_wrap=True)  # fmt: skip

@@ -22,7 +22,17 @@ from typing import Annotated
 import typer
 
 from rotorkin import __version__
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names, out_folder
+from rotorkin.cli.console import out_console, require, stages
+from rotorkin.cli.formats import table_number
+from rotorkin.cli.options import (
+    ConfigArg,
+    ExampleOpt,
+    QuietOpt,
+    SetOpt,
+    VerboseOpt,
+    flag_names,
+    out_folder,
+)
 from rotorkin.core.batch import DEFAULT_SAMPLES
 from rotorkin.design.optimize import build_spec, optimize, refused_share, write_front
 from rotorkin.drives import evaluate
@@ -44,37 +54,45 @@ def register(app) -> None:
         example: ExampleOpt = None,
         set_: SetOpt = None,
         vary: Annotated[list[str] | None, typer.Option(
-            "--vary", help="KEY=LO:HI with units, e.g. machine.casing_radius=40mm:100mm "
+            "--vary", metavar="KEY=LO:HI",
+            help="KEY=LO:HI with units, e.g. machine.casing_radius=40mm:100mm "
             "(repeatable; number and quantity keys).")] = None,
         objective: Annotated[list[str] | None, typer.Option(
-            "--objective", help="max:METRIC or min:METRIC, a numeric summary key "
+            "--objective", metavar="max|min:METRIC",
+            help="max:METRIC or min:METRIC, a numeric summary key "
             "(repeatable).")] = None,
         constraint: Annotated[list[str] | None, typer.Option(
-            "--constraint", help="METRIC<=VALUE or METRIC>=VALUE in the metric's unit "
+            "--constraint", metavar="METRIC<=VALUE",
+            help="METRIC<=VALUE or METRIC>=VALUE in the metric's unit "
             "(repeatable).")] = None,
         population: Annotated[int, typer.Option(
-            "--population", help="Designs per generation.")] = 40,
+            "--population", metavar="N", help="Designs per generation.")] = 40,
         generations: Annotated[int, typer.Option(
-            "--generations", help="Generations of NSGA-II.")] = 30,
-        seed: Annotated[int, typer.Option("--seed", help="Seed of NSGA-II's random draws.")]
-        = 0,
+            "--generations", metavar="N", help="Generations of NSGA-II.")] = 30,
+        seed: Annotated[int, typer.Option(
+            "--seed", metavar="N", help="Seed of NSGA-II's random draws.")] = 0,
         angles: Annotated[int | None, typer.Option(
-            "--angles", help="Shaft angles per period of the sampled peaks (default 20001, "
+            "--angles", metavar="N",
+            help="Shaft angles per period of the sampled peaks (default 20001, "
             "as rotorkin run).")] = None,
         out: Annotated[Path, typer.Option(
-            "--out", "-o", parser=out_folder, help="Output folder (also holds the search's "
+            "--out", "-o", metavar="DIR", parser=out_folder,
+            help="Output folder (also holds the search's "
             "state in .optimize/).")] = ...,
         resume: Annotated[bool, typer.Option(
             "--resume", help="Continue the search stored in --out (same arguments; more "
             "--generations extend it).")] = False,
         report: Annotated[int | None, typer.Option(
-            "--report", help="Also write the outputs of rotorkin run for the front's design "
+            "--report", metavar="INDEX",
+            help="Also write the outputs of rotorkin run for the front's design "
             "INDEX (column 'index' of pareto.csv) into OUT/design_INDEX.")] = None,
         quiet: QuietOpt = False,
+        verbose: VerboseOpt = False,
     ):  # fmt: skip
         """Multi-objective search (NSGA-II): the Pareto set of metrics over config keys."""
 
         t0 = time.perf_counter()
+        require("pymoo")  # before any work
         cfg, raw, name = load_config(config, example, set_ or [])
         samples = DEFAULT_SAMPLES if angles is None else angles
         spec = build_spec(raw, vary or [], objective or [], constraint or [],
@@ -93,7 +111,8 @@ def register(app) -> None:
                        spec.metrics)[2]  # fmt: skip
         if why:
             status(f"{why}: evaluated design by design by the scalar study (slow)")
-        with staged_output(out, "optimize") as (stage, written):
+        with stages("optimize") as step, staged_output(out, "optimize") as (stage, written):
+            step(f"NSGA-II: {spec.generations} generations x {spec.population} designs")
             res = optimize(spec, store=out / ".optimize", resume=resume, on_status=status)
             if report is not None:
                 res.config(report)  # an index off the front: refused before anything is written
@@ -110,14 +129,14 @@ def register(app) -> None:
 
 
 def _print(res, out, written, report, report_files, seconds) -> None:
-    from rich.console import Console
     from rich.table import Table
 
     spec = res.spec
     heads = [f"{v.key} [{v.info.unit}]" for v in spec.variables] + [
         f"{m} (constraint)" for m in spec.metrics]  # fmt: skip
-    console = Console(markup=False, highlight=False,
-                      width=max(80, 12 + sum(max(len(h), 10) + 3 for h in heads)))  # fmt: skip
+    console = out_console()
+    if console.is_terminal:  # wide enough for the front's columns
+        console.width = max(console.width, 12 + sum(max(len(h), 10) + 3 for h in heads))
     console.print(
         f"{spec.name}: NSGA-II, {len(res.history)} generations x {spec.population} designs "
         f"(seed {spec.seed}): {res.evaluations} evaluated"
@@ -133,8 +152,8 @@ def _print(res, out, written, report, report_files, seconds) -> None:
     for m in spec.metrics:
         table.add_column(f"{m} ({roles.get(m, 'constraint')})", justify="right")
     for i in range(res.size):
-        row = [str(i)] + [f"{res.display(j)[i]:.6g}" for j in range(len(spec.variables))]
-        table.add_row(*row, *(f"{v:.6g}" for v in res.values[i]))
+        row = [str(i)] + [table_number(res.display(j)[i]) for j in range(len(spec.variables))]
+        table.add_row(*row, *(table_number(v) for v in res.values[i]))
     console.print(table)
     console.print(f"wrote {out}/: {', '.join(p.name for p in written)} in {seconds:.2f} s",
                   soft_wrap=True)  # fmt: skip

@@ -9,25 +9,52 @@ from typing import Annotated
 
 import typer
 
+from rotorkin.cli.console import quiet_callback, verbose_callback
 from rotorkin.core.errors import ParameterError
 from rotorkin.drives import DEFAULT_EXAMPLE
 
-__all__ = ["ConfigArg", "ExampleOpt", "SetOpt", "QuietOpt", "out_folder", "out_option",
-           "flag_names"]  # fmt: skip
+__all__ = ["ConfigArg", "ExampleOpt", "SetOpt", "QuietOpt", "VerboseOpt", "FormatOpt", "FORMATS",
+           "check_format", "out_folder", "out_option", "flag_names"]  # fmt: skip
 
 #: The config file (positional).
 ConfigArg = Annotated[
-    Path | None, typer.Argument(help=f"TOML config; default: the {DEFAULT_EXAMPLE} example.")
+    Path | None,
+    typer.Argument(metavar="CONFIG", help=f"TOML config; default: the {DEFAULT_EXAMPLE} example."),
 ]
 #: ``--example NAME``: start from a built-in example instead of a file.
 ExampleOpt = Annotated[
-    str | None, typer.Option("--example", "-e", help="Start from a built-in example by name.")
+    str | None,
+    typer.Option("--example", "-e", metavar="NAME", help="Start from a built-in example by name."),
 ]
 #: ``--set section.key=VALUE``, repeatable.
 SetOpt = Annotated[
     list[str] | None,
-    typer.Option("--set", "-s", help="Override a key: section.key=VALUE (repeatable)."),
-]
+    typer.Option(
+        "--set", "-s", metavar="KEY=VALUE",
+        help='Override a config key, e.g. drive.plate_tilt="30 deg" (repeatable).',
+    ),
+]  # fmt: skip
+
+#: The formats of a command's printed summary.
+FORMATS = ("table", "json", "csv")
+
+#: ``--format table|json|csv``: how the summary is printed on stdout.
+FormatOpt = Annotated[
+    str,
+    typer.Option(
+        "--format", metavar="table|json|csv",
+        help="How the summary is printed: a table for people, or json / csv (every value "
+        "at full precision) for programs.",
+    ),
+]  # fmt: skip
+
+
+def check_format(fmt: str) -> str:
+    """``--format``: one of :data:`FORMATS` (case and spaces ignored), else one line, exit 2."""
+    chosen = str(fmt).strip().lower()
+    if chosen not in FORMATS:
+        raise ParameterError("--format", repr(fmt), f"one of {', '.join(FORMATS)}")
+    return chosen
 
 
 def out_folder(text: str) -> Path:
@@ -43,12 +70,30 @@ def out_option(default: str):
     """``--out``/``-o`` with ``default`` (where the outputs go without it) in its help."""
     return Annotated[
         Path | None,
-        typer.Option("--out", "-o", parser=out_folder, help=f"Output folder; default {default}."),
-    ]
+        typer.Option(
+            "--out", "-o", metavar="DIR", parser=out_folder,
+            help=f"Output folder; default {default}.",
+        ),
+    ]  # fmt: skip
 
 
 #: ``--quiet``.
-QuietOpt = Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing on success.")]
+QuietOpt = Annotated[
+    bool,
+    typer.Option(
+        "--quiet", "-q", callback=quiet_callback,
+        help="Print nothing on success (errors and warnings still go to stderr).",
+    ),
+]  # fmt: skip
+#: ``--verbose``.
+VerboseOpt = Annotated[
+    bool,
+    typer.Option(
+        "--verbose", "-v", callback=verbose_callback,
+        help="Also say on stderr what is done and how long each step takes; a traceback on "
+        "an internal error.",
+    ),
+]  # fmt: skip
 
 
 def flag_names(**flags):

@@ -1,7 +1,8 @@
 """The ``rotorkin report`` command: one interactive, offline HTML page of a run.
 
 Registered on the main app by :func:`register`. ``rotorkin run ... --report``
-writes the same page next to the other outputs.
+writes the same page next to the other outputs. The page needs plotly, the
+optional ``report`` extra (``pip install "rotorkin[report]"``).
 """
 
 from __future__ import annotations
@@ -12,11 +13,11 @@ from typing import Annotated
 import typer
 
 from rotorkin import __version__
-from rotorkin.cli.options import ConfigArg, ExampleOpt, SetOpt, out_option
+from rotorkin.cli.console import require, stages
+from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, VerboseOpt, out_option
 from rotorkin.core.errors import ConfigError
 from rotorkin.drives import evaluate
 from rotorkin.io.config import load_config
-from rotorkin.report.html import write_report
 from rotorkin.studies.limits import refuse
 
 
@@ -35,18 +36,28 @@ def register(app) -> None:
                 "--strict", help="Refuse a design past a plausibility limit ([limits]), exit 2."
             ),
         ] = False,
+        quiet: QuietOpt = False,
+        verbose: VerboseOpt = False,
     ):
         """Write report.html: summary vs the paper, checks, animated mechanism, plots (offline)."""
+        from rotorkin.report.html import write_report
 
-        cfg, raw, name = load_config(config, example, set_ or [])
-        outdir = out if out is not None else Path("rotorkin-out") / name
-        if outdir.exists() and not outdir.is_dir():
-            raise ConfigError(
-                f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder"
-            )
-        result = evaluate(cfg)
-        if strict:
-            refuse(result)  # before anything is written
-        meta = {"name": name, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
-        path = write_report(result, cfg, raw, meta, outdir / "report.html")
-        typer.echo(str(path))
+        require("plotly")  # before any work
+        with stages("report") as step:
+            step("reading the config")
+            cfg, raw, name = load_config(config, example, set_ or [])
+            outdir = out if out is not None else Path("rotorkin-out") / name
+            if outdir.exists() and not outdir.is_dir():
+                raise ConfigError(
+                    f"--out = {str(outdir)!r} is not admissible: it is a file, not a folder"
+                )
+            step("evaluating the design")
+            result = evaluate(cfg)
+            if strict:
+                refuse(result)  # before anything is written
+            meta = {"name": name, "drive_type": cfg["drive"]["type"],
+                    "rotorkin_version": __version__}  # fmt: skip
+            step("writing the report")
+            path = write_report(result, cfg, raw, meta, outdir / "report.html")
+        if not quiet:
+            typer.echo(str(path))

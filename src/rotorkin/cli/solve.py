@@ -5,7 +5,9 @@
 the metric reached, the residual and what bounds the search on either side; with
 ``--out`` it writes ``config.toml`` (the config with the key set, ready for
 ``rotorkin run``) and ``solve.json`` (atomically). A target out of reach is one
-line naming the range the metric covers, exit 2. See ``docs/design.md``.
+line naming the range the metric covers, exit 2. ``--format json`` prints the
+record of ``solve.json``, ``--format csv`` the same as ``field,value`` rows (numbers
+at full precision). See ``docs/design.md``.
 """
 
 from __future__ import annotations
@@ -20,7 +22,19 @@ from typing import Annotated
 import typer
 
 from rotorkin import __version__
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names, out_folder
+from rotorkin.cli.console import stages
+from rotorkin.cli.formats import flat_rows, print_csv, print_json
+from rotorkin.cli.options import (
+    ConfigArg,
+    ExampleOpt,
+    FormatOpt,
+    QuietOpt,
+    SetOpt,
+    VerboseOpt,
+    check_format,
+    flag_names,
+    out_folder,
+)
 from rotorkin.core.errors import ConfigError, shown
 from rotorkin.design import solve as solve_for
 from rotorkin.io.config import load_config
@@ -67,42 +81,57 @@ def register(app) -> None:
         example: ExampleOpt = None,
         set_: SetOpt = None,
         for_: Annotated[str, typer.Option(
-            "--for", help="The config key to solve for: a number or quantity key "
+            "--for", metavar="KEY", help="The config key to solve for: a number or quantity key "
             "(rotorkin keys), e.g. machine.casing_radius.")] = ...,
         target: Annotated[str, typer.Option(
-            "--target", help="METRIC=VALUE: a numeric summary key (summary.json of rotorkin "
-            "run, or a sweep metric) and its target in the unit of the name's suffix.")] = ...,
+            "--target", metavar="METRIC=VALUE", help="A numeric summary key (summary.json of "
+            "rotorkin run, or a sweep metric) and its target in the unit of the name's "
+            "suffix.")] = ...,
         within: Annotated[str | None, typer.Option(
-            "--within", help="Search only LO:HI of the key, with units (e.g. 30mm:60mm); "
-            "default: its whole admissible range.")] = None,
+            "--within", metavar="LO:HI", help="Search only LO:HI of the key, with units (e.g. "
+            "30mm:60mm); default: its whole admissible range.")] = None,
         scan: Annotated[int | None, typer.Option(
-            "--scan", help="Values per spacing of the coarse scan (default 129 with a sweep "
-            "kernel, 12 through the study).")] = None,
+            "--scan", metavar="N", help="Values per spacing of the coarse scan (default 129 "
+            "with a sweep kernel, 12 through the study).")] = None,
         out: Annotated[Path | None, typer.Option(
-            "--out", "-o", parser=out_folder,
+            "--out", "-o", metavar="DIR", parser=out_folder,
             help="Write config.toml (the solved config) and solve.json here.")] = None,
+        fmt: FormatOpt = "table",
         quiet: QuietOpt = False,
+        verbose: VerboseOpt = False,
     ):  # fmt: skip
         """Find the value of one config key at which one metric hits a target."""
 
         t0 = time.perf_counter()
-        cfg, raw, name = load_config(config, example, set_ or [])
-        metric, value = parse_target(target)
-        if out is not None:
-            check_out(out)  # before any work
-        res = solve_for(raw, for_, metric, value, within=_within(within), scan=scan)
+        fmt = check_format(fmt)
+        with stages("solve") as step:
+            step("reading the config")
+            cfg, raw, name = load_config(config, example, set_ or [])
+            metric, value = parse_target(target)
+            if out is not None:
+                check_out(out)  # before any work
+            step(f"solving for {for_}")
+            res = solve_for(raw, for_, metric, value, within=_within(within), scan=scan)
         seconds = time.perf_counter() - t0
         written = []
+        doc = {"name": name, "drive_type": cfg["drive"]["type"],
+               "rotorkin_version": __version__, **res.to_dict()}  # fmt: skip
         if out is not None:
-            doc = {"name": name, "drive_type": cfg["drive"]["type"],
-                   "rotorkin_version": __version__, **res.to_dict()}  # fmt: skip
             with staged_output(out, "solve") as (stage, written):
                 (stage / "config.toml").write_text(to_toml(res.raw))
                 (stage / "solve.json").write_text(json.dumps(doc, indent=2) + "\n")
         for line in res.warnings:  # once the outputs stand, as rotorkin run
             print(f"rotorkin: warning: {' '.join(str(line).split())}", file=sys.stderr)
-        if not quiet:
+        if quiet:
+            return
+        if fmt == "table":
             _print(name, res, out, written, seconds)
+            return
+        doc["files"] = [p.name for p in written]
+        if fmt == "json":
+            print_json(doc)
+        else:
+            print_csv(("field", "value"), flat_rows(doc))
 
 
 def _end(info, end) -> str:

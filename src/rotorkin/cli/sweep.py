@@ -20,7 +20,17 @@ from typing import Annotated
 
 import typer
 
-from rotorkin.cli.options import ConfigArg, ExampleOpt, QuietOpt, SetOpt, flag_names, out_folder
+from rotorkin.cli.console import out_console, require, stages
+from rotorkin.cli.formats import table_number
+from rotorkin.cli.options import (
+    ConfigArg,
+    ExampleOpt,
+    QuietOpt,
+    SetOpt,
+    VerboseOpt,
+    flag_names,
+    out_folder,
+)
 from rotorkin.core.errors import ConfigError
 from rotorkin.drives import REGISTRY, spec_of
 from rotorkin.io.config import apply_sets, load_config
@@ -87,34 +97,42 @@ def register(app) -> None:
         example: ExampleOpt = None,
         set_: SetOpt = None,
         vary: Annotated[list[str] | None, typer.Option(
-            "--vary", help="KEY=START:STOP:N or KEY=v1,v2,... with units (repeatable; one "
+            "--vary", metavar="KEY=START:STOP:N",
+            help="KEY=START:STOP:N or KEY=v1,v2,... with units (repeatable; one "
             "dimension each, the last varies fastest).")] = None,
         curves: Annotated[bool, typer.Option(
             "--curves", help="Also keep the curves over run.points angles per design.")] = False,
         metrics: Annotated[str | None, typer.Option(
-            "--metrics", help="'all' or a comma-separated list of summary keys; default: the "
+            "--metrics", metavar="all|KEY,...",
+            help="'all' or a comma-separated list of summary keys; default: the "
             "vectorized ones.")] = None,
         angles: Annotated[int | None, typer.Option(
-            "--angles", help="Shaft angles per period of the sampled peaks (default 20001, as "
+            "--angles", metavar="N",
+            help="Shaft angles per period of the sampled peaks (default 20001, as "
             "rotorkin run).")] = None,
         workers: Annotated[int | None, typer.Option(
-            "--workers", help="Run on a dask LocalCluster of N workers.")] = None,
+            "--workers", metavar="N",
+            help='Run on a dask LocalCluster of N workers (the "dask" extra).')] = None,
         scheduler: Annotated[str | None, typer.Option(
-            "--scheduler", help="Run on the dask cluster at tcp://HOST:PORT.")] = None,
+            "--scheduler", metavar="ADDR",
+            help='Run on the dask cluster at tcp://HOST:PORT (the "dask" extra).')] = None,
         chunk: Annotated[int | None, typer.Option(
-            "--chunk", help="Designs per chunk (default: from a 64 MiB budget).")] = None,
+            "--chunk", metavar="N",
+            help="Designs per chunk (default: from a 64 MiB budget).")] = None,
         out: Annotated[Path | None, typer.Option(
-            "--out", "-o", parser=out_folder,
+            "--out", "-o", metavar="DIR", parser=out_folder,
             help="Output folder; default ./rotorkin-out/<name>-sweep.")] = None,
         paper_figures: Annotated[bool, typer.Option(
             "--paper-figures", help="Also run the sweeps of the paper's figures and draw them."
         )] = False,
-        quiet: QuietOpt
-        = False,
+        quiet: QuietOpt = False,
+        verbose: VerboseOpt = False,
     ):  # fmt: skip
         """Sweep config keys over ranges or lists; write sweep.nc (netCDF) and figures."""
 
         t0 = time.perf_counter()
+        if workers is not None or scheduler is not None:
+            require("dask", "distributed")  # before any work
         cfg, raw, name = load_config(config, example, set_ or [])
         if not vary and not paper_figures:
             raise ConfigError("give at least one --vary KEY=START:STOP:N (or --paper-figures)")
@@ -206,21 +224,26 @@ def register(app) -> None:
         set_: SetOpt
         = None,
         tol: Annotated[list[str] | None, typer.Option(
-            "--tol", help="KEY=WIDTH (uniform, +- WIDTH) or KEY=WIDTH:normal (sigma), with "
+            "--tol", metavar="KEY=WIDTH",
+            help="KEY=WIDTH (uniform, +- WIDTH) or KEY=WIDTH:normal (sigma), with "
             "units, e.g. drive.plate_tilt=0.1deg (repeatable).")] = None,
-        samples: Annotated[int, typer.Option("--samples", help="Monte-Carlo samples.")] = 10_000,
-        seed: Annotated[int, typer.Option("--seed", help="Seed of numpy's default_rng.")] = 0,
+        samples: Annotated[int, typer.Option(
+            "--samples", metavar="N", help="Monte-Carlo samples.")] = 10_000,
+        seed: Annotated[int, typer.Option(
+            "--seed", metavar="N", help="Seed of numpy's default_rng.")] = 0,
         metrics: Annotated[str | None, typer.Option(
-            "--metrics", help="'all' or a comma-separated list; the first 9 are drawn.")] = None,
+            "--metrics", metavar="all|KEY,...",
+            help="'all' or a comma-separated list; the first 9 are drawn.")] = None,
         angles: Annotated[int | None, typer.Option(
-            "--angles", help="Shaft angles per period of the sampled peaks (default 20001).")]
+            "--angles", metavar="N",
+            help="Shaft angles per period of the sampled peaks (default 20001).")]
         = None,
         out: Annotated[Path | None, typer.Option(
-            "--out", "-o", parser=out_folder,
+            "--out", "-o", metavar="DIR", parser=out_folder,
             help="Output folder; default ./rotorkin-out/<name>-tolerance.")]
         = None,
-        quiet: QuietOpt
-        = False,
+        quiet: QuietOpt = False,
+        verbose: VerboseOpt = False,
     ):  # fmt: skip
         """Monte-Carlo tolerance analysis; write tolerance.json, tolerance.nc, histograms."""
         import warnings
@@ -230,7 +253,8 @@ def register(app) -> None:
         cfg, raw, name = load_config(config, example, set_ or [])
         outdir = out if out is not None else Path("rotorkin-out") / f"{name}-tolerance"
         check_out(outdir)
-        with warnings.catch_warnings(record=True) as caught:
+        with stages("tolerance") as step, warnings.catch_warnings(record=True) as caught:
+            step(f"evaluating {samples} samples")
             warnings.simplefilter("always", SweepFallbackWarning)
             ds = run_tolerance(raw, tol or [], samples=samples, seed=seed, metrics=metrics,
                                angles=angles)  # fmt: skip
@@ -262,7 +286,8 @@ def register(app) -> None:
             "inadmissible_samples": int(np.count_nonzero(ds["reason"].values)),
             "metrics": stats,
         }
-        with staged_output(outdir, "tolerance") as (stage, _):
+        with stages("tolerance output") as step, staged_output(outdir, "tolerance") as (stage, _):
+            step("writing the outputs and drawing the histograms")
             (stage / "tolerance.json").write_text(json.dumps(_jsonable(doc), indent=2) + "\n")
             write_dataset(ds, stage / "tolerance.nc")
             fs.fig_tolerance(ds, stats, drawn, stage / "tolerance_histograms.png")
@@ -279,10 +304,9 @@ def register(app) -> None:
 
 def _print_sweep(name, specs, ds, outdir, written, seconds) -> None:
     import numpy as np
-    from rich.console import Console
     from rich.table import Table
 
-    console = Console(markup=False, highlight=False)
+    console = out_console()
     for recipe, spec in specs:
         what = "sweep" if recipe is None else f"paper {recipe.key}"
         dims = " x ".join(f"{v.key}[{len(v)}]" for v in spec.varies)
@@ -298,17 +322,16 @@ def _print_sweep(name, specs, ds, outdir, written, seconds) -> None:
         for key in _headline(specs[0][1].base_cfg):
             if key in ds and np.any(np.isfinite(ds[key].values)):
                 v = ds[key].values
-                table.add_row(key, f"{np.nanmin(v):.6g}", f"{np.nanmax(v):.6g}")
+                table.add_row(key, table_number(np.nanmin(v)), table_number(np.nanmax(v)))
         console.print(table)
     console.print(f"wrote {outdir}/: {', '.join(written)} in {seconds:.2f} s", highlight=False,
                   soft_wrap=True)  # fmt: skip
 
 
 def _print_tolerance(name, ds, stats, drawn, outdir) -> None:
-    from rich.console import Console
     from rich.table import Table
 
-    console = Console(markup=False, highlight=False)
+    console = out_console()
     console.print(f"{name}: {ds.attrs['samples']} samples, seed {ds.attrs['seed']}: "
                   f"{ds.attrs['tolerances']}", highlight=False, soft_wrap=True)  # fmt: skip
     table = Table()
@@ -318,7 +341,7 @@ def _print_tolerance(name, ds, stats, drawn, outdir) -> None:
         table.add_column(col, justify="right", no_wrap=True)
     for m in drawn:
         s = stats[m]
-        table.add_row(m, *(("-" if s[k] is None else f"{s[k]:.5g}") for k in cols))
+        table.add_row(m, *(("-" if s[k] is None else table_number(s[k], 5)) for k in cols))
     console.print(table)
     console.print(f"wrote {outdir}/: tolerance.json, tolerance.nc, tolerance_histograms.png, "
                   "README.txt", highlight=False, soft_wrap=True)  # fmt: skip

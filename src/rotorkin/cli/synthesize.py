@@ -19,11 +19,13 @@ import numpy as np
 import typer
 
 from rotorkin import __version__
+from rotorkin.cli.console import out_console, stages
 from rotorkin.cli.options import (
     ConfigArg,
     ExampleOpt,
     QuietOpt,
     SetOpt,
+    VerboseOpt,
     flag_names,
     out_option,
 )
@@ -77,6 +79,7 @@ def register(app) -> None:
             str | None,
             typer.Option(
                 "--objective",
+                metavar="NAME",
                 help=_objective_help(),
             ),
         ] = None,
@@ -84,6 +87,7 @@ def register(app) -> None:
             str | None,
             typer.Option(
                 "--target",
+                metavar="VALUE",
                 help=_target_help(),
             ),
         ] = None,
@@ -91,6 +95,7 @@ def register(app) -> None:
             int | None,
             typer.Option(
                 "--harmonics",
+                metavar="N",
                 help=_option_help(
                     "harmonics",
                     "Harmonics of the synthesized law: higher odd harmonics to optimise, or the "
@@ -102,6 +107,7 @@ def register(app) -> None:
             str | None,
             typer.Option(
                 "--max-pressure-angle",
+                metavar="ANGLE",
                 help=_option_help(
                     "max_pressure_angle",
                     'Bound on the peak pressure angle, 0 < angle < 90 deg (e.g. "55 deg"; '
@@ -111,6 +117,7 @@ def register(app) -> None:
         ] = None,
         out: out_option("./rotorkin-out/<name>-<objective>") = None,
         quiet: QuietOpt = False,
+        verbose: VerboseOpt = False,
     ):
         """Synthesize a design for an objective; compare it with the config's (the paper's)."""
 
@@ -126,7 +133,9 @@ def register(app) -> None:
             if max_pressure_angle is None
             else parse_quantity_arg(max_pressure_angle, "angle", "--max-pressure-angle")
         )
-        result = run_synthesis(cfg, raw, objective, target, harmonics, limit)
+        with stages("synthesize") as step:
+            step(f"synthesizing for {objective}")
+            result = run_synthesis(cfg, raw, objective, target, harmonics, limit)
         new_raw = synthesized_raw_config(raw, result.updates, objective)
         outdir = out if out is not None else Path("rotorkin-out") / f"{name}-{objective}"
         meta = {
@@ -136,7 +145,9 @@ def register(app) -> None:
             "target": target,
             "rotorkin_version": __version__,
         }
-        written = write_synthesis(result, new_raw, outdir, meta)
+        with stages("synthesize output") as step:
+            step("writing the outputs and drawing the figures")
+            written = write_synthesis(result, new_raw, outdir, meta)
         if not quiet:
             _print(result, outdir, written)
 
@@ -192,10 +203,9 @@ def write_synthesis(result, new_raw: dict, outdir: Path, meta: dict) -> list[Pat
 
 
 def _print(result, outdir, written):
-    from rich.console import Console
     from rich.table import Table
 
-    console = Console(markup=False, highlight=False)
+    console = out_console()
     console.print(result.title, highlight=False, soft_wrap=True)
     table = Table()
     table.add_column("metric")
