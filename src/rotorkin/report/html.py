@@ -269,8 +269,9 @@ def _player(scene, angle_label: str, symbol: str, period: float) -> str:
         f"<select id='speed'>{speeds}</select></label>"
         "</div>"
         "<div class='mini'><select id='mini-select' aria-label='curve in the small plot'>"
-        "</select><span id='mini-value'></span><svg id='mini-svg' role='img' "
-        "aria-label='the chosen curve over one period, with the player\u2019s angle'></svg>"
+        "</select><span id='mini-value'></span><div class='mini-plot'><svg id='mini-svg' "
+        "role='img' aria-label='the chosen curve over one period, with the player\u2019s "
+        "angle'></svg><div id='mini-cursor'></div><div id='mini-dot'></div></div>"
         "</div></div>"
     )
 

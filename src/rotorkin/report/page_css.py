@@ -45,7 +45,7 @@ li.error{border-color:#c62828;border-left-width:8px;background:#fff3f2}
 .badge{display:inline-block;min-width:72px;font-size:11px;font-weight:700;letter-spacing:.04em}
 li.ok .badge{color:#1e6b30}li.note .badge{color:#2b5d9b}li.warning .badge{color:#7d5700}
 li.error .badge{color:#a3221a}
-.player{position:sticky;top:0;z-index:30;background:rgba(255,255,255,.97);
+.player{position:sticky;top:0;z-index:30;contain:layout paint;background:rgba(255,255,255,.97);
 border-bottom:1px solid #d5d9e0;box-shadow:0 3px 8px rgba(0,0,0,.07);padding:6px 0 4px;
 margin:0 0 8px}
 .controls{display:flex;align-items:center;gap:6px 8px;flex-wrap:wrap}
@@ -58,17 +58,27 @@ border:1px solid #b8bec8;border-radius:5px;background:#f6f7f9;cursor:pointer;col
 .mini{display:grid;grid-template-columns:minmax(0,auto) minmax(0,1fr);gap:2px 10px;
 align-items:center;margin-top:4px}
 .mini select{font-size:12px;padding:1px 4px;max-width:100%}
-#mini-value{font-size:12.5px;font-variant-numeric:tabular-nums;color:#223;white-space:nowrap;
-overflow:hidden;text-overflow:ellipsis}
-#mini-svg{grid-column:1 / -1;width:100%;height:92px;display:block}
+#mini-value{display:block;height:1.5em;font-size:12.5px;font-variant-numeric:tabular-nums;
+color:#223;white-space:nowrap;overflow:hidden;text-overflow:ellipsis;contain:strict}
+.mini-plot{grid-column:1 / -1;position:relative;overflow:hidden}
+#mini-svg{width:100%;height:92px;display:block}
+#mini-cursor{position:absolute;left:0;top:0;width:0;border-left:1.5px dashed #222;
+will-change:transform;pointer-events:none}
+#mini-dot{position:absolute;left:-3.5px;top:-3.5px;width:7px;height:7px;border-radius:50%;
+background:#222;will-change:transform;pointer-events:none}
 #mini-svg .tick{font-size:10px;fill:#556}
 .readouts{display:flex;flex-wrap:wrap;gap:4px 18px;font-size:13px;color:#334;margin:6px 0}
-.ro-label{color:#667}.ro-value{font-weight:600;font-variant-numeric:tabular-nums}
+.ro-label{color:#667}.ro-value{display:inline-block;min-width:7.5ch;text-align:right;
+font-weight:600;font-variant-numeric:tabular-nums;contain:layout}
 .mech-row{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
-.mpanel{flex:0 0 auto;min-width:0;position:relative}
+.mpanel{flex:0 0 auto;min-width:0;position:relative;contain:layout paint}
 .mtitle{font-size:13px;color:#223;margin:0 0 2px;line-height:1.3}
-.msvg{display:block;max-width:100%;background:#fff;touch-action:pan-y}
-.mpanel-3d .msvg{cursor:grab;background:#fbfbfc;border:1px solid #eceef1}
+.mstack{position:relative;touch-action:pan-y}
+.msvg{display:block;max-width:100%;background:#fff}
+.msvg.anim{position:absolute;left:0;top:0;background:none;pointer-events:none;
+will-change:transform}
+.mpanel-3d .mstack{cursor:grab}.mpanel-3d .msvg{background:#fbfbfc}
+.mpanel-3d .msvg.anim{background:none}
 .mhint{position:absolute;right:6px;bottom:4px;font-size:11px;color:#889}
 .msvg .tick{font-size:10px;fill:#556}.msvg .atitle{font-size:11.5px;fill:#334}
 .msvg .mlabel{paint-order:stroke;stroke:#fff;stroke-width:3px;stroke-linejoin:round;
@@ -84,8 +94,8 @@ padding:2px 4px;cursor:pointer;color:#223;font:inherit;text-align:left}
 .plot-tools a{color:#1a5fb4}
 .failed{color:#a3221a;font-weight:600}
 details.ext{margin:4px 0}details.ext table{font-size:12.5px}
-.cursor{position:absolute;width:0;border-left:1.5px dashed rgba(20,20,20,.6);
-pointer-events:none;display:none}
+.cursor{position:absolute;left:0;top:0;width:0;border-left:1.5px dashed rgba(20,20,20,.6);
+pointer-events:none;display:none;will-change:transform}
 footer{margin-top:30px;color:#778;font-size:12px}
 @media (max-width:800px){.mpanel{width:100% !important}}
 @media (max-width:640px){

@@ -30,6 +30,14 @@ PAGE_JS = r"""
   var $ = function (id) { return document.getElementById(id); };
   // ---------------------------------------------------------------- the mechanism
   var scene = window.RKScene($("mechanism"), S);
+  // the mechanism is drawn only while on screen (a frame drawn off screen is wasted work)
+  var mechVisible = true, mechFrame = 0;
+  if (window.IntersectionObserver) {
+    new IntersectionObserver(function (es) {
+      mechVisible = es[es.length - 1].isIntersecting;
+      if (mechVisible && mechFrame !== R.frame) { scene.draw(R.frame); mechFrame = R.frame; }
+    }).observe($("mechanism"));
+  }
   R.scene = {id: "mechanism", animated: S.animated, frames: n, angles_deg: S.angles_deg,
              map: scene.map, view: scene.view};
   R.timing.mechanism = performance.now();
@@ -43,12 +51,15 @@ PAGE_JS = r"""
   function show(f) {
     f = ((f % n) + n) % n;
     R.frame = f;
-    scene.draw(f);
+    if (mechVisible) { scene.draw(f); mechFrame = f; }
     R.drawn++;
     slider.value = f;
     var a = S.angles_deg[f];
     if (document.activeElement !== angleIn) angleIn.value = a.toFixed(1);
-    S.readouts.forEach(function (r, k) { reads[k].textContent = fmt(r.values[f]); });
+    S.readouts.forEach(function (r, k) {
+      var text = fmt(r.values[f]);
+      if (reads[k].textContent !== text) reads[k].textContent = text;
+    });
     cursors.forEach(function (c) { c.to(a); });
     mini.to(a);
     return Promise.resolve(f);
@@ -100,6 +111,7 @@ PAGE_JS = r"""
   // ---------------------------------------------------------------- the small plot
   var mini = (function () {
     var svg = $("mini-svg"), sel = $("mini-select"), out = $("mini-value");
+    var cursorDiv = $("mini-cursor"), dotDiv = $("mini-dot");
     var curves = [];
     D.plots.forEach(function (p) {
       (p.curves || []).forEach(function (c) {
@@ -162,9 +174,9 @@ PAGE_JS = r"""
       }
       mk("path", {d: d, fill: "none", stroke: (t.line && t.line.color) || "#1f77b4",
                   "stroke-width": 1.6});
-      geo.cursor = mk("line", {y1: mt, y2: H - mb, stroke: "#222", "stroke-width": 1.2,
-                               "stroke-dasharray": "3 2"});
-      geo.dot = mk("circle", {r: 3, fill: "#222"});
+      // the cursor and the dot are HTML boxes moved by transforms: no repaint of the curve
+      cursorDiv.style.top = mt + "px";
+      cursorDiv.style.height = (H - mt - mb) + "px";
       to(S.angles_deg[R.frame]);
     }
     function value(a) {
@@ -183,12 +195,12 @@ PAGE_JS = r"""
       var x = geo.P ? ((a % geo.P) + geo.P) % geo.P : a;
       if (x < geo.x0) x += geo.P || 0;
       var X = geo.ml + (x - geo.x0) * geo.sx, y = value(x);
-      geo.cursor.setAttribute("x1", X);
-      geo.cursor.setAttribute("x2", X);
+      cursorDiv.style.transform = "translateX(" + X.toFixed(1) + "px)";
       if (y !== null) {
-        geo.dot.setAttribute("cx", X);
-        geo.dot.setAttribute("cy", geo.mt + (geo.hi - y) * geo.sy);
+        var Y = geo.mt + (geo.hi - y) * geo.sy;
+        dotDiv.style.transform = "translate(" + X.toFixed(1) + "px," + Y.toFixed(1) + "px)";
       }
+      geo.X = X;
       out.textContent = cur.name + " = " + (y === null ? "n/a" : fmt(y)) +
                         (cur.unit ? " " + cur.unit : "") +
                         " at " + S.angle_symbol + " = " + x.toFixed(1) + "\u00b0";
@@ -233,14 +245,19 @@ PAGE_JS = r"""
     var c = {el: el, period: p.cursor_period_deg, x: 0, div: document.createElement("div")};
     c.div.className = "cursor";
     el.appendChild(c.div);
-    c.place = function () {
+    c.place = function () {  // moved by a transform: the plot is not repainted
       var fl = el._fullLayout, ax = fl && fl.xaxis;
       if (!ax || !fl._size) return;
       var r = ax.range, inside = c.x >= Math.min(r[0], r[1]) && c.x <= Math.max(r[0], r[1]);
-      c.div.style.left = (ax._offset + ax.l2p(c.x)) + "px";
-      c.div.style.top = fl._size.t + "px";
-      c.div.style.height = fl._size.h + "px";
-      c.div.style.display = inside ? "block" : "none";
+      if (c.top !== fl._size.t || c.height !== fl._size.h) {
+        c.top = fl._size.t;
+        c.height = fl._size.h;
+        c.div.style.top = c.top + "px";
+        c.div.style.height = c.height + "px";
+      }
+      c.div.style.transform = "translateX(" + (ax._offset + ax.l2p(c.x)).toFixed(1) + "px)";
+      var shown = inside ? "block" : "none";
+      if (c.div.style.display !== shown) c.div.style.display = shown;
     };
     c.to = function (a) { c.x = ((a % c.period) + c.period) % c.period; c.place(); };
     el.on("plotly_afterplot", c.place);

@@ -74,11 +74,11 @@ def hover_template(name: str, values, unit: str, x_label: str = "", x_values=Non
     With ``x_values`` (an x-y plot, closest-point hover) the x value is written too.
     """
     fy = d3_format(values)
-    u = f" {unit}" if unit else ""
+    u = ("" if unit == "°" else " ") + unit if unit else ""
     if x_values is None:
         return f"{name}: %{{y:{fy}}}{u}<extra></extra>"
     fx = d3_format(x_values)
-    xu = f" {x_unit}" if x_unit else ""
+    xu = ("" if x_unit == "°" else " ") + x_unit if x_unit else ""
     return f"{name}<br>{x_label}: %{{x:{fx}}}{xu}<br>%{{y:{fy}}}{u}<extra></extra>"
 
 
@@ -164,27 +164,27 @@ def plot_csv(fig: dict, x_label: str = "") -> str:
     the axis label with its unit (``shaft angle θ [°]``), then ``trace name [unit]``.
     """
     layout = fig.get("layout") or {}
-    traces = [t for t in fig["data"] if t.get("y") is not None or t.get("z") is not None]
-    traces = [t for t in traces if t.get("meta") not in ("extremes", "limit")]
+    traces = [t for t in fig["data"] if t.get("type") in (None, "scatter", "scatter3d")]
+    traces = [t for t in traces if t.get("y") is not None and t.get("meta") is None]
     cols: list[tuple[str, np.ndarray]] = []
     xs = [_arr(t["x"]) for t in traces if t.get("x") is not None]
     shared = bool(xs) and all(a.shape == xs[0].shape and np.array_equal(a, xs[0], equal_nan=True)
                               for a in xs) and all(t.get("z") is None for t in traces)  # fmt: skip
     if shared:
-        first = traces[0]
-        xl = x_label or _title(layout.get(_axis_key(first.get("xaxis", "x")), {}))
-        cols.append((plain(pretty(xl)) or "x", xs[0]))
+        titles = [_title(a) for k, a in sorted(_axes(layout).items()) if k[0] == "x" and _title(a)]
+        xl = x_label or (titles[0] if titles else "x")
+        cols.append((plain(pretty(xl)), xs[0]))
     for t in traces:
         name = plain(pretty(t.get("name") or "trace"))
         keys = ("y",) if shared else tuple(k for k in "xyz" if t.get(k) is not None)
         for k in keys:
-            if t.get("type") in ("scatter3d", "surface", "mesh3d"):
-                unit = "mm"
+            if t.get("type") == "scatter3d":
+                unit, what = "mm", k
             else:
-                ref = t.get(f"{k}axis", k)
-                unit = unit_of(_title(layout.get(_axis_key(ref), {})))
-            head = name if shared else f"{name}: {k}"
-            cols.append((f"{head} [{plain(pretty(unit))}]" if unit else head, _arr(t[k]).ravel()))
+                label = plain(pretty(_title(layout.get(_axis_key(t.get(f"{k}axis", k)), {}))))
+                unit, what = unit_of(label), re.sub(r"\s*\[[^\]]*\]$", "", label) or k
+            head = f"{name}: {what}"
+            cols.append((f"{head} [{unit}]" if unit else head, _arr(t[k]).ravel()))
     n = max((len(c) for _, c in cols), default=0)
     lines = [",".join(_csv_cell(h) for h, _ in cols)]
     for r in range(n):
@@ -221,6 +221,16 @@ def _marker_trace(name, xs, ys, symbols, colors, texts, xref, yref, meta, legend
                        "line": {"color": "#000000", "width": 1}}}  # fmt: skip
 
 
+def _span(fig: dict, xkey: str) -> float:
+    """Span of the x data on an x axis (layout key ``xaxis2`` ...)."""
+    ref = "x" + xkey[5:]
+    xs = [
+        _arr(t["x"]) for t in fig["data"] if t.get("xaxis", "x") == ref and t.get("x") is not None
+    ]
+    xs = np.concatenate(xs) if xs else np.zeros(1)
+    return float(np.nanmax(xs) - np.nanmin(xs)) if np.isfinite(xs).any() else 360.0
+
+
 def angle_symbol(label: str) -> str:
     """The Greek letter naming the angle in an axis label (``"shaft angle β"`` -> ``β``)."""
     found = re.findall(r"[α-ωΑ-Ωϕ]", plain(label))
@@ -252,18 +262,21 @@ def prepare(plot, failed_checks=()) -> dict:
     title = layout.pop("title", None)
     heading = (title.get("text") if isinstance(title, dict) else title) or plot.title
     angle = plot.cursor_period_deg is not None
+    csv = plot_csv(fig)
     axes = _axes(layout)
     x_titles = [_title(a) for k, a in sorted(axes.items()) if k.startswith("x") and _title(a)]
     x_name = angle_symbol(pretty(x_titles[0] if x_titles else ""))
-    # labels: Greek letters and units; angle axes ticked by 90 deg
+    # labels: Greek letters and units; angle axes (and the axes matched to one) by 90 deg
+    degrees = {k for k, a in axes.items() if k[0] == "x" and unit_of(pretty(_title(a))) == "°"}
+    degrees |= {k for k, a in axes.items() if _axis_key(str(a.get("matches") or "z")) in degrees}
     for key, axis in axes.items():
         axis = layout[key] = dict(axis)
         text = pretty(_title(axis))
-        if angle and key.startswith("x") and unit_of(text) == "°":
+        if key in degrees:
             axis["ticksuffix"] = "°"
             axis["hoverformat"] = ".1f"
             text = re.sub(r"\s*\[°\]\s*$", "", text)
-            span = plot.cursor_period_deg
+            span = plot.cursor_period_deg or _span(fig, key)
             axis.update(tickmode="linear", tick0=0.0, dtick=angle_dtick(span))
         if text or "title" in axis:
             axis["title"] = {**(axis.get("title") or {}), "text": text} if isinstance(
@@ -277,7 +290,6 @@ def prepare(plot, failed_checks=()) -> dict:
         for b in menu.get("buttons") or []:
             b["label"] = pretty(b.get("label", ""))
     rows = extremes(fig) if angle else []
-    csv = plot_csv(fig)
     # traces: names, hover, dashes
     dash_k: dict[tuple, int] = {}
     curves = []
@@ -407,9 +419,11 @@ def _layout_for_page(layout: dict) -> None:
     layout["margin"] = margin
     layout["hoverlabel"] = {"namelength": -1, "font": {"size": 12}}
     layout.setdefault("font", {"size": 12})
-    legend = dict(layout.get("legend") or {})
-    legend.setdefault("font", {"size": 11})
-    layout["legend"] = legend
+    # the legend at the figure's bottom edge, below the x axis title: plotly widens the
+    # bottom margin to hold it (a legend placed in plot fractions lands on the title)
+    layout["legend"] = {"orientation": "h", "x": 0.0, "xanchor": "left", "yref": "container",
+                        "y": 0.0, "yanchor": "bottom", "font": {"size": 11},
+                        "tracegroupgap": 4}  # fmt: skip
 
 
 def format_extremes(rows: list[dict], x_symbol: str = "θ") -> str:

@@ -108,9 +108,17 @@ SCENE_JS = r"""
         h.innerHTML = p.title;
         p.box.appendChild(h);
       }
-      p.svg = el("svg", {"class": "msvg", role: "img"}, p.box);
+      // two stacked SVGs: the static traces and the grid below, the moving traces above in
+      // a layer of their own, so that a frame repaints only what moves
+      var stack = document.createElement("div");
+      stack.className = "mstack";
+      p.box.appendChild(stack);
+      p.svg = el("svg", {"class": "msvg", role: "img"}, stack);
+      p.svg2 = el("svg", {"class": "msvg anim", "aria-hidden": "true"}, stack);
       p.grid = el("g", {"class": "grid"}, p.svg);
       p.layer = el("g", {"class": "data"}, p.svg);
+      p.layer2 = el("g", {"class": "data"}, p.svg2);
+      p.stack = stack;
       if (p.kind === "3d") {
         p.hint = document.createElement("div");
         p.hint.className = "mhint";
@@ -184,14 +192,14 @@ SCENE_JS = r"""
     // ---- trace elements (created once, reused every frame)
     var nodes = data.map(function (t, i) {
       var p = panels.filter(function (q) { return q.traces.indexOf(i) >= 0; })[0];
-      var g = el("g", {"class": "tr", "data-trace": i}, p ? p.layer : null);
+      var g = el("g", {"class": "tr", "data-trace": i},
+                 p ? (A[i] === undefined ? p.layer : p.layer2) : null);
       var n = {g: g, panel: p, path: null, marks: null, texts: []};
       var mode = t.mode || (t.type === "mesh3d" ? "" : "lines");
       var line = t.line || {};
       if (t.type === "mesh3d") {
-        n.path = el("path", {fill: t.color || "#90a4ae", opacity: t.opacity || 1,
-                             stroke: t.color || "#90a4ae", "stroke-width": 0.8,
-                             "stroke-linejoin": "round"}, g);
+        n.path = el("path", {fill: t.color || "#90a4ae", "fill-opacity": t.opacity || 1,
+                             stroke: "none"}, g);
       } else if (mode.indexOf("lines") >= 0 || t.fill === "toself") {
         var w = line.width === undefined ? 2 : line.width;
         n.path = el("path", {fill: t.fill === "toself" ? (t.fillcolor || "#ccc") : "none",
@@ -240,18 +248,18 @@ SCENE_JS = r"""
       });
       P3.radius = R0 || 1;
       var drag = null;
-      P3.svg.addEventListener("pointerdown", function (ev) {
+      P3.stack.addEventListener("pointerdown", function (ev) {
         drag = {x: ev.clientX, y: ev.clientY, az: view.az, el: view.el};
-        P3.svg.setPointerCapture(ev.pointerId);
+        P3.stack.setPointerCapture(ev.pointerId);
       });
-      P3.svg.addEventListener("pointermove", function (ev) {
+      P3.stack.addEventListener("pointermove", function (ev) {
         if (!drag) return;
         view.az = drag.az - (ev.clientX - drag.x) * 0.01;
         view.el = Math.max(-1.5, Math.min(1.5, drag.el + (ev.clientY - drag.y) * 0.01));
         redraw3d();
       });
       ["pointerup", "pointercancel"].forEach(function (n) {
-        P3.svg.addEventListener(n, function () { drag = null; });
+        P3.stack.addEventListener(n, function () { drag = null; });
       });
     }
     function layout() {
@@ -286,9 +294,11 @@ SCENE_JS = r"""
           p.map = [sx, ox - xr[0] * sx, -sy, p.m.t + yr[1] * sy];
           p.w = w; p.h = h; p.xr = xr; p.yr = yr;
         }
-        p.svg.setAttribute("width", p.w);
-        p.svg.setAttribute("height", p.h);
-        p.svg.setAttribute("viewBox", "0 0 " + p.w + " " + p.h);
+        [p.svg, p.svg2].forEach(function (svg) {
+          svg.setAttribute("width", p.w);
+          svg.setAttribute("height", p.h);
+          svg.setAttribute("viewBox", "0 0 " + p.w + " " + p.h);
+        });
         if (p.kind === "2d") axes2d(p);
       });
       redrawAll();

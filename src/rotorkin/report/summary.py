@@ -33,7 +33,7 @@ TORQUE_SIGN_TEXT = {
 # definitions where the study's one-liner does not say how the number is computed
 _DEFINITIONS = {
     "torque_ripple": "(T<sub>max</sub> − T<sub>min</sub>) / |T<sub>mean</sub>| of the shaft "
-    "torque over one period, inertia not included (analysis.torque.torque_ripple)",
+    "torque over one period, inertia not included",
     "torque_ripple_with_inertia": "(T<sub>max</sub> − T<sub>min</sub>) / |T<sub>mean</sub>| "
     "of the shaft torque with the inertia torque, over one period",
     "flow_ripple": "(Q<sub>max</sub> − Q<sub>min</sub>) / Q<sub>mean</sub> of the delivered "

@@ -218,16 +218,19 @@ def _superscript(n: int) -> str:
 def d3_format(values, digits: int = 4) -> str:
     """A d3 number format giving ``digits`` significant digits at the scale of ``values``.
 
-    Fixed decimals for curves whose largest magnitude lies between 1e-3 and 1e5 (so that
-    a value near zero on a curve reaching 36.7 reads ``0.01``, not ``0.0123456``),
-    exponent notation otherwise. Never plotly's SI suffixes (``217.6M``).
+    Fixed decimals for curves whose largest magnitude lies between 1e-3 and 10**digits (so
+    that a value near zero on a curve reaching 36.7 reads ``0.01``, not ``0.0123456``),
+    rounded integers up to 1e6 (``30,650``), exponent notation otherwise. Never plotly's SI
+    suffixes (``217.6M``).
     """
     a = np.asarray(values, dtype=float)
     a = a[np.isfinite(a)]
     big = float(np.max(np.abs(a))) if a.size else 0.0
     if big == 0.0:
         return ".1f"
-    if 1e-3 <= big < 1e5:
+    if 1e-3 <= big < 10**digits:
         decimals = max(0, digits - 1 - int(math.floor(math.log10(big))))
         return f",.{decimals}f"
+    if 10**digits <= big < 1e6:  # 30646.9 -> "30,650": 4 significant digits, no exponent
+        return f",.{digits}r"
     return f".{digits - 1}e"
