@@ -261,7 +261,9 @@ def test_report_in_browser(name, size, browser, reports, shots, record_property)
         browser.execute_script("return document.getElementById('rotorkin-data').textContent")
     )
     drawn = browser.execute_script("return ROTORKIN.plots.map(p => p.id)")
-    assert sorted(drawn) == sorted(p["id"] for p in data["plots"])
+    deferred = browser.execute_script("return ROTORKIN.deferred")
+    assert sorted(drawn + deferred) == sorted(p["id"] for p in data["plots"])
+    assert set(deferred) == {p["id"] for p in data["plots"] if p["kind"] == "3d"}
 
     # no horizontal overflow: the page fits the window, wide tables scroll in their box
     sw, iw = browser.execute_script(
@@ -364,11 +366,33 @@ return {x: texts('.xaxislayer-above .xtick text'), y: texts('.yaxislayer-above .
                     .filter(p => (p.getAttribute('d') || '').length > 20).length};
 """
 
-_HOVER = """
-const gd = document.getElementById(arguments[0]);
-Plotly.Fx.hover(gd, {xval: arguments[1]}, arguments[2]);
-return Array.from(gd.querySelectorAll('.hoverlayer text')).map(t => t.textContent).join(' | ');
-"""
+
+def _mouse(browser, x, y, click=False):
+    """A real mouse event at window coordinates (CDP: no scrolling to the element first)."""
+    kinds = ("mouseMoved", "mousePressed", "mouseReleased") if click else ("mouseMoved",)
+    for kind in kinds:
+        browser.execute_cdp_cmd(
+            "Input.dispatchMouseEvent",
+            {"type": kind, "x": x, "y": y, "button": "left" if click else "none", "clickCount": 1},
+        )
+
+
+def _hover_text(browser, pid, fx, fy):
+    """Move the mouse to (fx, fy) of a plot's last panel; the hover box's texts."""
+    box = browser.execute_script(
+        "const gd = document.getElementById(arguments[0]);"
+        "gd.scrollIntoView({block: 'center'});"
+        "const all = gd.querySelectorAll('.nsewdrag');"
+        "const r = all[all.length - 1].getBoundingClientRect();"
+        "return [r.left, r.top, r.width, r.height]",
+        pid,
+    )
+    _mouse(browser, box[0] + fx * box[2], box[1] + fy * box[3])
+    script = (
+        f"return Array.from(document.querySelectorAll('#{pid} .hoverlayer text'))"
+        ".map(t => t.textContent).join(' | ')"
+    )
+    return _wait(browser, script, 5, "a hover box")
 
 
 def _number(label):  # plotly draws minus signs as U+2212
@@ -389,8 +413,7 @@ def test_drawn_labels_and_hover(browser, reports):
     assert named == list(range(1, 9)), legend
     assert [_number(t) for t in pressure["x"]] == [0, 90, 180, 270, 360], pressure["x"]
     # hover on the jerk row: the full name, the unit, 4 significant digits, no SI suffix
-    browser.execute_script("document.getElementById('plot-svaj').scrollIntoView()")
-    text = browser.execute_script(_HOVER, "plot-svaj", 100.0, "xy4")
+    text = _hover_text(browser, "plot-svaj", 0.3, 0.9)
     assert "rotor 1" in text and "rotor 2" in text and "rad/s³" in text, text
     values = re.findall(r"[−-]?[\d.,]+(?:e[+−-]?\d+)?(?= rad/s³)", text)
     assert values, text
@@ -422,12 +445,39 @@ def test_wobble_view_switch_and_drag(browser, reports):
     from selenium.webdriver.common.by import By
 
     _open(browser, reports["wobble-cam-engine"], 1400, 1000)
-    browser.execute_script("document.getElementById('box-plot-sphere').scrollIntoView()")
+    assert browser.execute_script("return ROTORKIN.deferred") == ["plot-sphere"]
+    # a WebGL plot is drawn when it comes near the screen, and purged when it leaves
+    browser.execute_script(
+        "const b = document.getElementById('box-plot-sphere');"
+        "window.scrollTo(0, b.getBoundingClientRect().top + scrollY - 300)"
+    )
+    _wait(
+        browser,
+        "return ROTORKIN.plots.some(p => p.id === 'plot-sphere')",
+        30,
+        "the 3D plot to be drawn near the screen",
+    )
+    gl = browser.execute_script(
+        "const c = document.querySelector('#plot-sphere canvas');"
+        "return c ? [c.width, c.height] : null"
+    )
+    assert gl and min(gl) > 100, gl
+    time.sleep(0.5)
     y0 = browser.execute_script("return scrollY")
-    buttons = browser.find_elements(By.CSS_SELECTOR, "#plot-sphere .updatemenu-button")
+    buttons = browser.execute_script(
+        "return Array.from(document.querySelectorAll('#plot-sphere .updatemenu-button'))"
+        ".map(b => { const r = b.getBoundingClientRect(); return [r.left + r.width / 2, "
+        "r.top + r.height / 2]; })"
+    )
     assert len(buttons) == 2
-    ActionChains(browser).move_to_element(buttons[1]).click().perform()
-    time.sleep(1.0)
+    _mouse(browser, *buttons[1], click=True)  # the grooves in the cam frame
+    _wait(
+        browser,
+        "return document.getElementById('plot-sphere').data.slice(-4).every(t => t.visible)",
+        10,
+        "the view switch",
+    )
+    time.sleep(0.5)
     y1 = browser.execute_script("return scrollY")
     assert abs(y1 - y0) <= 5, f"the page jumped {y1 - y0} px"
     title_box = browser.execute_script(
@@ -451,3 +501,6 @@ def test_wobble_view_switch_and_drag(browser, reports):
         panel,
     )
     assert sum(a != b for a, b in zip(before, after, strict=True)) >= len(before) // 2
+    assert browser.execute_script("return !ROTORKIN.plots.some(p => p.id === 'plot-sphere')"), (
+        "the WebGL plot is purged far from the screen"
+    )

@@ -18,11 +18,12 @@ summary shows at once, not after 5 MB of script). Nothing comes from the network
   tabulated, failed checks drawn, a CSV link each; a cursor at the player's angle.
 
 For tests and curious users the page exposes ``window.ROTORKIN``: ``ready``
-(true once everything is drawn), ``plots`` (``id``, ``traces``, ``kind`` per drawn
-plot), ``scene`` (the animated trace indices, frame count, ``map(trace)`` of a 2D
-trace's data to SVG pixels), ``frame``, ``playing``, ``drawn`` (frames drawn),
-``timing`` [ms since navigation], ``errors`` (uncaught script errors) and
-``show(f)`` (draw frame ``f``, returns a promise).
+(true once the mechanism and every 2D plot are drawn), ``plots`` (``id``, ``traces``,
+``kind`` per drawn plot), ``deferred`` (the WebGL plots, drawn only while near the
+screen: their render loop would slow the player down), ``scene`` (the animated trace
+indices, frame count, ``map(trace)`` of a 2D trace's data to SVG pixels), ``frame``,
+``playing``, ``drawn`` (frames drawn), ``timing`` [ms since navigation], ``errors``
+(uncaught script errors) and ``show(f)`` (draw frame ``f``, returns a promise).
 """
 
 from __future__ import annotations
@@ -142,7 +143,7 @@ def render_report(result, cfg, raw, meta, frames: int = FRAMES) -> str:
             "figure": _plain(_pretty_scene(scene.figure)),
             "kind": _kind(scene.figure["data"]),
             "animated": scene.animated,
-            "frames": scene.frames,
+            "frames": _pretty_frames(scene),
             "angles_deg": scene.angles_deg,
             "angle_label": angle_label,
             "angle_symbol": symbol,
@@ -279,10 +280,15 @@ def _player(scene, angle_label: str, symbol: str, period: float) -> str:
 def _readouts(scene) -> str:
     reads = "".join(
         f"<span class='ro'><span class='ro-label'>{pretty(esc(r['label']))}</span> "
-        f"<span class='ro-value' data-i='{k}'></span> {pretty(esc(r['unit']))}</span>"
+        f"<span class='ro-value' data-i='{k}'></span>{_unit(r['unit'])}</span>"
         for k, r in enumerate(scene.readouts)
     )
     return f"<div class='readouts'>{reads}</div>"
+
+
+def _unit(unit: str) -> str:
+    u = pretty(esc(unit))
+    return "" if not u else u if u == "°" else f"\u2009{u}"
 
 
 def _plot_box(x: dict) -> str:
@@ -325,6 +331,22 @@ def _pretty_scene(fig: dict) -> dict:
     layout["annotations"] = [{**a, "text": pretty(a.get("text", ""))}
                              for a in layout.get("annotations") or []]  # fmt: skip
     return fig
+
+
+def _pretty_frames(scene) -> list:
+    """The frames with their text labels in the page's style (``cm3`` -> ``cm³``, Greek)."""
+    cache: dict[str, str] = {}
+
+    def one(text):
+        if text not in cache:
+            cache[text] = pretty(text)
+        return cache[text]
+
+    out = []
+    for frame in scene.frames:
+        out.append([{**d, "text": [one(t) for t in d["text"]]} if "text" in d else d
+                    for d in frame])  # fmt: skip
+    return out
 
 
 def _kind(traces) -> str:

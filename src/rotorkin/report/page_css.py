@@ -68,8 +68,8 @@ will-change:transform;pointer-events:none}
 background:#222;will-change:transform;pointer-events:none}
 #mini-svg .tick{font-size:10px;fill:#556}
 .readouts{display:flex;flex-wrap:wrap;gap:4px 18px;font-size:13px;color:#334;margin:6px 0}
-.ro-label{color:#667}.ro-value{display:inline-block;min-width:7.5ch;text-align:right;
-font-weight:600;font-variant-numeric:tabular-nums;contain:layout}
+.ro-label{color:#667}.ro-value{display:inline-block;min-width:6.5ch;text-align:right;
+font-weight:600;font-variant-numeric:tabular-nums}
 .mech-row{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
 .mpanel{flex:0 0 auto;min-width:0;position:relative;contain:layout paint}
 .mtitle{font-size:13px;color:#223;margin:0 0 2px;line-height:1.3}

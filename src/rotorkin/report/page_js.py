@@ -6,12 +6,14 @@ Order of work, so that the text and tables show at once and the page never freez
 2. the mechanism is drawn as SVG by :data:`rotorkin.report.scene_js.SCENE_JS` and the
    player works at once (it does not need plotly);
 3. plotly.js, embedded as inert text at the end of the page, is then started from a
-   Blob URL, and the plots are drawn one per task, those nearest the screen first.
+   Blob URL, and the plots are drawn one per task, those nearest the screen first;
+   WebGL plots only while they are near the screen (their render loop runs on every
+   animation frame and would halve the player's frame rate in software rendering).
 
 Playback runs by elapsed time (``requestAnimationFrame``): the frame shown is the
 one the clock has reached at the chosen speed, so a slow machine skips frames
 instead of slowing down. ``window.ROTORKIN`` exposes ``ready``, ``errors``,
-``plots``, ``scene``, ``frame``, ``playing``, ``drawn`` (frames drawn),
+``plots``, ``deferred``, ``scene``, ``frame``, ``playing``, ``drawn`` (frames drawn),
 ``timing`` and ``show(frame)`` (returns a promise) for scripts and tests.
 """
 
@@ -20,7 +22,7 @@ PAGE_JS = r"""
   "use strict";
   var t0 = performance.now();
   var R = window.ROTORKIN = {ready: false, errors: [], plots: [], scene: null, frame: 0,
-                             playing: false, drawn: 0, timing: {script: t0}};
+                             playing: false, drawn: 0, deferred: [], timing: {script: t0}};
   window.addEventListener("error", function (ev) { R.errors.push(String(ev.message)); });
   window.addEventListener("unhandledrejection", function (ev) {
     R.errors.push("unhandled rejection: " + String(ev.reason));
@@ -55,7 +57,7 @@ PAGE_JS = r"""
     R.drawn++;
     slider.value = f;
     var a = S.angles_deg[f];
-    if (document.activeElement !== angleIn) angleIn.value = a.toFixed(1);
+    if (!typing) angleIn.value = a.toFixed(1);
     S.readouts.forEach(function (r, k) {
       var text = fmt(r.values[f]);
       if (reads[k].textContent !== text) reads[k].textContent = text;
@@ -66,7 +68,7 @@ PAGE_JS = r"""
   }
   R.show = show;
   // ---------------------------------------------------------------- the player
-  var playing = false, raf = null, clock = null;
+  var playing = false, raf = null, clock = null, typing = false;
   function base() { return parseFloat(speedSel.value) || 1; }
   function loop(now) {
     if (!playing) return;
@@ -93,6 +95,7 @@ PAGE_JS = r"""
     show(parseInt(slider.value, 10));
   });
   function toAngle() {
+    typing = false;
     var a = parseFloat(String(angleIn.value).replace(",", "."));
     if (!isFinite(a)) return;
     a = ((a % period) + period) % period;
@@ -101,6 +104,8 @@ PAGE_JS = r"""
     show(Math.round(a / step) % n);
     angleIn.value = S.angles_deg[R.frame].toFixed(1);
   }
+  angleIn.addEventListener("input", function () { typing = true; });
+  angleIn.addEventListener("blur", function () { typing = false; });
   angleIn.addEventListener("change", toAngle);
   angleIn.addEventListener("keydown", function (ev) { if (ev.key === "Enter") toAngle(); });
   // the player's height, for anchors scrolled under it
@@ -282,14 +287,43 @@ PAGE_JS = r"""
       el._drawn = true;
       if (p.cursor_period_deg) cursorFor(p, el);
       R.plots.push({id: p.id, traces: p.figure.data.length, kind: p.kind});
+      R.timing["drawn " + p.id] = performance.now();
     });
   }
   function distance(p) {
     var r = $(p.id).getBoundingClientRect(), h = window.innerHeight;
     return r.bottom < 0 ? -r.bottom : r.top > h ? r.top - h : 0;
   }
+  // WebGL plots run a render loop of their own on every animation frame, which halves the
+  // player's frame rate in software rendering: they live only while near the screen (drawn
+  // when they come within half a screen, purged when they leave it; the box keeps its height)
+  function liveNearScreen(p) {
+    var el = $(p.id), busy = false, want = false;
+    R.deferred.push(p.id);
+    function settle() {
+      if (busy) return;
+      if (want && !el._drawn) {
+        busy = true;
+        drawPlot(p).then(function () { busy = false; settle(); },
+                         function (e) { busy = false; R.errors.push(p.id + ": " + String(e)); });
+      } else if (!want && el._drawn) {
+        Plotly.purge(el);
+        el._drawn = false;
+        R.plots = R.plots.filter(function (q) { return q.id !== p.id; });
+      }
+    }
+    new IntersectionObserver(function (es) {
+      want = es[es.length - 1].isIntersecting;
+      settle();
+    }, {rootMargin: "50% 0px 50% 0px"}).observe(el);
+  }
   function drawAll() {
-    var left = D.plots.slice();
+    var left = D.plots.filter(function (p) { return p.kind !== "3d"; });
+    if (window.IntersectionObserver) {
+      D.plots.forEach(function (p) { if (p.kind === "3d") liveNearScreen(p); });
+    } else {
+      left = D.plots.slice();
+    }
     function next() {
       if (!left.length) {
         R.timing.plots = performance.now();

@@ -283,6 +283,8 @@ def prepare(plot, failed_checks=()) -> dict:
                 axis.get("title"), dict) else {"text": text}  # fmt: skip
         axis.setdefault("exponentformat", "power")
         axis["automargin"] = True
+        if key[0] == "x":  # clear of the lowest y tick label at the corner
+            axis["ticklabelstandoff"] = 6
     axes = _axes(layout)
     for ann in layout.get("annotations") or []:
         ann["text"] = pretty(ann.get("text", ""))
