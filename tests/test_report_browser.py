@@ -37,13 +37,14 @@ import pytest
 
 from rotorkin import __version__
 from rotorkin.drives import evaluate
-from rotorkin.io.config import load_config
+from rotorkin.io.config import example_names, load_config
 from rotorkin.report.html import write_report
 
 pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
 CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
 EXAMPLES = ["wobble-cam-engine", "eccentric-reactor", "guide-bar-pump", "rhomboid-engine"]
+OTHERS = [n for n in example_names() if n not in EXAMPLES]  # drives with the generic scene
 SIZES = [(400, 800), (1400, 1000)]
 LOAD_TIMEOUT = 90.0
 MIN_FPS = 10.0
@@ -68,7 +69,7 @@ def shots():
 @pytest.fixture(scope="module")
 def reports(tmp_path_factory):
     out = {}
-    for name in EXAMPLES:
+    for name in EXAMPLES + OTHERS:
         cfg, raw, cname = load_config(None, name, [])
         meta = {"name": cname, "drive_type": cfg["drive"]["type"], "rotorkin_version": __version__}
         out[name] = write_report(
@@ -504,3 +505,24 @@ def test_wobble_view_switch_and_drag(browser, reports):
     assert browser.execute_script("return !ROTORKIN.plots.some(p => p.id === 'plot-sphere')"), (
         "the WebGL plot is purged far from the screen"
     )
+
+
+@pytest.mark.parametrize("name", OTHERS)
+def test_other_examples_on_a_phone(name, browser, reports, shots):
+    """The drives without a scene of their own (the generic one): drawn, no overflow, no
+    overlapping text, the player moves the members."""
+    _open(browser, reports[name], 400, 800)
+    sw, iw = browser.execute_script(
+        "return [document.documentElement.scrollWidth, window.innerWidth]"
+    )
+    assert sw <= iw, f"page {sw} px wide in a {iw} px window"
+    bad = _overlaps(json.loads(browser.execute_script(_BOXES)))
+    assert bad == [], bad[:6]
+    browser.execute_script("document.getElementById('animation').scrollIntoView()")
+    time.sleep(0.2)  # the mechanism is drawn while on screen
+    browser.execute_script("return ROTORKIN.show(0)")
+    before = json.loads(browser.execute_script(_PATHS))
+    browser.execute_script("return ROTORKIN.show(17)")
+    after = json.loads(browser.execute_script(_PATHS))
+    assert after["frame"] == 17 and after["paths"] != before["paths"]
+    _shot(browser, shots / f"{name}-400-mechanism.png")

@@ -174,7 +174,8 @@ def render_report(result, cfg, raw, meta, frames: int = FRAMES) -> str:
         "<p class='hint'>Our values at this config; beside them the paper's value where the "
         "paper gives one for this config: <i>printed</i> = a number the paper prints for its own "
         "case, <i>formula</i> = the paper's closed-form equation evaluated at this config. "
-        f"Shaft torque: {TORQUE_SIGN_TEXT[sign]}. Values within 10<sup>−9</sup> of the "
+        f"Shaft torque, {TORQUE_SIGN_TEXT[sign].removeprefix('sign: ')}. Values within "
+        "10<sup>−9</sup> of the "
         "largest value of the same unit are round-off and shown as 0.</p>",
         summary_tables(result, papers, sign),
         "</section>",

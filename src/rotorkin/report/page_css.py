@@ -45,7 +45,7 @@ li.error{border-color:#c62828;border-left-width:8px;background:#fff3f2}
 .badge{display:inline-block;min-width:72px;font-size:11px;font-weight:700;letter-spacing:.04em}
 li.ok .badge{color:#1e6b30}li.note .badge{color:#2b5d9b}li.warning .badge{color:#7d5700}
 li.error .badge{color:#a3221a}
-.player{position:sticky;top:0;z-index:30;contain:layout paint;background:rgba(255,255,255,.97);
+.player{position:sticky;top:0;z-index:30;contain:layout paint;background:#fff;
 border-bottom:1px solid #d5d9e0;box-shadow:0 3px 8px rgba(0,0,0,.07);padding:6px 0 4px;
 margin:0 0 8px}
 .controls{display:flex;align-items:center;gap:6px 8px;flex-wrap:wrap}

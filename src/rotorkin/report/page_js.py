@@ -206,8 +206,7 @@ PAGE_JS = r"""
         dotDiv.style.transform = "translate(" + X.toFixed(1) + "px," + Y.toFixed(1) + "px)";
       }
       geo.X = X;
-      out.textContent = cur.name + " = " + (y === null ? "n/a" : fmt(y)) +
-                        (cur.unit ? " " + cur.unit : "") +
+      out.textContent = (y === null ? "n/a" : fmt(y)) + (cur.unit ? " " + cur.unit : "") +
                         " at " + S.angle_symbol + " = " + x.toFixed(1) + "\u00b0";
     }
     sel.addEventListener("change", draw);
@@ -346,7 +345,13 @@ PAGE_JS = r"""
     var s = document.createElement("script");
     s.src = url;
     s.onload = function () { R.timing.plotly = performance.now(); drawAll(); };
-    s.onerror = function () { R.errors.push("plotly.js did not load"); };
+    s.onerror = function () {  // Blob URLs refused (a strict viewer): run it as an inline script
+      var inline = document.createElement("script");
+      inline.text = src.textContent;
+      document.body.appendChild(inline);
+      if (window.Plotly) { R.timing.plotly = performance.now(); drawAll(); }
+      else R.errors.push("plotly.js did not load");
+    };
     document.body.appendChild(s);
   }
   // start plotly once the text has been painted (or after half a second at most)

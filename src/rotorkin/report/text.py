@@ -82,6 +82,12 @@ def _greek(m: re.Match) -> str:
     return sym + "′" * len(m.group(2)) + sub + "′" * len(m.group(4))
 
 
+_DGREEK_RE = re.compile(
+    r"(?<![\w.])d({})(?!\w)".format("|".join(sorted(_GREEK, key=len, reverse=True)))
+)
+_DSUB_RE = re.compile(r"(?<![\w.])d([A-Za-z])_([0-9]{1,2})(?!\w)")
+
+
 def pretty(text: str) -> str:
     """Greek letters, subscripts and one unit style in a label (HTML in, HTML out).
 
@@ -93,7 +99,9 @@ def pretty(text: str) -> str:
     """
     if not text:
         return text
-    out = _GREEK_RE.sub(_greek, str(text))
+    out = _DGREEK_RE.sub(lambda m: "d" + _GREEK[m.group(1)], str(text))  # dtheta -> dθ
+    out = _DSUB_RE.sub(lambda m: "d" + m.group(1) + _sub(m.group(2)), out)  # dq_1 -> dq₁
+    out = _GREEK_RE.sub(_greek, out)
     out = _SUB_RE.sub(
         lambda m: m.group(1) + "′" * len(m.group(2)) + _sub(m.group(3)) + "′" * len(m.group(4)),
         out,
