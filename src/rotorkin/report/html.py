@@ -322,6 +322,8 @@ def _pretty_scene(fig: dict) -> dict:
     for t in fig["data"]:
         if t.get("name"):
             t["name"] = pretty(esc(t["name"]))
+        if isinstance(t.get("text"), list):
+            t["text"] = [pretty(str(v)) for v in t["text"]]
     layout = fig["layout"]
     for k, v in list(layout.items()):
         if (k.startswith(("xaxis", "yaxis")) or k == "scene") and isinstance(v, dict):
