@@ -61,7 +61,7 @@ align-items:center;margin-top:4px}
 #mini-value{display:block;height:1.5em;font-size:12.5px;font-variant-numeric:tabular-nums;
 color:#223;white-space:nowrap;overflow:hidden;text-overflow:ellipsis;contain:strict}
 .mini-plot{grid-column:1 / -1;position:relative;overflow:hidden}
-#mini-svg{width:100%;height:92px;display:block}
+#mini-svg{width:100%;height:92px;display:block;will-change:transform}
 #mini-cursor{position:absolute;left:0;top:0;width:0;border-left:1.5px dashed #222;
 will-change:transform;pointer-events:none}
 #mini-dot{position:absolute;left:-3.5px;top:-3.5px;width:7px;height:7px;border-radius:50%;

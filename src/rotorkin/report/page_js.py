@@ -50,11 +50,11 @@ PAGE_JS = r"""
     return (Math.abs(v) >= 1000 ? v.toFixed(0) : v.toPrecision(4)).replace("-", "\u2212");
   }
   var cursors = [];
-  function show(f) {
-    f = ((f % n) + n) % n;
-    R.frame = f;
-    if (mechVisible) { scene.draw(f); mechFrame = f; }
-    R.drawn++;
+  // numbers and the slider are rewritten at most 8 times a second while playing (nobody reads
+  // faster, and every rewrite repaints them): the moving parts follow every frame
+  var lastText = -1e9;
+  function texts(f, now) {
+    lastText = now;
     slider.value = f;
     var a = S.angles_deg[f];
     if (!typing) angleIn.value = a.toFixed(1);
@@ -62,8 +62,17 @@ PAGE_JS = r"""
       var text = fmt(r.values[f]);
       if (reads[k].textContent !== text) reads[k].textContent = text;
     });
-    cursors.forEach(function (c) { c.to(a); });
+    mini.text(a);
+  }
+  function show(f, now) {
+    f = ((f % n) + n) % n;
+    R.frame = f;
+    if (mechVisible) { scene.draw(f); mechFrame = f; }
+    R.drawn++;
+    var a = S.angles_deg[f];
+    cursors.forEach(function (c) { if (c.visible) c.to(a); });
     mini.to(a);
+    if (now === undefined || now - lastText > 120) texts(f, now === undefined ? -1e9 : now);
     return Promise.resolve(f);
   }
   R.show = show;
@@ -74,7 +83,7 @@ PAGE_JS = r"""
     if (!playing) return;
     if (clock === null) clock = {t: now, f: R.frame};
     var f = Math.floor(clock.f + (now - clock.t) / 1000 * n / S.seconds_per_period * base()) % n;
-    if (f !== R.frame) show(f);
+    if (f !== R.frame) show(f, now);
     raf = requestAnimationFrame(loop);
   }
   function setPlaying(on) {
@@ -84,7 +93,11 @@ PAGE_JS = r"""
     clock = null;
     playBtn.innerHTML = on ? "&#10073;&#10073; Pause" : "&#9654; Play";
     playBtn.setAttribute("aria-pressed", on ? "true" : "false");
-    if (on) raf = requestAnimationFrame(loop); else if (raf) cancelAnimationFrame(raf);
+    if (on) raf = requestAnimationFrame(loop);
+    else {
+      if (raf) cancelAnimationFrame(raf);
+      texts(R.frame, -1e9);  // the numbers of the frame it stopped at
+    }
   }
   playBtn.addEventListener("click", function () { setPlaying(!playing); });
   speedSel.addEventListener("change", function () { clock = null; });
@@ -182,7 +195,7 @@ PAGE_JS = r"""
       // the cursor and the dot are HTML boxes moved by transforms: no repaint of the curve
       cursorDiv.style.top = mt + "px";
       cursorDiv.style.height = (H - mt - mb) + "px";
-      to(S.angles_deg[R.frame]);
+      text(S.angles_deg[R.frame]);
     }
     function value(a) {
       var t = cur.plot.figure.data[cur.trace], xs = t.x, ys = t.y;
@@ -205,12 +218,18 @@ PAGE_JS = r"""
         var Y = geo.mt + (geo.hi - y) * geo.sy;
         dotDiv.style.transform = "translate(" + X.toFixed(1) + "px," + Y.toFixed(1) + "px)";
       }
-      geo.X = X;
+      geo.x = x;
+      geo.y = y;
+    }
+    function text(a) {
+      if (!cur || !geo) return;
+      to(a);
+      var y = geo.y;
       out.textContent = (y === null ? "n/a" : fmt(y)) + (cur.unit ? " " + cur.unit : "") +
-                        " at " + S.angle_symbol + " = " + x.toFixed(1) + "\u00b0";
+                        " at " + S.angle_symbol + " = " + geo.x.toFixed(1) + "\u00b0";
     }
     sel.addEventListener("change", draw);
-    return {draw: draw, to: to};
+    return {draw: draw, to: to, text: text};
   })();
   // ---------------------------------------------------------------- resizing
   var resizeTimer = null;
@@ -265,6 +284,13 @@ PAGE_JS = r"""
     };
     c.to = function (a) { c.x = ((a % c.period) + c.period) % c.period; c.place(); };
     el.on("plotly_afterplot", c.place);
+    c.visible = true;
+    if (window.IntersectionObserver) {  // a cursor off screen waits until it is seen
+      new IntersectionObserver(function (es) {
+        c.visible = es[es.length - 1].isIntersecting;
+        if (c.visible) c.to(S.angles_deg[R.frame]);
+      }).observe(el);
+    }
     c.to(S.angles_deg[R.frame]);
     cursors.push(c);
   }

@@ -126,6 +126,17 @@ def _arr(v) -> np.ndarray:
                       dtype=float)  # fmt: skip
 
 
+def _first_extreme(y: np.ndarray, largest: bool) -> int:
+    """Index of the first sample at the largest (smallest) value of ``y``, NaN ignored.
+
+    Within 1e-9 of the span counts as the extreme: a periodic curve meets its peak again
+    in every cycle and at the period's end, equal but for round-off.
+    """
+    top, bottom = np.nanmax(y), np.nanmin(y)
+    tol = 1e-9 * (top - bottom)
+    return int(np.argmax(y >= top - tol) if largest else np.argmax(y <= bottom + tol))
+
+
 def extremes(fig: dict) -> list[dict]:
     """Largest and smallest value of every non-constant curve, and the x where it occurs.
 
@@ -146,9 +157,7 @@ def extremes(fig: dict) -> list[dict]:
         span = top - bottom
         if span <= 1e-12 * max(abs(top), abs(bottom), 1e-300):
             continue  # a constant line (a mean, a limit): nothing to mark
-        # the first sample at the extreme (a periodic curve meets it again at the period's end)
-        hi = int(np.argmax(yv >= top - 1e-9 * span))
-        lo = int(np.argmax(yv <= bottom + 1e-9 * span))
+        hi, lo = _first_extreme(yv, True), _first_extreme(yv, False)
         label = _title(layout.get(_axis_key(t.get("yaxis", "y")), {}))
         out.append({"trace": i, "name": t.get("name") or "", "panel": label,
                     "unit": unit_of(label), "max": float(y[hi]), "x_max": float(x[hi]),
@@ -392,8 +401,9 @@ def _draw_failed(fig: dict, failed_checks, angle: bool) -> list[str]:
             best = None
             for t in on:
                 y = _arr(t["y"])
-                j = int(np.nanargmax(y) if check.upper else np.nanargmin(y))
-                if best is None or (y[j] > best[1] if check.upper else y[j] < best[1]):
+                j = _first_extreme(y, check.upper)
+                worse = best is None or (y[j] > best[1] if check.upper else y[j] < best[1])
+                if worse and not (best is not None and abs(y[j] - best[1]) <= 1e-9 * abs(y[j])):
                     best = (float(_arr(t["x"])[j]), float(y[j]), t.get("name", ""))
             where = f" at {best[0]:.1f}°" if angle else ""
             text = (f"FAILS: {check.name}: {number(best[1])} {check.unit} ({plain(best[2])})"

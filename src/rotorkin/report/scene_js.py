@@ -49,9 +49,6 @@ SCENE_JS = r"""
               .replace(/&gt;/g, ">");
     });
   }
-  function pretty(s) {  // the report's label style for the legend (Python: report.text.pretty)
-    return window.RKPretty ? window.RKPretty(s) : s;
-  }
 
   function RKScene(root, S) {
     var L = S.figure.layout, data = S.figure.data, A = {};
@@ -145,7 +142,7 @@ SCENE_JS = r"""
       swatch(t, sw);
       b.appendChild(sw);
       var s = document.createElement("span");
-      s.innerHTML = pretty(t.name);
+      s.innerHTML = t.name;  // names and titles come in the page's style
       b.appendChild(s);
       b.addEventListener("click", function () {
         hidden[key] = !hidden[key];
@@ -342,12 +339,12 @@ SCENE_JS = r"""
           label({x: p.m.l - 4, y: Y + 3.5, "text-anchor": "end", "class": "tick"}, num(v));
         }
       }
-      var xt = textOf(pretty(title(p.xa))).join(" ");
+      var xt = textOf(title(p.xa)).join(" ");
       if (xt) {
         label({x: p.m.l + 0.5 * (p.w - p.m.l - p.m.r), y: p.h - 6, "text-anchor": "middle",
                "class": "atitle"}, xt);
       }
-      var yt = textOf(pretty(title(p.ya))).join(" ");
+      var yt = textOf(title(p.ya)).join(" ");
       if (yt && p.yaxes) {
         var yc = p.m.t + 0.5 * (p.h - p.m.t - p.m.b);
         label({x: 11, y: yc, "text-anchor": "middle", transform: "rotate(-90 11 " + yc + ")",
