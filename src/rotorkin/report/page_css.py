@@ -30,6 +30,10 @@ th,td{border-bottom:1px solid #e6e8eb;padding:5px 10px;text-align:left;vertical-
 th{background:#f1f3f6;white-space:nowrap}
 td.num,th.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
 td.q{min-width:14em;max-width:30em}td.q .label{display:block;font-weight:600}
+#summary-table td.q,#summary-table th:first-child{position:sticky;left:0;z-index:1;
+background:#fff;box-shadow:1px 0 0 #e6e8eb}
+#summary-table th:first-child{background:#f1f3f6}
+#summary-table tr.disagree td.q{background:#fff3f2}
 td.q .def{display:block;color:#556;font-size:12px}
 td.src{min-width:12em;max-width:22em;font-size:12.5px;color:#445}
 .unit{color:#445}
@@ -106,7 +110,9 @@ body{font-size:14px}
 #play-button{min-width:5.4em}
 #angle-slider{flex-basis:100%;order:9}
 #mini-svg{height:64px}
-.mini{grid-template-columns:minmax(0,1fr)}
-td.q{min-width:11em}
+.mini{grid-template-columns:minmax(0,1fr) 11.5em}
+.mini select{font-size:11.5px}#mini-value{font-size:12px}
+.speed-word{display:none}
+td.q{min-width:10em;max-width:13em}
 }
 """
