@@ -171,8 +171,8 @@ for (const p of ROTORKIN.plots) {
                                                                           'html'));
 }
 const mech = document.getElementById('mechanism');
-mech.querySelectorAll('.mtitle, .mlegend .li, .msvg text').forEach(el => add('mechanism', el,
-  el.classList.contains('mlabel') ? 'label' : el.tagName));
+mech.querySelectorAll('.mtitle, .mstate, .mlegend .li, .msvg text')
+  .forEach(el => add('mechanism', el, el.classList.contains('mlabel') ? 'label' : el.tagName));
 document.querySelectorAll('#player button, #player input, #player select, #mini-value')
   .forEach(el => add('player', el, 'control'));
 document.querySelectorAll('h1, h2, nav a, .readouts .ro').forEach(el => add('page', el, 'html'));

@@ -77,6 +77,8 @@ font-weight:600;font-variant-numeric:tabular-nums}
 .mech-row{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
 .mpanel{flex:0 0 auto;min-width:0;position:relative;contain:layout paint}
 .mtitle{font-size:13px;color:#223;margin:0 0 2px;line-height:1.3}
+.mstate{font-size:12.5px;color:#223;margin:0 0 2px;font-variant-numeric:tabular-nums;
+min-height:2.6em;contain:layout paint}
 .mstack{position:relative;touch-action:pan-y}
 .msvg{display:block;max-width:100%;background:#fff}
 .msvg.anim{position:absolute;left:0;top:0;background:none;pointer-events:none;
@@ -85,8 +87,7 @@ will-change:transform}
 .mpanel-3d .msvg.anim{background:none}
 .mhint{position:absolute;right:6px;bottom:4px;font-size:11px;color:#889}
 .msvg .tick{font-size:10px;fill:#556}.msvg .atitle{font-size:11.5px;fill:#334}
-.msvg .mlabel{paint-order:stroke;stroke:#fff;stroke-width:3px;stroke-linejoin:round;
-font-variant-numeric:tabular-nums}
+.msvg .mlabel{font-variant-numeric:tabular-nums}
 .mlegend{display:flex;flex-wrap:wrap;gap:2px 6px;margin:6px 0 0;font-size:12.5px}
 .mlegend .li{display:inline-flex;align-items:center;gap:4px;border:0;background:none;
 padding:2px 4px;cursor:pointer;color:#223;font:inherit;text-align:left}

@@ -210,7 +210,18 @@ SCENE_JS = r"""
         n.marks = el("path", {fill: color(mk.color), stroke: ml.color || null,
                               "stroke-width": ml.width || null, "class": "js-markers"}, g);
       }
-      if (mode.indexOf("text") >= 0) { n.textLayer = g; }
+      if (mode.indexOf("text") >= 0) {
+        var count = ((A[i] === undefined ? t.text : S.frames[0][A[i]].text) || []).length;
+        if (count === 1 && p) {
+          // a single label (the state of the machine) is a line of HTML under the panel's
+          // title: it wraps on a phone instead of lying over the drawing
+          n.caption = document.createElement("div");
+          n.caption.className = "mstate";
+          p.box.insertBefore(n.caption, p.stack);
+        } else {
+          n.textLayer = g;
+        }
+      }
       return n;
     });
     // ---- geometry of the panels
@@ -262,8 +273,10 @@ SCENE_JS = r"""
     function layout() {
       var cw = row.clientWidth || 800, narrow = cw < 800, gap = 12;
       var total = panels.reduce(function (s, p) { return s + (p.domain[1] - p.domain[0]); }, 0);
-      var maxH = Math.max(220, Math.min((L.height || 520) - 50,
-                                        0.75 * (window.innerHeight || 800)));
+      // at most 480 px high (and 60 % of the window): the drawing stays in view with the
+      // player, and a frame repaints fewer pixels
+      var maxH = Math.max(220, Math.min((L.height || 520) - 50, 480,
+                                        0.6 * (window.innerHeight || 800)));
       panels.forEach(function (p) {
         var share = (p.domain[1] - p.domain[0]) / total;
         var w = narrow ? cw : Math.floor((cw - gap * (panels.length - 1)) * share);
@@ -409,6 +422,11 @@ SCENE_JS = r"""
           if (q && sz > 0) dm += symbol(mk.symbol, +q[0].toFixed(2), +q[1].toFixed(2), sz / 2);
         }
         n.marks.setAttribute("d", dm);
+      }
+      if (n.caption) {
+        var one = String((c.text || [""])[0]);
+        if (n.caption._s !== one) { n.caption._s = one; n.caption.innerHTML = one; }
+        n.caption.style.display = isHidden(t) ? "none" : "";
       }
       if (n.textLayer) {
         var tf = t.textfont || {}, texts = c.text || [];
