@@ -151,6 +151,7 @@ def _significant(text: str, fmt: str = "f") -> int:
         ("vane angle gamma_0 at 45 deg", "vane angle γ₀ at 45°"),
         ("+-e cos beta", "±e cos β"),
         ("M7 dq_1/dtheta + M8 dq_2/dtheta", "M7 dq₁/dθ + M8 dq₂/dθ"),
+        ("limit &lt;= 250 bar, >= 0 mm", "limit ≤ 250 bar, ≥ 0 mm"),
         ("machine.vane_angle and shaft_torque_Nm", "machine.vane_angle and shaft_torque_Nm"),
     ],
 )

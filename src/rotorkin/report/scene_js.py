@@ -280,6 +280,7 @@ SCENE_JS = r"""
       panels.forEach(function (p) {
         var share = (p.domain[1] - p.domain[0]) / total;
         var w = narrow ? cw : Math.floor((cw - gap * (panels.length - 1)) * share);
+        w = Math.min(w, 960);  // a wide drawing is no clearer beyond this, only slower
         p.box.style.width = w + "px";
         var h;
         if (p.kind === "3d") {

@@ -60,6 +60,8 @@ _UNITS = [  # (pattern, replacement), in order
     (re.compile(r"(\d)\s?deg\b"), r"\1°"),
     (re.compile(r"\bdeg\b(?=/)"), "°"),
     (re.compile(r"\+-"), "±"),
+    (re.compile(r"(?:<|&lt;)="), "≤"),
+    (re.compile(r"(?:>|&gt;)="), "≥"),
     (re.compile(r"->"), "→"),
 ]
 _SUPER = {"2": "²", "3": "³"}
@@ -140,7 +142,7 @@ _KEY_UNITS = {
     "Hz": "Hz", "m_per_s": "m/s", "m_per_s2": "m/s²", "m_per_s3": "m/s³",
     "mm_per_rad": "mm/rad", "mm_per_rad2": "mm/rad²", "mm_per_rad3": "mm/rad³",
     "rad_per_s": "rad/s", "rad_per_s2": "rad/s²", "rad_per_s3": "rad/s³",
-    "per_rev": "per turn", "per_period": "1/period", "per_m": "1/m", "kg": "kg",
+    "per_rev": "per turn", "per_period": "per period", "per_m": "1/m", "kg": "kg",
 }  # fmt: skip
 _SUFFIXES = sorted(_KEY_UNITS, key=lambda s: -s.count("_"))
 _QUALIFIERS = {"max", "min", "mean", "peak", "ratio"}
