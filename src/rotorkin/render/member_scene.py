@@ -144,7 +144,7 @@ def _machine_plots(cols: dict) -> list:
         if "shaft_torque_with_inertia_Nm" in cols:
             series.append(("with inertia", cols["shaft_torque_with_inertia_Nm"]))
         out.append(lines_plot("plot-torque", "Shaft torque", x, "shaft angle theta [deg]",
-                              [("torque [N m]", series)],
+                              [("torque [N*m]", series)],
                               "Torque of the machine on the shaft, + drives it",
                               period=float(x[-1] - x[0])))  # fmt: skip
     return out

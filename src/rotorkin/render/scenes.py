@@ -48,14 +48,17 @@ __all__ = [  # fmt: skip
     "GREY",
 ]
 
-#: Colours of member 1 and member 2 (the matplotlib figures' C0 and C3).
-COLOR_1 = "#1f77b4"
-COLOR_2 = "#d62728"
+#: Colours of member 1 and member 2: blue and vermilion, told apart by colour-blind readers.
+COLOR_1 = "#0072b2"
+COLOR_2 = "#d55e00"
 #: Neutral colour: casing, hub, edges, ghost lines.
 GREY = "#7f7f7f"
 
-_PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2",
-            "#17becf", "#bcbd22", "#7f7f7f")  # fmt: skip
+#: Line colours of the plots, in turn: Okabe and Ito's palette for colour-blind readers
+#: (blue, vermilion, bluish green, reddish purple, orange, sky blue, black, yellow); the
+#: report also gives each curve of a panel its own dash.
+_PALETTE = ("#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#000000",
+            "#b8a500")  # fmt: skip
 
 
 # --------------------------------------------------------------------------------------------
@@ -99,7 +102,10 @@ class Plot:
 
     ``cursor_period_deg``: when the plot's x axis is the input angle in degrees,
     the period of that axis; the page then draws a vertical cursor at the slider's
-    angle (modulo the period). ``None`` for other plots.
+    angle (modulo the period). ``None`` for other plots. ``torque_sign``: +1 when
+    the plot's shaft torque is positive as the study's ``shaft_torque_*`` columns
+    (the machine drives the shaft), -1 when it shows the torque the motor must
+    supply (a pump); the report's summary table then takes the same convention.
     """
 
     id: str
@@ -107,6 +113,7 @@ class Plot:
     figure: object
     caption: str = ""
     cursor_period_deg: float | None = None
+    torque_sign: int = 1
 
 
 @dataclass
@@ -619,9 +626,11 @@ def torque_plot(cols, x, x_label, rows, heading, period, supplied=False, caption
         *rows,
         ("with inertia [N*m]", [("inertia torque", cols["inertia_torque_Nm"]), net]),
     ]
-    return lines_plot(
+    plot = lines_plot(
         "plot-torque", "Shaft torque", x, x_label, rows, heading, period, caption=caption
     )
+    plot.torque_sign = -1 if supplied else 1
+    return plot
 
 
 def mean_trace(x, mean, what: str = "mean") -> tuple:
