@@ -412,7 +412,23 @@ def _refine_min(fun, theta0, step):
 
 
 def sharpest_bend(drive: wc.WobbleCam, roller: int | None = None):
-    """Largest ``|kappa_g|`` over the grooves: ``(kappa_max [1/m], theta [rad], roller)``."""
+    """Largest ``|kappa_g|`` over the grooves: ``(kappa_max [1/m], theta [rad], roller)``.
+
+    Remembered per drive (the last 512; a drive of arrays is not remembered): a sweep
+    checks every design of one drive with its own machine and cam sizes.
+    """
+    try:
+        return _sharpest_bend_remembered(drive, roller)
+    except TypeError:  # a drive holding arrays cannot be a key
+        return _sharpest_bend(drive, roller)
+
+
+@functools.lru_cache(maxsize=512)
+def _sharpest_bend_remembered(drive: wc.WobbleCam, roller: int | None):
+    return _sharpest_bend(drive, roller)
+
+
+def _sharpest_bend(drive: wc.WobbleCam, roller: int | None):
     period = groove_period(drive)
     theta = np.linspace(0.0, period, _SEARCH_SAMPLES, endpoint=False)
     k = np.abs(geodesic_curvature(drive, theta))
