@@ -51,6 +51,7 @@ __all__ = [
     "chunks",
     "compiled_loop",
     "default_threads",
+    "evaluate",
     "formula",
     "kernel_choice",
     "numba_available",
@@ -123,11 +124,13 @@ def _setup_numba():
 
         @numba.extending.overload(at, inline="always")
         def _at(x, i):
+            if isinstance(x, types.Array) and x.ndim == 0:
+                return lambda x, i: x[()]
             if isinstance(x, types.Array):
                 return lambda x, i: x[i]
             return lambda x, i: x
 
-        @numba.extending.overload(select, inline="always")
+        @numba.extending.overload(select)
         def _select(flag, a, b):
             def impl(flag, a, b):
                 return a if flag else b
@@ -343,6 +346,64 @@ def chunks(arrays: dict, flat: bool, lo: int, hi: int, block: int = BLOCK):
         it.iternext()
 
 
-def size_of(shape) -> int:
-    """Number of points of a shape."""
-    return math.prod(shape)
+def evaluate(
+    inputs: dict, outputs: int, block, *, threads=None, kernel=None, out=None, constants=None
+):
+    """Evaluate a closed form with ``outputs`` values per point, block by block.
+
+    Parameters
+    ----------
+    inputs : dict of str -> array_like
+        The inputs that may vary per point (broadcast together).
+    outputs : int
+        Values per point.
+    block : callable
+        ``block(x, o, compiled)``: fill ``o`` (``outputs``, m) from ``x`` (name ->
+        number or block of m values) with the numpy path or, when ``compiled``,
+        the compiled loops.
+    threads : int, optional
+        Threads sharing the blocks (:func:`split`).
+    kernel : {"auto", "numpy", "numba"}, optional
+        :func:`use_compiled`.
+    out : ndarray, optional
+        ``(outputs, *shape)`` float64, C-contiguous, to write into.
+    constants : (callable, tuple of str), optional
+        ``(fn, names)``: ``fn(x)`` returns a dict of values derived from the inputs
+        ``names`` (numbers or blocks), merged into ``x``; computed once per call when
+        none of ``names`` varies per point, else once per block.
+
+    Returns
+    -------
+    ndarray, shape (outputs, ...)
+        ``...`` the broadcast shape of the inputs.
+    """
+    shape, scalars, arrays, flat = prepare(inputs)
+    size = math.prod(shape)
+    if out is None:
+        out = np.empty((outputs, *shape))
+    elif not (
+        isinstance(out, np.ndarray)
+        and out.dtype == np.float64
+        and out.shape == (outputs, *shape)
+        and out.flags.c_contiguous
+        and out.flags.writeable
+    ):
+        want = (outputs, *shape)
+        raise ValueError(f"out: expected a writeable C-contiguous float64 array {want}")
+    if size == 0:
+        return out
+    compiled = use_compiled(size, kernel)
+    flat_out = out.reshape(outputs, size)
+    derive, names = constants if constants is not None else (None, ())
+    per_block = derive is not None and any(name in arrays for name in names)
+    fixed = derive(scalars) if derive is not None and not per_block else {}
+
+    def run(lo, hi):
+        for start, stop, chunk in chunks(arrays, flat, lo, hi):
+            x = {**scalars, **chunk, **fixed}
+            if per_block:
+                x.update(derive(x))
+            block(x, flat_out[:, start:stop], compiled)
+
+    split(run, size, threads)
+    return out
