@@ -57,10 +57,8 @@ def atan_argument(c, s, lam, guide):
 def driven_rates_point(c, s, lam, k, guide):
     """``f', f'', f'''`` of the driven member w.r.t. its driving angle.
 
-    ``k = lambda (1 - lambda^2)``;
-
-    Crank-driven ``g' = (1 + lambda c)/D``, ``g'' = k s/D^2``,
-    ``g''' = k (D c + 4 lambda s^2)/D^3``, ``D = 1 + 2 lambda c + lambda^2``;
+    With ``k = lambda (1 - lambda^2)``: crank-driven ``g' = (1 + lambda c)/D``,
+    ``g'' = k s/D^2``, ``g''' = k (D c + 4 lambda s^2)/D^3``, ``D = 1 + 2 lambda c + lambda^2``;
     guide-driven ``h' = 1 + lambda c/W``, ``h'' = -k s/W^3``,
     ``h''' = -k c (1 + 2 lambda^2 s^2)/W^5``.
     """
