@@ -5,7 +5,8 @@
   so that a change of load on a shared machine hits all of them alike and
   their *ratios* stay meaningful;
 * :func:`peak_rss` -- peak resident memory of this process;
-* :func:`machine` -- cores, CPU, numpy/python versions and the load average;
+* :func:`machine` -- cores, CPU, vector instruction sets, numpy/python/numba versions and
+  the load average;
 * :func:`write_json` -- write a result file atomically.
 """
 
@@ -21,7 +22,16 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["best_of", "interleaved", "peak_rss", "load", "machine", "write_json"]
+__all__ = [
+    "best_of",
+    "interleaved",
+    "peak_rss",
+    "load",
+    "machine",
+    "vector_isa",
+    "git_commit",
+    "write_json",
+]
 
 
 def best_of(fn, repeat: int = 5) -> float:
@@ -91,8 +101,46 @@ def _cpu_model() -> str:
     return platform.processor() or "unknown"
 
 
+def vector_isa() -> list:
+    """The vector instruction sets of the CPU among avx, avx2, fma, avx512f (``/proc/cpuinfo``)."""
+    try:
+        text = Path("/proc/cpuinfo").read_text()
+    except OSError:
+        return []
+    for line in text.splitlines():
+        if line.startswith("flags"):
+            flags = set(line.split(":", 1)[1].split())
+            return [f for f in ("avx", "avx2", "fma", "avx512f") if f in flags]
+    return []
+
+
+def _numba_version():
+    try:
+        import numba
+    except ImportError:
+        return None
+    return numba.__version__
+
+
+def git_commit():
+    """The commit of the working tree (``git rev-parse HEAD``), or None."""
+    import subprocess
+
+    try:
+        out = subprocess.run(
+            ["git", "rev-parse", "HEAD"],
+            cwd=Path(__file__).resolve().parent,
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+    except (OSError, subprocess.CalledProcessError):
+        return None
+    return out.stdout.strip()
+
+
 def machine() -> dict:
-    """The machine a result was measured on: cores, CPU, memory, versions and load."""
+    """The machine a result was measured on: cores, CPU, vector ISA, memory, versions, load."""
     try:
         usable = len(os.sched_getaffinity(0))
     except AttributeError:
@@ -105,9 +153,11 @@ def machine() -> dict:
         "cores": os.cpu_count(),
         "usable_cores": usable,
         "cpu": _cpu_model(),
+        "vector_isa": vector_isa(),
         "memory_bytes": mem,
         "python": platform.python_version(),
         "numpy": np.__version__,
+        "numba": _numba_version(),
         "platform": platform.platform(),
         "load_average": load(),
     }

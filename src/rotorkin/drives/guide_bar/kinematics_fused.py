@@ -49,8 +49,7 @@ def half_angle_trig(t):
 def atan_argument(c, s, lam, guide):
     """The driven angle minus the driving angle is the arctangent of this (see module)."""
     ls = lam * s
-    w = np.sqrt(1.0 - ls * ls)
-    return select(guide, ls / w, -ls / (1.0 + lam * c))
+    return select(guide, ls / np.sqrt(1.0 - ls * ls), -ls / (1.0 + lam * c))
 
 
 @formula
@@ -60,19 +59,22 @@ def driven_rates_point(c, s, lam, k, guide):
     With ``k = lambda (1 - lambda^2)``: crank-driven ``g' = (1 + lambda c)/D``,
     ``g'' = k s/D^2``, ``g''' = k (D c + 4 lambda s^2)/D^3``, ``D = 1 + 2 lambda c + lambda^2``;
     guide-driven ``h' = 1 + lambda c/W``, ``h'' = -k s/W^3``,
-    ``h''' = -k c (1 + 2 lambda^2 s^2)/W^5``.
+    ``h''' = -k c (1 + 2 lambda^2 s^2)/W^5``. One division per law (reciprocals).
     """
-    dd = 1.0 + 2.0 * lam * c + lam * lam
-    g1 = (1.0 + lam * c) / dd
-    g2 = k * s / (dd * dd)
-    g3 = k * (dd * c + 4.0 * lam * (s * s)) / (dd * dd * dd)
+    lc = lam * c
+    dd = 1.0 + 2.0 * lc + lam * lam
+    r = 1.0 / dd
+    r2 = r * r
+    g1 = (1.0 + lc) * r
+    g2 = k * s * r2
+    g3 = k * (dd * c + 4.0 * lam * (s * s)) * (r2 * r)
     ls = lam * s
-    w2 = 1.0 - ls * ls
-    w = np.sqrt(w2)
-    w3 = w2 * w
-    h1 = 1.0 + lam * c / w
-    h2 = -(k * s) / w3
-    h3 = -(k * c) * (1.0 + 2.0 * (ls * ls)) / (w3 * w2)
+    iw = 1.0 / np.sqrt(1.0 - ls * ls)
+    iw2 = iw * iw
+    iw3 = iw2 * iw
+    h1 = 1.0 + lc * iw
+    h2 = -(k * s) * iw3
+    h3 = -(k * c) * (1.0 + 2.0 * (ls * ls)) * (iw3 * iw2)
     return select(guide, h1, g1), select(guide, h2, g2), select(guide, h3, g3)
 
 
@@ -87,45 +89,40 @@ def _atan_loop(t1, t2, lam, guide, r1, r2):
 
 
 @compiled_loop
-def _angle_loop(x1, x2, t1, t2, e1, e2, lam, k, guide, u, u1, u2, u3, o0, o1, o2, o3, o4, o5, o6,
+def _angle_loop(x1, x2, t1, t2, e1, e2, lam, k, guide, iu, w1, w2, w3, o0, o1, o2, o3, o4, o5, o6,
                 o7):  # fmt: skip
     for i in range(o0.shape[0]):
         c1, s1 = half_angle_trig(t1[i])
         c2, s2 = half_angle_trig(t2[i])
         la, kk, gd = at(lam, i), at(k, i), at(guide, i)
-        uu, v1, v2, v3 = at(u, i), at(u1, i), at(u2, i), at(u3, i)
+        iuu, v1, v2, v3 = at(iu, i), at(w1, i), at(w2, i), at(w3, i)
         f1, f2, f3 = driven_rates_point(c1, s1, la, kk, gd)
-        o0[i] = (x1[i] + e1[i]) / uu
-        o2[i], o4[i], o6[i] = f1 / v1, f2 / v2, f3 / v3
+        o0[i] = (x1[i] + e1[i]) * iuu
+        o2[i], o4[i], o6[i] = f1 * v1, f2 * v2, f3 * v3
         f1, f2, f3 = driven_rates_point(c2, s2, la, kk, gd)
-        o1[i] = (x2[i] + e2[i]) / uu
-        o3[i], o5[i], o7[i] = f1 / v1, f2 / v2, f3 / v3
+        o1[i] = (x2[i] + e2[i]) * iuu
+        o3[i], o5[i], o7[i] = f1 * v1, f2 * v2, f3 * v3
 
 
 @compiled_loop
-def _rate_loop(t1, t2, lam, k, guide, u1, u2, u3, o0, o1, o2, o3, o4, o5):
+def _rate_loop(t1, t2, lam, k, guide, w1, w2, w3, o0, o1, o2, o3, o4, o5):
     for i in range(o0.shape[0]):
         c1, s1 = half_angle_trig(t1[i])
         c2, s2 = half_angle_trig(t2[i])
         la, kk, gd = at(lam, i), at(k, i), at(guide, i)
-        v1, v2, v3 = at(u1, i), at(u2, i), at(u3, i)
+        v1, v2, v3 = at(w1, i), at(w2, i), at(w3, i)
         f1, f2, f3 = driven_rates_point(c1, s1, la, kk, gd)
-        o0[i], o2[i], o4[i] = f1 / v1, f2 / v2, f3 / v3
+        o0[i], o2[i], o4[i] = f1 * v1, f2 * v2, f3 * v3
         f1, f2, f3 = driven_rates_point(c2, s2, la, kk, gd)
-        o1[i], o3[i], o5[i] = f1 / v1, f2 / v2, f3 / v3
+        o1[i], o3[i], o5[i] = f1 * v1, f2 * v2, f3 * v3
 
 
 def _constants(x):
-    """Per-design values: ``k = lambda (1 - lambda^2)``, ``u i12^n``."""
+    """Per-design values: ``k = lambda (1 - lambda^2)``, ``1/u``, ``1/(u i12^n)``."""
     lam, u, i12 = x["lam"], x["u"], x["i12"]
-    u1 = u * i12
-    u2 = u1 * i12
-    return {
-        "k": lam * (1.0 - lam * lam),
-        "u1": u1,
-        "u2": u2,
-        "u3": u2 * i12,
-    }
+    w1 = 1.0 / (u * i12)
+    w2 = w1 / i12
+    return {"k": lam * (1.0 - lam * lam), "iu": 1.0 / u, "w1": w1, "w2": w2, "w3": w2 / i12}
 
 
 _CONSTANT_INPUTS = ("lam", "u", "i12")
@@ -145,7 +142,7 @@ def _angle_block(x, o, compiled):
     m = o.shape[1]
     xs, t = _driving(x, m)
     design = (x["lam"], x["k"], x["guide"])
-    scale = (x["u"], x["u1"], x["u2"], x["u3"])
+    scale = (x["iu"], x["w1"], x["w2"], x["w3"])
     if compiled:
         e = np.empty((2, m))
         _atan_loop(t[0], t[1], x["lam"], x["guide"], e[0], e[1])
@@ -156,17 +153,17 @@ def _angle_block(x, o, compiled):
     c2, s2 = half_angle_trig(t[1])
     e1 = np.arctan(atan_argument(c1, s1, x["lam"], x["guide"]))
     e2 = np.arctan(atan_argument(c2, s2, x["lam"], x["guide"]))
-    o[0] = (xs[0] + e1) / x["u"]
-    o[1] = (xs[1] + e2) / x["u"]
+    o[0] = (xs[0] + e1) * x["iu"]
+    o[1] = (xs[1] + e2) * x["iu"]
     for mech, (c, s) in enumerate(((c1, s1), (c2, s2))):
         for order, f in enumerate(driven_rates_point(c, s, *design), start=1):
-            o[2 * order + mech] = f / scale[order]
+            o[2 * order + mech] = f * scale[order]
 
 
 def _rate_block(x, o, compiled):
     _, t = _driving(x, o.shape[1])
     design = (x["lam"], x["k"], x["guide"])
-    scale = (x["u1"], x["u2"], x["u3"])
+    scale = (x["w1"], x["w2"], x["w3"])
     if compiled:
         _rate_loop(t[0], t[1], *design, *scale, *o)
         return
@@ -174,11 +171,11 @@ def _rate_block(x, o, compiled):
     c2, s2 = half_angle_trig(t[1])
     for mech, (c, s) in enumerate(((c1, s1), (c2, s2))):
         for order, f in enumerate(driven_rates_point(c, s, *design)):
-            o[2 * order + mech] = f / scale[order]
+            o[2 * order + mech] = f * scale[order]
 
 
 def impellers_fused(lam, gear_ratio, input_gear_ratio, phase, guide, theta, *, angles=True,
-                    threads=None, kernel=None):  # fmt: skip
+                    threads=None, kernel=None, out=None):  # fmt: skip
     """Impeller angles and derivatives (or the derivatives alone), block by block.
 
     Parameters
@@ -195,6 +192,8 @@ def impellers_fused(lam, gear_ratio, input_gear_ratio, phase, guide, theta, *, a
         Threads for large inputs (:func:`rotorkin.core.fused.split`).
     kernel : {"auto", "numpy", "numba"}, optional
         :func:`rotorkin.core.fused.use_compiled`.
+    out : ndarray, optional
+        Float64 C-contiguous array of the result's shape to write into.
 
     Returns
     -------
@@ -217,6 +216,7 @@ def impellers_fused(lam, gear_ratio, input_gear_ratio, phase, guide, theta, *, a
         _angle_block if angles else _rate_block,
         threads=threads,
         kernel=kernel,
+        out=None if out is None else out.reshape(2 * orders, *out.shape[2:]),
         constants=(_constants, _CONSTANT_INPUTS),
     )
     return res.reshape(orders, 2, *res.shape[1:])

@@ -105,7 +105,7 @@ def _block(x, o, compiled):
 
 
 def motion_fused(lobes, rotor_lobes, eccentricity, pa, beta, root, sigma, offset, theta, *,
-                 threads=None, kernel=None):  # fmt: skip
+                 threads=None, kernel=None, out=None):  # fmt: skip
     """Angles of both rotors and their derivatives, block by block.
 
     Parameters
@@ -124,6 +124,8 @@ def motion_fused(lobes, rotor_lobes, eccentricity, pa, beta, root, sigma, offset
         Threads for large inputs (:func:`rotorkin.core.fused.split`).
     kernel : {"auto", "numpy", "numba"}, optional
         :func:`rotorkin.core.fused.use_compiled`.
+    out : ndarray, optional
+        ``(4, 2, ...)`` float64 C-contiguous array to write into.
 
     Returns
     -------
@@ -141,5 +143,6 @@ def motion_fused(lobes, rotor_lobes, eccentricity, pa, beta, root, sigma, offset
         "sigma": sigma,
         "offset": offset,
     }
-    res = evaluate(inputs, 8, _block, threads=threads, kernel=kernel)
+    flat_out = None if out is None else out.reshape(8, *out.shape[2:])
+    res = evaluate(inputs, 8, _block, threads=threads, kernel=kernel, out=flat_out)
     return res.reshape(4, 2, *res.shape[1:])

@@ -24,9 +24,27 @@ import numpy as np
 
 from rotorkin.core.fused import at, compiled_loop, evaluate, formula
 
-__all__ = ["law_fused", "psi_point"]
+__all__ = ["blades_point", "first_harmonic_point", "law_fused", "psi_point"]
 
 _HALF_PI = 0.5 * np.pi
+
+
+@formula
+def first_harmonic_point(t, a1, b1):
+    """``cos 2alpha``, ``sin 2alpha`` from ``t = tan alpha``, and the first harmonic's part.
+
+    Returns ``c1, s1, f0 = a1 c1 + b1 s1, f1 = b1 c1 - a1 s1``.
+    """
+    d = 1.0 / (t * t + 1.0)
+    c1 = (1.0 - t) * (1.0 + t) * d
+    s1 = 2.0 * t * d
+    return c1, s1, a1 * c1 + b1 * s1, b1 * c1 - a1 * s1
+
+
+@formula
+def psi_from(f0, f1, hc, hs, hc2, hs3):
+    """``psi`` and its derivatives from the first harmonic's and the higher ones' sums."""
+    return _HALF_PI + f0 + hc, 2.0 * f1 + hs, -4.0 * f0 - hc2, -8.0 * f1 - hs3
 
 
 @formula
@@ -36,11 +54,7 @@ def psi_point(t, a1, b1, ak, bk, wk):
     ``a1``, ``b1``: the first harmonic; ``ak``, ``bk``: the higher ones (1-d), of
     angular frequencies ``wk = 2k``.
     """
-    d = 1.0 / (t * t + 1.0)
-    c1 = (1.0 - t) * (1.0 + t) * d
-    s1 = 2.0 * t * d
-    f0 = a1 * c1 + b1 * s1
-    f1 = b1 * c1 - a1 * s1
+    c1, s1, f0, f1 = first_harmonic_point(t, a1, b1)
     c4 = (c1 - s1) * (c1 + s1)
     s4 = 2.0 * s1 * c1
     ck = c1
@@ -58,7 +72,14 @@ def psi_point(t, a1, b1, ak, bk, wk):
         hs = hs + w * q
         hc2 = hc2 + w * w * p
         hs3 = hs3 + w * w * w * q
-    return _HALF_PI + f0 + hc, 2.0 * f1 + hs, -4.0 * f0 - hc2, -8.0 * f1 - hs3
+    return psi_from(f0, f1, hc, hs, hc2, hs3)
+
+
+@formula
+def first_point(t, a1, b1):
+    """:func:`psi_point` without higher harmonics (a loop the compiler can vectorise)."""
+    _, _, f0, f1 = first_harmonic_point(t, a1, b1)
+    return psi_from(f0, f1, 0.0, 0.0, 0.0, 0.0)
 
 
 @compiled_loop
@@ -68,17 +89,35 @@ def _psi_loop(t, a1, b1, ak, bk, wk, o0, o1, o2, o3):
 
 
 @compiled_loop
+def _psi_loop_first(t, a1, b1, o0, o1, o2, o3):
+    for i in range(o0.shape[0]):
+        o0[i], o1[i], o2[i], o3[i] = first_point(at(t, i), at(a1, i), b1)
+
+
+@formula
+def blades_point(alpha, p0, p1, p2, p3):
+    """Both blade pairs ``alpha +- psi/2`` and derivatives, pair 1 then pair 2 per order."""
+    return (alpha + 0.5 * p0, alpha - 0.5 * p0, 1.0 + 0.5 * p1, 1.0 - 0.5 * p1, 0.5 * p2,
+            -(0.5 * p2), 0.5 * p3, -(0.5 * p3))  # fmt: skip
+
+
+@compiled_loop
 def _blade_loop(t, alpha, a1, b1, ak, bk, wk, o0, o1, o2, o3, o4, o5, o6, o7):
     for i in range(o0.shape[0]):
         p0, p1, p2, p3 = psi_point(at(t, i), at(a1, i), b1, ak, bk, wk)
-        al = at(alpha, i)
-        o0[i], o1[i] = al + 0.5 * p0, al - 0.5 * p0
-        o2[i], o3[i] = 1.0 + 0.5 * p1, 1.0 - 0.5 * p1
-        o4[i], o5[i] = 0.5 * p2, -(0.5 * p2)
-        o6[i], o7[i] = 0.5 * p3, -(0.5 * p3)
+        r = blades_point(at(alpha, i), p0, p1, p2, p3)
+        o0[i], o1[i], o2[i], o3[i], o4[i], o5[i], o6[i], o7[i] = r
 
 
-def law_fused(a1, b1, ak, bk, alpha, *, blades=False, threads=None, kernel=None):
+@compiled_loop
+def _blade_loop_first(t, alpha, a1, b1, o0, o1, o2, o3, o4, o5, o6, o7):
+    for i in range(o0.shape[0]):
+        p0, p1, p2, p3 = first_point(at(t, i), at(a1, i), b1)
+        r = blades_point(at(alpha, i), p0, p1, p2, p3)
+        o0[i], o1[i], o2[i], o3[i], o4[i], o5[i], o6[i], o7[i] = r
+
+
+def law_fused(a1, b1, ak, bk, alpha, *, blades=False, threads=None, kernel=None, out=None):
     """The law ``psi`` (or both blade pairs' angles) and derivatives, block by block.
 
     Parameters
@@ -97,6 +136,8 @@ def law_fused(a1, b1, ak, bk, alpha, *, blades=False, threads=None, kernel=None)
         Threads for large inputs (:func:`rotorkin.core.fused.split`).
     kernel : {"auto", "numpy", "numba"}, optional
         :func:`rotorkin.core.fused.use_compiled`.
+    out : ndarray, optional
+        Float64 C-contiguous array of the result's shape to write into.
 
     Returns
     -------
@@ -112,22 +153,23 @@ def law_fused(a1, b1, ak, bk, alpha, *, blades=False, threads=None, kernel=None)
     def block(x, o, compiled):
         t = np.tan(x["alpha"])
         if compiled:
-            if blades:
+            if blades and ak.size:
                 _blade_loop(t, x["alpha"], x["a1"], b1, ak, bk, wk, *o)
-            else:
+            elif blades:
+                _blade_loop_first(t, x["alpha"], x["a1"], b1, *o)
+            elif ak.size:
                 _psi_loop(t, x["a1"], b1, ak, bk, wk, *o)
+            else:
+                _psi_loop_first(t, x["a1"], b1, *o)
             return
-        p0, p1, p2, p3 = psi_point(t, x["a1"], b1, ak, bk, wk)
-        if not blades:
-            o[0], o[1], o[2], o[3] = p0, p1, p2, p3
-            return
-        al = x["alpha"]
-        o[0], o[1] = al + 0.5 * p0, al - 0.5 * p0
-        o[2], o[3] = 1.0 + 0.5 * p1, 1.0 - 0.5 * p1
-        o[4], o[5] = 0.5 * p2, -(0.5 * p2)
-        o[6], o[7] = 0.5 * p3, -(0.5 * p3)
+        p = psi_point(t, x["a1"], b1, ak, bk, wk)
+        values = blades_point(x["alpha"], *p) if blades else p
+        for row, value in zip(o, values, strict=True):
+            row[...] = value
 
+    rows = 8 if blades else 4
+    flat_out = None if out is None else out.reshape(rows, *out.shape[(2 if blades else 1) :])
     res = evaluate(
-        {"alpha": alpha, "a1": a1}, 8 if blades else 4, block, threads=threads, kernel=kernel
+        {"alpha": alpha, "a1": a1}, rows, block, threads=threads, kernel=kernel, out=flat_out
     )
     return res.reshape(4, 2, *res.shape[1:]) if blades else res
