@@ -334,7 +334,7 @@ def chunks(arrays: dict, flat: bool, lo: int, hi: int, block: int = BLOCK):
     it = np.nditer(
         [arrays[name] for name in names],
         flags=["external_loop", "buffered", "ranged", "zerosize_ok"],
-        op_flags=[["readonly"]] * len(names),
+        op_flags=[["readonly", "contig"]] * len(names),
         buffersize=block,
         order="C",
     )
@@ -368,15 +368,19 @@ def evaluate(
     out : ndarray, optional
         ``(outputs, *shape)`` float64, C-contiguous, to write into.
     constants : (callable, tuple of str), optional
-        ``(fn, names)``: ``fn(x)`` returns a dict of values derived from the inputs
-        ``names`` (numbers or blocks), merged into ``x``; computed once per call when
-        none of ``names`` varies per point, else once per block.
+        ``(fn, names)``: ``fn(inputs)`` returns a dict of values derived from the inputs
+        ``names`` (arrays of their own shapes, e.g. designs ``(m, 1)``), computed once
+        per call and then broadcast block by block like the inputs.
 
     Returns
     -------
     ndarray, shape (outputs, ...)
         ``...`` the broadcast shape of the inputs.
     """
+    if constants is not None:  # once per call, on the inputs' own shapes (not per point)
+        derive, _ = constants
+        inputs = {k: np.asarray(v, dtype=float) for k, v in inputs.items()}
+        inputs.update(derive(inputs))
     shape, scalars, arrays, flat = prepare(inputs)
     size = math.prod(shape)
     if out is None:
@@ -394,16 +398,10 @@ def evaluate(
         return out
     compiled = use_compiled(size, kernel)
     flat_out = out.reshape(outputs, size)
-    derive, names = constants if constants is not None else (None, ())
-    per_block = derive is not None and any(name in arrays for name in names)
-    fixed = derive(scalars) if derive is not None and not per_block else {}
 
     def run(lo, hi):
         for start, stop, chunk in chunks(arrays, flat, lo, hi):
-            x = {**scalars, **chunk, **fixed}
-            if per_block:
-                x.update(derive(x))
-            block(x, flat_out[:, start:stop], compiled)
+            block({**scalars, **chunk}, flat_out[:, start:stop], compiled)
 
     split(run, size, threads)
     return out

@@ -57,6 +57,8 @@ from rotorkin.core.fused import BLOCK, THREADS_ENV, default_threads, use_compile
 from rotorkin.drives.wobble_cam import kinematics_fused as fused
 
 __all__ = ["BLOCK", "THREADS_ENV", "default_threads", "rotor_kinematics"]
+#: Inputs from which the constants of the formulas follow (:func:`_coefficients`).
+_DESIGN = ("tilt", "half", "width")
 #: Points per block of the compiled loops (3 scratch arrays of 256 KiB, in the L2 cache).
 COMPILED_BLOCK = 4 * BLOCK
 #: Fewest points for which a thread pool is used.
@@ -148,6 +150,13 @@ def rotor_kinematics(
         return rotor, cham
     scalars = {k: float(a.reshape(-1)[0]) for k, a in inputs.items() if a.size == 1}
     arrays = {k: a for k, a in inputs.items() if a.size > 1}
+    # the design's constants, once per call: math on numbers, numpy on the design arrays'
+    # own shapes (e.g. designs (m, 1)), then broadcast block by block like any input
+    fixed = _coefficients({k: v for k, v in scalars.items() if k in _DESIGN}, n, pistons)
+    design = {k: arrays.pop(k) for k in _DESIGN if k in arrays}
+    if design:
+        arrays.update(_coefficients(design, n, pistons))
+    scalars.update(fixed)
     flat_r = rotor.reshape(4, 2, size)
     flat_c = cham.reshape(2, size) if cham is not None else None
     if all(a.shape == shape and a.flags.c_contiguous for a in arrays.values()):
@@ -186,17 +195,12 @@ def _run(job, lo, hi):
     arrays, flat, scalars, n, pistons, flat_r, flat_c, compiled = job
     block_size = COMPILED_BLOCK if compiled else BLOCK
     work = np.empty((6 if compiled else _SCRATCH, min(block_size, hi - lo)))
-    fixed = _coefficients(scalars, n, pistons)
     block = _block_compiled if compiled else _block
     if not arrays:  # a single point
-        block(scalars, fixed, n, flat_r, flat_c, work[:, :1], 0)
+        block(scalars, scalars, n, flat_r, flat_c, work[:, :1], 0)
         return
-    varying = [name for name in ("tilt", "half", "width") if name in arrays]
     for start, stop, chunk in _chunks(arrays, flat, lo, hi, block_size):
-        x = {**scalars, **chunk}
-        k = fixed
-        if varying:
-            k = {**fixed, **_coefficients({name: x[name] for name in varying}, n, pistons)}
+        x = k = {**scalars, **chunk}  # inputs and the design's constants
         if compiled:
             _block_compiled(x, k, n, flat_r, flat_c, work[:, : stop - start], start)
         else:
@@ -255,7 +259,7 @@ def _chunks(arrays, flat, lo, hi, block=BLOCK):
     it = np.nditer(
         [arrays[name] for name in names],
         flags=["external_loop", "buffered", "ranged", "zerosize_ok"],
-        op_flags=[["readonly"]] * len(names),
+        op_flags=[["readonly", "contig"]] * len(names),
         buffersize=block,
         order="C",
     )
