@@ -322,25 +322,45 @@ def test_kernel_choice_from_option_and_environment(monkeypatch):
         ec_fused.travels_fused(0.08, 0.04, np.zeros(3), kernel="gpu")
 
 
-def test_auto_uses_the_compiled_loops_for_large_inputs_only(monkeypatch):
-    """With numba installed, ``auto`` runs the compiled loops from AUTO_MIN_POINTS points on."""
+AUTO_SCRIPT = """
+import sys
+import numpy as np
+from rotorkin.core import fused
+from rotorkin.drives.eccentric_cam import kinematics as ec
+ec.travels(0.08, 0.04, np.linspace(0, 6, fused.AUTO_MIN_POINTS - 1))
+print("numba" in sys.modules)
+ec.travels(0.08, 0.04, np.linspace(0, 6, fused.AUTO_MIN_POINTS))
+print("numba" in sys.modules, fused.use_compiled(10))
+"""
+
+
+def test_auto_imports_numba_for_large_inputs_only():
+    """``auto``: a small evaluation alone leaves numba unloaded; a large one loads it, and
+    from then on every evaluation runs the compiled loops."""
+    import os
+    import subprocess
+    import sys
+
+    env = {k: v for k, v in os.environ.items() if k != fused.KERNEL_ENV}
+    out = subprocess.run([sys.executable, "-c", AUTO_SCRIPT], env=env, capture_output=True,
+                         text=True, check=True).stdout.split()  # fmt: skip
+    assert out == ["False", "True", "True"]
+
+
+def test_auto_and_forced_paths_call_the_compiled_loops(monkeypatch):
     monkeypatch.delenv(fused.KERNEL_ENV, raising=False)
     assert fused.numba_available()
     calls = []
     loop = ec_fused._travel_loop
     monkeypatch.setattr(ec_fused, "_travel_loop", lambda *a: calls.append(1) or loop(*a))
-    small = np.linspace(0, 6, fused.AUTO_MIN_POINTS - 1)
-    ec.travels(0.08, 0.04, small)
-    assert not calls
-    big = np.linspace(0, 6, fused.AUTO_MIN_POINTS)
-    ec.travels(0.08, 0.04, big)
+    ec.travels(0.08, 0.04, np.linspace(0, 6, fused.AUTO_MIN_POINTS))
     assert calls
     calls.clear()
     monkeypatch.setenv(fused.KERNEL_ENV, "numpy")
-    ec.travels(0.08, 0.04, big)
+    ec.travels(0.08, 0.04, np.linspace(0, 6, fused.AUTO_MIN_POINTS))
     assert not calls
     monkeypatch.setenv(fused.KERNEL_ENV, "numba")
-    ec.travels(0.08, 0.04, small[:5])
+    ec.travels(0.08, 0.04, np.linspace(0, 6, 5))
     assert calls
 
 

@@ -18,10 +18,12 @@ The transcendental calls stay numpy calls on the block in both paths.
 
 Which path runs (:func:`use_compiled`): ``kernel="numpy"`` or ``"numba"``
 where a function takes it, else ``$ROTORKIN_KERNEL`` (``auto``, ``numpy`` or
-``numba``), else ``auto``: numba when it is installed and the evaluation has at
-least :data:`AUTO_MIN_POINTS` points (below, importing numba and loading its
-compiled code would cost more than it saves). Compiled loops are cached on disk
-by numba (``__pycache__`` beside the source, else the user's cache folder).
+``numba``), else ``auto``: numba when it is installed, for evaluations of at least
+:data:`AUTO_MIN_POINTS` points and, once numba has been loaded, for all (a small
+evaluation alone does not import numba: importing it and loading compiled code takes
+a few tenths of a second, more than it saves on a few thousand points). Compiled
+loops are cached on disk by numba (``__pycache__`` beside the source, else the
+user's cache folder).
 
 Threads: the blocks of large evaluations may be shared among a pool of threads
 (:func:`split`, ``threads=`` or ``$ROTORKIN_THREADS``, default 1): numpy
@@ -202,7 +204,8 @@ def use_compiled(points: int, kernel=None) -> bool:
     """Whether an evaluation of ``points`` points runs the compiled loops.
 
     ``numpy``: never; ``numba``: always (a :class:`ParameterError` when numba is not
-    installed); ``auto``: when numba is installed and ``points >= AUTO_MIN_POINTS``.
+    installed); ``auto``: when numba is installed and either ``points >= AUTO_MIN_POINTS``
+    or numba is already loaded (by an earlier evaluation).
     """
     choice = kernel_choice(kernel)
     if choice == "numpy":
@@ -212,6 +215,8 @@ def use_compiled(points: int, kernel=None) -> bool:
             raise ParameterError(
                 "kernel", "'numba'", "numba installed (pip install 'rotorkin[fast]')"
             )
+        return True
+    if _NUMBA:
         return True
     return points >= AUTO_MIN_POINTS and numba_available()
 
