@@ -35,14 +35,31 @@ import numpy as np
 
 from rotorkin.core.fused import at, compiled_loop, evaluate, formula, select
 
-__all__ = ["atan_argument", "driven_rates_point", "half_angle_trig", "impellers_fused"]
+__all__ = [
+    "QUARTER_TURN_ZERO",
+    "atan_argument",
+    "driven_rates_point",
+    "half_angle_trig",
+    "impellers_fused",
+]
+
+#: ``|cos x|`` at or below this is rounding noise of the half-angle form (2 ulp of 1).
+QUARTER_TURN_ZERO = 2.0 * np.finfo(float).eps
 
 
 @formula
 def half_angle_trig(t):
-    """``cos x``, ``sin x`` from ``t = tan(x/2)``."""
+    """``cos x``, ``sin x`` from ``t = tan(x/2)``.
+
+    Near a quarter turn (``t`` near +-1) ``cos x`` carries the rounding of ``t``: an
+    absolute error of about 1e-16. Values within ``QUARTER_TURN_ZERO`` of 0 are that
+    noise and are set to 0, so that the quarter-turn points of both mechanisms give
+    the same numbers (there both impellers turn equally fast and the pump's ports
+    switch over: exactly equal speeds take the switch-over's own rule).
+    """
     d = 1.0 / (t * t + 1.0)
-    return (1.0 - t) * (1.0 + t) * d, 2.0 * t * d
+    c = (1.0 - t) * (1.0 + t) * d
+    return select(np.abs(c) <= QUARTER_TURN_ZERO, 0.0, c), 2.0 * t * d
 
 
 @formula
