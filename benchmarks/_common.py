@@ -7,6 +7,7 @@
 * :func:`peak_rss` -- peak resident memory of this process;
 * :func:`machine` -- cores, CPU, vector instruction sets, numpy/python/numba versions and
   the load average;
+* :func:`scaling_probe` -- how much 2 processes gain over 1 here (scalar and SIMD work);
 * :func:`write_json` -- write a result file atomically.
 """
 
@@ -30,6 +31,7 @@ __all__ = [
     "machine",
     "vector_isa",
     "git_commit",
+    "scaling_probe",
     "write_json",
 ]
 
@@ -171,3 +173,48 @@ def write_json(path, data) -> Path:
     tmp.write_text(json.dumps(data, indent=2) + "\n")
     os.replace(tmp, path)
     return path
+
+
+def _probe_work(kind: str, seconds: float, start, done) -> None:
+    """Repeat one unit of ``kind`` work from ``start`` for ``seconds``; put the count."""
+    v = np.random.default_rng(0).uniform(0.0, 6.0, 8192)
+    o = np.empty_like(v)
+    start.wait()
+    t_end, count = time.perf_counter() + seconds, 0
+    while time.perf_counter() < t_end:
+        if kind == "vector":
+            np.tan(v, out=o)
+        else:
+            x = 0
+            for i in range(2000):
+                x += i
+        count += 1
+    done.put(count)
+
+
+def scaling_probe(seconds: float = 1.0) -> dict:
+    """Throughput of 2 processes over 1 on this machine, for scalar and vector work.
+
+    ``scalar``: a pure-Python loop; ``vector``: numpy ``tan`` on 8192 doubles (the SIMD
+    units). 2.0 means two cores working fully in parallel. Two virtual CPUs that are
+    hyper-threads of one physical core, or a neighbour's load, give less -- the ceiling
+    of any 2-thread figure measured in the same spell.
+    """
+    import multiprocessing as mp
+
+    ctx = mp.get_context("fork")
+    out = {}
+    for kind in ("scalar", "vector"):
+        rates = []
+        for procs in (1, 2):
+            start, done = ctx.Barrier(procs), ctx.Queue()
+            ps = [ctx.Process(target=_probe_work, args=(kind, seconds, start, done))
+                  for _ in range(procs)]  # fmt: skip
+            for p in ps:
+                p.start()
+            total = sum(done.get() for _ in ps)
+            for p in ps:
+                p.join()
+            rates.append(total)
+        out[kind] = rates[1] / rates[0]
+    return out

@@ -39,7 +39,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import interleaved, load, machine, peak_rss, write_json  # noqa: E402
+from _common import interleaved, load, machine, peak_rss, scaling_probe, write_json  # noqa: E402
 from cases import CASES  # noqa: E402
 
 from rotorkin.core.fused import numba_available, use_compiled  # noqa: E402
@@ -163,6 +163,9 @@ def run(drives, sizes, cap, rounds, budget, echo=print) -> dict:
     echo(f"kinematics throughput; {info['cpu']}, {info['usable_cores']} cores, ISA "
          f"{','.join(info['vector_isa']) or '-'}, numpy {info['numpy']}, numba {info['numba']}; "
          f"load {load_start}")  # fmt: skip
+    probe_start = scaling_probe()
+    echo("2 processes / 1 on this machine now: " + ", ".join(f"{k} {v:.2f}x" for k, v in
+                                                             probe_start.items()))  # fmt: skip
     cases = {}
     for name in drives:
         case = CASES[name]
@@ -189,6 +192,7 @@ def run(drives, sizes, cap, rounds, budget, echo=print) -> dict:
         "numba_installed": numba_available(),
         "load_start": load_start,
         "load_end": load(),
+        "scaling_probe": {"start": probe_start, "end": scaling_probe()},
         "yardsticks": YARDSTICKS,
         "cases": cases,
         "peak_rss_bytes": peak_rss(),
