@@ -7,8 +7,9 @@ measured side by side under the same load:
 
 * ``lib`` -- the library's kinematics on 1 thread into preallocated arrays (kernel
   as installed: numba's compiled loops when the ``fast`` extra is, else numpy);
-  ``lib_numpy`` the numpy fallback; ``lib_2t`` 2 threads; ``lib_alloc`` the public
-  call, which allocates its results;
+  ``lib_numpy`` the numpy fallback; ``lib_2t`` 2 threads (from 65536 points on, where
+  the library shares the blocks between threads); ``lib_alloc`` the public call, which
+  allocates its results;
 * ``floor`` -- **floor (b')**: exactly the transcendental calls the drive's closed form
   makes (numpy, precomputed realistic arguments) plus writing its outputs, into
   preallocated arrays; ``floor_2t`` on 2 threads; ``floor_alloc`` allocating its
@@ -42,7 +43,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import interleaved, load, machine, peak_rss, scaling_probe, write_json  # noqa: E402
 from cases import CASES  # noqa: E402
 
-from rotorkin.core.fused import numba_available, use_compiled  # noqa: E402
+from rotorkin.core.fused import MIN_PARALLEL, numba_available, use_compiled  # noqa: E402
 
 DEFAULT_OUT = Path(__file__).resolve().parent / "results" / "kinematics.json"
 COMMAND = "python benchmarks/bench_kinematics.py"
@@ -64,6 +65,8 @@ YARDSTICKS = {
 def measure(case, size: int, cap: int, rounds: int, budget: float) -> dict:
     """Best times of every method of ``case`` at ``size`` points, ratios, load."""
     fns, scalar_points = case.methods(size, cap)
+    if size < MIN_PARALLEL:  # the library runs 1 thread below this: no 2-thread figures
+        del fns["lib_2t"], fns["floor_2t"]
     for fn in fns.values():  # warm-up: compiled loops loaded, pages touched
         if fn is not fns["scalar"]:
             fn()
@@ -72,14 +75,15 @@ def measure(case, size: int, cap: int, rounds: int, budget: float) -> dict:
     best = interleaved(fns, rounds, budget, stats)
     ns = {name: t / size * 1e9 for name, t in best.items()}
     ns["scalar"] = best["scalar"] / scalar_points * 1e9
+    two = "lib_2t" in ns
     ratios = {
         "lib_over_floor": ns["lib"] / ns["floor"],
-        "lib2_over_floor2": ns["lib_2t"] / ns["floor_2t"],
+        "lib2_over_floor2": ns["lib_2t"] / ns["floor_2t"] if two else None,
         "alloc_over_floor_alloc": ns["lib_alloc"] / ns["floor_alloc"],
         "numpy_over_floor": ns["lib_numpy"] / ns["floor"],
         "numpy_over_lib": ns["lib_numpy"] / ns["lib"],
-        "scaling_lib": ns["lib"] / ns["lib_2t"],
-        "scaling_floor": ns["floor"] / ns["floor_2t"],
+        "scaling_lib": ns["lib"] / ns["lib_2t"] if two else None,
+        "scaling_floor": ns["floor"] / ns["floor_2t"] if two else None,
         "scalar_over_lib": ns["scalar"] / ns["lib"],
     }
     return {
@@ -113,7 +117,11 @@ COLUMNS = (
 
 
 def _cells(row):
-    return [get(row) if fmt is None else f"{get(row):{fmt}}" for _, fmt, get in COLUMNS]
+    cells = []
+    for _, fmt, get in COLUMNS:
+        value = get(row)
+        cells.append("-" if value is None else value if fmt is None else f"{value:{fmt}}")
+    return cells
 
 
 def text_table(rows) -> str:
