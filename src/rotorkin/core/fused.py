@@ -23,7 +23,9 @@ where a function takes it, else ``$ROTORKIN_KERNEL`` (``auto``, ``numpy`` or
 evaluation alone does not import numba: importing it and loading compiled code takes
 a few tenths of a second, more than it saves on a few thousand points). Compiled
 loops are cached on disk by numba (``__pycache__`` beside the source, else the
-user's cache folder).
+user's cache folder). numba checks the cache against the loop's own source file only:
+keep a drive's formulas in the file of its loops, and after changing :func:`at` or
+:func:`select` here delete the cached ``*.nbi``/``*.nbc`` files.
 
 Threads: the blocks of large evaluations may be shared among a pool of threads
 (:func:`split`, ``threads=`` or ``$ROTORKIN_THREADS``, default 1): numpy
