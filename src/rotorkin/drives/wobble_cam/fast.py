@@ -57,6 +57,7 @@ from rotorkin.core.fused import BLOCK, THREADS_ENV, default_threads, use_compile
 from rotorkin.drives.wobble_cam import kinematics_fused as fused
 
 __all__ = ["BLOCK", "THREADS_ENV", "default_threads", "rotor_kinematics"]
+
 #: Inputs from which the constants of the formulas follow (:func:`_coefficients`).
 _DESIGN = ("tilt", "half", "width")
 #: Points per block of the compiled loops (3 scratch arrays of 256 KiB, in the L2 cache).
