@@ -179,11 +179,15 @@ def _probe_work(kind: str, seconds: float, start, done) -> None:
     """Repeat one unit of ``kind`` work from ``start`` for ``seconds``; put the count."""
     v = np.random.default_rng(0).uniform(0.0, 6.0, 8192)
     o = np.empty_like(v)
+    rows = np.zeros((8, 10**6)) if kind == "stores" else None
     start.wait()
     t_end, count = time.perf_counter() + seconds, 0
     while time.perf_counter() < t_end:
         if kind == "vector":
             np.tan(v, out=o)
+        elif kind == "stores":
+            for row in rows:
+                row.fill(1.0)
         else:
             x = 0
             for i in range(2000):
@@ -193,18 +197,19 @@ def _probe_work(kind: str, seconds: float, start, done) -> None:
 
 
 def scaling_probe(seconds: float = 1.0) -> dict:
-    """Throughput of 2 processes over 1 on this machine, for scalar and vector work.
+    """Throughput of 2 processes over 1 on this machine, for three kinds of work.
 
     ``scalar``: a pure-Python loop; ``vector``: numpy ``tan`` on 8192 doubles (the SIMD
-    units). 2.0 means two cores working fully in parallel. Two virtual CPUs that are
-    hyper-threads of one physical core, or a neighbour's load, give less -- the ceiling
-    of any 2-thread figure measured in the same spell.
+    units, in the cache); ``stores``: filling 8 rows of 1e6 doubles (64 MB, memory
+    bandwidth). 2.0 means two cores working fully in parallel; a neighbour's load on the
+    second core, or a memory bus one core already fills, give less -- the ceiling of any
+    2-thread figure measured in the same spell.
     """
     import multiprocessing as mp
 
     ctx = mp.get_context("fork")
     out = {}
-    for kind in ("scalar", "vector"):
+    for kind in ("scalar", "vector", "stores"):
         rates = []
         for procs in (1, 2):
             start, done = ctx.Barrier(procs), ctx.Queue()
