@@ -36,7 +36,7 @@ columns, forces, pairs, so even this flatters the sweep a little). The speed-up
 against the sweep at ``--angles`` samples (``speedup_unequal_samples``) compares
 360 samples with 20 001 and is kept only to show the difference.
 
-Targets (issue 6): at most 60 s and 1.5 GiB for 1e6 designs x 360
+Targets: at most 60 s and 1.5 GiB for 1e6 designs x 360
 angles on a 2-core machine, and a compute time per design constant within
 15 % from 1e4 to 1e6 designs. The result file records the load average: on a
 shared machine the absolute times are upper bounds.
