@@ -5,7 +5,9 @@
   so that a change of load on a shared machine hits all of them alike and
   their *ratios* stay meaningful;
 * :func:`peak_rss` -- peak resident memory of this process;
-* :func:`machine` -- cores, CPU, numpy/python versions and the load average;
+* :func:`machine` -- cores, CPU, vector instruction sets, numpy/python/numba versions and
+  the load average;
+* :func:`scaling_probe` -- how much 2 processes gain over 1 here (scalar and SIMD work);
 * :func:`write_json` -- write a result file atomically.
 """
 
@@ -21,7 +23,17 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["best_of", "interleaved", "peak_rss", "load", "machine", "write_json"]
+__all__ = [
+    "best_of",
+    "interleaved",
+    "peak_rss",
+    "load",
+    "machine",
+    "vector_isa",
+    "git_commit",
+    "scaling_probe",
+    "write_json",
+]
 
 
 def best_of(fn, repeat: int = 5) -> float:
@@ -91,8 +103,46 @@ def _cpu_model() -> str:
     return platform.processor() or "unknown"
 
 
+def vector_isa() -> list:
+    """The vector instruction sets of the CPU among avx, avx2, fma, avx512f (``/proc/cpuinfo``)."""
+    try:
+        text = Path("/proc/cpuinfo").read_text()
+    except OSError:
+        return []
+    for line in text.splitlines():
+        if line.startswith("flags"):
+            flags = set(line.split(":", 1)[1].split())
+            return [f for f in ("avx", "avx2", "fma", "avx512f") if f in flags]
+    return []
+
+
+def _numba_version():
+    try:
+        import numba
+    except ImportError:
+        return None
+    return numba.__version__
+
+
+def git_commit():
+    """The commit of the working tree (``git rev-parse HEAD``), or None."""
+    import subprocess
+
+    try:
+        out = subprocess.run(
+            ["git", "rev-parse", "HEAD"],
+            cwd=Path(__file__).resolve().parent,
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+    except (OSError, subprocess.CalledProcessError):
+        return None
+    return out.stdout.strip()
+
+
 def machine() -> dict:
-    """The machine a result was measured on: cores, CPU, memory, versions and load."""
+    """The machine a result was measured on: cores, CPU, vector ISA, memory, versions, load."""
     try:
         usable = len(os.sched_getaffinity(0))
     except AttributeError:
@@ -105,9 +155,11 @@ def machine() -> dict:
         "cores": os.cpu_count(),
         "usable_cores": usable,
         "cpu": _cpu_model(),
+        "vector_isa": vector_isa(),
         "memory_bytes": mem,
         "python": platform.python_version(),
         "numpy": np.__version__,
+        "numba": _numba_version(),
         "platform": platform.platform(),
         "load_average": load(),
     }
@@ -121,3 +173,53 @@ def write_json(path, data) -> Path:
     tmp.write_text(json.dumps(data, indent=2) + "\n")
     os.replace(tmp, path)
     return path
+
+
+def _probe_work(kind: str, seconds: float, start, done) -> None:
+    """Repeat one unit of ``kind`` work from ``start`` for ``seconds``; put the count."""
+    v = np.random.default_rng(0).uniform(0.0, 6.0, 8192)
+    o = np.empty_like(v)
+    rows = np.zeros((8, 10**6)) if kind == "stores" else None
+    start.wait()
+    t_end, count = time.perf_counter() + seconds, 0
+    while time.perf_counter() < t_end:
+        if kind == "vector":
+            np.tan(v, out=o)
+        elif kind == "stores":
+            for row in rows:
+                row.fill(1.0)
+        else:
+            x = 0
+            for i in range(2000):
+                x += i
+        count += 1
+    done.put(count)
+
+
+def scaling_probe(seconds: float = 1.0) -> dict:
+    """Throughput of 2 processes over 1 on this machine, for three kinds of work.
+
+    ``scalar``: a pure-Python loop; ``vector``: numpy ``tan`` on 8192 doubles (the SIMD
+    units, in the cache); ``stores``: filling 8 rows of 1e6 doubles (64 MB, memory
+    bandwidth). 2.0 means two cores working fully in parallel; a neighbour's load on the
+    second core, or a memory bus one core already fills, give less -- the ceiling of any
+    2-thread figure measured in the same spell.
+    """
+    import multiprocessing as mp
+
+    ctx = mp.get_context("fork")
+    out = {}
+    for kind in ("scalar", "vector", "stores"):
+        rates = []
+        for procs in (1, 2):
+            start, done = ctx.Barrier(procs), ctx.Queue()
+            ps = [ctx.Process(target=_probe_work, args=(kind, seconds, start, done))
+                  for _ in range(procs)]  # fmt: skip
+            for p in ps:
+                p.start()
+            total = sum(done.get() for _ in ps)
+            for p in ps:
+                p.join()
+            rates.append(total)
+        out[kind] = rates[1] / rates[0]
+    return out

@@ -64,6 +64,7 @@ EXTRAS = {
     "distributed": "dask",
     "cantera": "thermo",
     "pymoo": "optimize",
+    "numba": "fast",
 }
 
 

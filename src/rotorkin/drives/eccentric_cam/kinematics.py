@@ -52,6 +52,7 @@ import numpy as np
 from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion, compose
+from rotorkin.drives.eccentric_cam.kinematics_fused import travels_fused
 
 __all__ = [
     "FOLLOWERS",
@@ -310,10 +311,15 @@ def travels(contact_radius, eccentricity, beta):
     tuple of 4 ndarray, shape (2, ...)
         ``(z, z')`` [m], positive towards the reactor centre, and their
         1st-3rd derivatives with respect to beta [m/rad^n].
+
+    Notes
+    -----
+    Evaluated block by block from one ``tan(beta/2)`` and one square root per point
+    (:func:`rotorkin.drives.eccentric_cam.kinematics_fused.travels_fused`; compiled
+    loops when numba is installed, ``$ROTORKIN_KERNEL`` chooses); the same values as
+    :func:`additional_travel` plus or minus :func:`harmonic_travel`.
     """
-    h = harmonic_travel(eccentricity, beta)
-    a = additional_travel(contact_radius, eccentricity, beta)
-    return tuple(np.stack([ai + hi, ai - hi]) for ai, hi in zip(a, h, strict=True))
+    return tuple(travels_fused(contact_radius, eccentricity, beta))
 
 
 def piston_travels(params: EccentricCam, beta):

@@ -51,6 +51,7 @@ import numpy as np
 from rotorkin.core.angles import angle_near, fmt_deg
 from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion
+from rotorkin.drives.guide_bar.kinematics_fused import impellers_fused
 
 __all__ = [
     "DRIVERS",
@@ -413,30 +414,25 @@ def impeller_rates(params: GuideBar, theta):
 
     ``dq_k/dtheta = f'(x_k)/(u i12)`` is eq. 1 (or eq. 3 at our zero) over
     ``i12``; ``d2q = f''/(u i12^2)``, ``d3q = f'''/(u i12^3)``
-    (:func:`driven_rates`).
+    (:func:`driven_rates`). Evaluated block by block from one ``tan`` per point
+    (:mod:`rotorkin.drives.guide_bar.kinematics_fused`; compiled loops when numba is
+    installed, ``$ROTORKIN_KERNEL`` chooses).
 
     Returns
     -------
     tuple of 3 ndarray, shape (2, ...)
         ``dq/dtheta`` [-], ``d2q/dtheta2`` [1/rad], ``d3q/dtheta3`` [1/rad^2].
     """
-    x = driving_angles(params, theta)
-    f = driven_rates(params.lam, params.driver, x)
-    return _per_theta(params, f, 1)
-
-
-def _per_theta(params: GuideBar, f, first: int):
-    """``f_n / (u i12^n)``, ``n = first, first + 1, ...`` (chain rule via ``x = theta/i12``)."""
-    u = np.asarray(params.gear_ratio, dtype=float)
-    i12 = np.asarray(params.input_gear_ratio, dtype=float)
-    return tuple(fn / (u * i12**n) for n, fn in enumerate(f, start=first))
+    return tuple(_fused(params, theta, angles=False))
 
 
 def impeller_angles(params: GuideBar, theta):
     """Impeller angles ``q_k = f(x_k)/u`` and their derivatives w.r.t. theta.
 
     ``f`` is :func:`guide_angle` (crank-driven) or :func:`crank_angle`
-    (guide-driven); the derivatives are :func:`impeller_rates`.
+    (guide-driven); the derivatives are :func:`impeller_rates`. Evaluated block by
+    block from one ``tan`` and two ``arctan`` per point
+    (:mod:`rotorkin.drives.guide_bar.kinematics_fused`), the same values.
 
     Parameters
     ----------
@@ -451,9 +447,33 @@ def impeller_angles(params: GuideBar, theta):
         ``q`` [rad], ``dq/dtheta`` [-], ``d2q/dtheta2`` [1/rad], ``d3q/dtheta3`` [1/rad^2];
         ``...`` the broadcast shape of theta and the parameters.
     """
-    x = driving_angles(params, theta)
-    f = driven_angle(params.lam, params.driver, x)
-    return _per_theta(params, f, 0)
+    return tuple(_fused(params, theta, angles=True))
+
+
+def _guide_flag(driver):
+    """True where the guide bars drive (``driver`` a name or an array of names), checked."""
+    if isinstance(driver, str):
+        if driver not in DRIVERS:
+            raise ParameterError("driver", repr(driver), "one of " + ", ".join(map(repr, DRIVERS)))
+        return driver == "guide"
+    d = np.asarray(driver)
+    if not np.all(np.isin(d, DRIVERS)):
+        bad = d[~np.isin(d, DRIVERS)].flat[0]
+        raise ParameterError("driver", repr(bad), "one of " + ", ".join(map(repr, DRIVERS)))
+    return d == "guide"
+
+
+def _fused(params: GuideBar, theta, angles: bool):
+    """:func:`~rotorkin.drives.guide_bar.kinematics_fused.impellers_fused` of ``params``."""
+    return impellers_fused(
+        params.lam,
+        params.gear_ratio,
+        params.input_gear_ratio,
+        params.phase,
+        _guide_flag(params.driver),
+        theta,
+        angles=angles,
+    )
 
 
 def motion(params: GuideBar, theta) -> Motion:

@@ -86,6 +86,7 @@ import numpy as np
 from rotorkin.core.angles import fmt_deg
 from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion
+from rotorkin.drives.noncircular_gears.kinematics_fused import motion_fused
 
 __all__ = [
     "CHECKS",
@@ -531,18 +532,21 @@ def motion(params: NoncircularGears, theta) -> Motion:
     Motion
         ``q``, ``dq``, ``d2q``, ``d3q`` of shape ``(2, ...)``, ``...`` the broadcast shape
         of theta and the parameters; members ``("rotor 1", "rotor 2")``, unit ``"rad"``.
+
+    Notes
+    -----
+    Evaluated block by block from one ``tan`` and one ``arctan`` per rotor and point
+    (:mod:`rotorkin.drives.noncircular_gears.kinematics_fused`; compiled loops when
+    numba is installed, ``$ROTORKIN_KERNEL`` chooses): the values of
+    :func:`driven_angle` at ``theta`` and ``theta + sigma``.
     """
     theta = np.asarray(theta, dtype=float)
     sigma = _phase(params)
-    one = driven_angle(params, theta)
-    two = driven_angle(params, theta + sigma)
-    offset = driven_angle(params, sigma)[0]
-    shape = np.broadcast_shapes(*(np.shape(v) for v in (*one, *two, offset)))
-    q1 = [np.broadcast_to(v, shape) for v in one]
-    q2 = [np.broadcast_to(v, shape) for v in (two[0] - offset, *two[1:])]
-    q, dq, d2q, d3q = (np.stack((u, v)) for u, v in zip(q1, q2, strict=True))
-    return Motion(np.broadcast_to(theta, shape), q, dq, d2q, d3q, members=("rotor 1", "rotor 2"),
-                  unit="rad")  # fmt: skip
+    n, m, e, a, pa, beta, root = _design(params)
+    offset = _phase_of_t(n * sigma, e, beta, root) / m  # phi2(sigma)
+    q, dq, d2q, d3q = motion_fused(n, m, e, pa, beta, root, sigma, offset, theta)
+    theta = np.broadcast_to(theta, q.shape[1:])
+    return Motion(theta, q, dq, d2q, d3q, members=("rotor 1", "rotor 2"), unit="rad")
 
 
 def period(params: NoncircularGears):

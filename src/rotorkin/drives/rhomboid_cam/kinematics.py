@@ -44,6 +44,7 @@ import numpy as np
 from rotorkin.core.angles import fmt_deg, fmt_mm
 from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion, compose
+from rotorkin.drives.rhomboid_cam.kinematics_fused import law_fused
 
 __all__ = [
     "CHECKS",
@@ -150,22 +151,16 @@ def psi_law(psi_min, a, b, alpha):
     -------
     (psi, dpsi, d2psi, d3psi) : tuple of ndarray
         ``psi`` [rad] and its derivatives with respect to ``alpha`` [rad/rad^n].
+
+    Notes
+    -----
+    Evaluated block by block from one ``tan alpha`` per point, the harmonics by angle
+    sums (:mod:`rotorkin.drives.rhomboid_cam.kinematics_fused`; compiled loops when
+    numba is installed, ``$ROTORKIN_KERNEL`` chooses).
     """
-    alpha = np.asarray(alpha, dtype=float)
-    k, ak, bk = _higher(a, b)
+    _, ak, bk = _higher(a, b)
     a1, b1 = first_harmonic(psi_min, a, b)
-    w = 2.0 * k  # angular frequencies of the higher harmonics
-    arg = alpha[..., None] * w  # the harmonic matrix, shape (..., K)
-    c, s = np.cos(arg), np.sin(arg)
-    hc = c @ ak + s @ bk  # sum (a_k cos + b_k sin)
-    hs = c @ (w * bk) - s @ (w * ak)  # first derivative
-    hc2 = c @ (w**2 * ak) + s @ (w**2 * bk)
-    hs3 = c @ (w**3 * bk) - s @ (w**3 * ak)
-    c1, s1 = np.cos(2.0 * alpha), np.sin(2.0 * alpha)
-    f0 = a1 * c1 + b1 * s1
-    f1 = b1 * c1 - a1 * s1
-    psi = _HALF_PI + f0 + hc
-    return psi, 2.0 * f1 + hs, -4.0 * f0 - hc2, -8.0 * f1 - hs3
+    return tuple(law_fused(a1, b1, ak, bk, alpha))
 
 
 def _scale(psi_min, a, b, order):
@@ -203,10 +198,9 @@ def blade_angles(psi_min, a, b, alpha):
     (phi, dphi, d2phi, d3phi) : tuple of ndarray, shape (2, ...)
         Pair 1 then pair 2 [rad, rad/rad^n].
     """
-    p = psi_law(psi_min, a, b, alpha)
-    alpha = np.asarray(alpha, dtype=float)
-    base = (alpha + 0.0 * p[0], np.ones_like(p[0]), np.zeros_like(p[0]), np.zeros_like(p[0]))
-    return tuple(np.stack([u + 0.5 * v, u - 0.5 * v]) for u, v in zip(base, p, strict=True))
+    _, ak, bk = _higher(a, b)
+    a1, b1 = first_harmonic(psi_min, a, b)
+    return tuple(law_fused(a1, b1, ak, bk, alpha, blades=True))
 
 
 def motion(params, theta) -> Motion:

@@ -33,6 +33,14 @@ the blocks of large inputs are shared among a thread pool: numpy releases the
 GIL inside its loops. Every value depends on its own point only, so the
 results are the same, bit for bit, whatever the shape, the strides, the block
 boundaries or the thread count.
+
+Two paths evaluate a block's arithmetic (:mod:`rotorkin.core.fused`): the numpy
+operations of :func:`_block` (always available), or the compiled loops of
+:mod:`rotorkin.drives.wobble_cam.kinematics_fused` (numba, the ``fast`` extra), which
+fuse them into two passes around the same numpy ``tan`` and ``arctan`` calls.
+``kernel="numpy"``/``"numba"`` or ``$ROTORKIN_KERNEL`` chooses; by default the
+compiled loops run when numba is installed and there are at least
+:data:`rotorkin.core.fused.AUTO_MIN_POINTS` points. Both give the same numbers.
 """
 
 from __future__ import annotations
@@ -45,39 +53,21 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.fused import BLOCK, THREADS_ENV, default_threads, use_compiled
+from rotorkin.drives.wobble_cam import kinematics_fused as fused
 
 __all__ = ["BLOCK", "THREADS_ENV", "default_threads", "rotor_kinematics"]
 
-#: Points per block (an operation touches 3 blocks of 64 KiB: they stay in the L2 cache).
-BLOCK = 8192
-#: Environment variable giving the default thread count (default 1).
-THREADS_ENV = "ROTORKIN_THREADS"
+#: Inputs from which the constants of the formulas follow (:func:`_coefficients`).
+_DESIGN = ("tilt", "half", "width")
+#: Points per block of the compiled loops (3 scratch arrays of 256 KiB, in the L2 cache).
+COMPILED_BLOCK = 4 * BLOCK
 #: Fewest points for which a thread pool is used.
 _MIN_PARALLEL = 8 * BLOCK
 _SCRATCH = 14
 _POOL: ThreadPoolExecutor | None = None
 _POOL_KEY = (0, 0)  # (threads, pid): a pool inherited through fork() has no threads
 _POOL_LOCK = threading.Lock()
-
-
-def default_threads() -> int:
-    """Threads used when ``threads=None``: ``$ROTORKIN_THREADS``, else 1.
-
-    Raises
-    ------
-    ParameterError
-        named ``ROTORKIN_THREADS`` when it is not an integer >= 1.
-    """
-    text = os.environ.get(THREADS_ENV, "").strip()
-    if not text:
-        return 1
-    try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if value < 1:
-        raise ParameterError(THREADS_ENV, repr(text), "an integer >= 1 (threads per evaluation)")
-    return value
 
 
 def _pool(size: int) -> ThreadPoolExecutor:
@@ -94,7 +84,7 @@ def _pool(size: int) -> ThreadPoolExecutor:
 
 
 def rotor_kinematics(
-    plate_tilt, roller_axis_angle, spin, theta, *, chamber=None, threads=None, out=None
+    plate_tilt, roller_axis_angle, spin, theta, *, chamber=None, threads=None, out=None, kernel=None
 ):
     """Rotor angles, their three derivatives and (optionally) the chamber angles, fused.
 
@@ -117,6 +107,9 @@ def rotor_kinematics(
     out : (ndarray, ndarray or None), optional
         Arrays to write the results into (float64, C-contiguous, the shapes
         below), e.g. to reuse them block after block; new arrays by default.
+    kernel : {"auto", "numpy", "numba"}, optional
+        The block arithmetic: numpy operations or compiled loops (default
+        ``$ROTORKIN_KERNEL``, else ``"auto"``: :func:`rotorkin.core.fused.use_compiled`).
 
     Returns
     -------
@@ -158,6 +151,13 @@ def rotor_kinematics(
         return rotor, cham
     scalars = {k: float(a.reshape(-1)[0]) for k, a in inputs.items() if a.size == 1}
     arrays = {k: a for k, a in inputs.items() if a.size > 1}
+    # the design's constants, once per call: math on numbers, numpy on the design arrays'
+    # own shapes (e.g. designs (m, 1)), then broadcast block by block like any input
+    fixed = _coefficients({k: v for k, v in scalars.items() if k in _DESIGN}, n, pistons)
+    design = {k: arrays.pop(k) for k in _DESIGN if k in arrays}
+    if design:
+        arrays.update(_coefficients(design, n, pistons))
+    scalars.update(fixed)
     flat_r = rotor.reshape(4, 2, size)
     flat_c = cham.reshape(2, size) if cham is not None else None
     if all(a.shape == shape and a.flags.c_contiguous for a in arrays.values()):
@@ -165,7 +165,7 @@ def rotor_kinematics(
         flat = True
     else:
         flat = False
-    job = (arrays, flat, scalars, n, pistons, flat_r, flat_c)
+    job = (arrays, flat, scalars, n, pistons, flat_r, flat_c, use_compiled(size, kernel))
     nthreads = default_threads() if threads is None else int(threads)
     if nthreads < 1:
         raise ParameterError("threads", repr(threads), "an integer >= 1")
@@ -193,23 +193,59 @@ def _check_out(array, shape, name):
 
 def _run(job, lo, hi):
     """Evaluate the flat points ``lo:hi`` block by block."""
-    arrays, flat, scalars, n, pistons, flat_r, flat_c = job
-    work = np.empty((_SCRATCH, min(BLOCK, hi - lo)))
-    fixed = _coefficients(scalars, n, pistons)
+    arrays, flat, scalars, n, pistons, flat_r, flat_c, compiled = job
+    block_size = COMPILED_BLOCK if compiled else BLOCK
+    work = np.empty((6 if compiled else _SCRATCH, min(block_size, hi - lo)))
+    block = _block_compiled if compiled else _block
     if not arrays:  # a single point
-        _block(scalars, fixed, n, flat_r, flat_c, work[:, :1])
+        block(scalars, scalars, n, flat_r, flat_c, work[:, :1], 0)
         return
-    varying = [name for name in ("tilt", "half", "width") if name in arrays]
-    for start, stop, chunk in _chunks(arrays, flat, lo, hi):
-        x = {**scalars, **chunk}
-        k = fixed
-        if varying:
-            k = {**fixed, **_coefficients({name: x[name] for name in varying}, n, pistons)}
-        cham = flat_c[:, start:stop] if flat_c is not None else None
-        _block(x, k, n, flat_r[:, :, start:stop], cham, work[:, : stop - start])
+    for start, stop, chunk in _chunks(arrays, flat, lo, hi, block_size):
+        x = k = {**scalars, **chunk}  # inputs and the design's constants
+        if compiled:
+            _block_compiled(x, k, n, flat_r, flat_c, work[:, : stop - start], start)
+        else:
+            cham = flat_c[:, start:stop] if flat_c is not None else None
+            _block(x, k, n, flat_r[:, :, start:stop], cham, work[:, : stop - start], 0)
 
 
-def _chunks(arrays, flat, lo, hi):
+def _block_compiled(x, k, n, o, dch, w, lo):
+    """One block by the compiled loops: ``o[:, :, lo:lo + m]``, ``dch[:, lo:lo + m]``.
+
+    ``o`` (4, 2, size) and ``dch`` (2, size) are the whole flat outputs; the loops
+    write at ``lo + i``. Same operations as :func:`_block`.
+    """
+    tv, vt, e1, e2 = w[0], w[1], w[2], w[3]
+    th = x["theta"]
+    if n is not None:
+        np.multiply(th, n, out=tv)
+    else:
+        np.copyto(tv, x["v"])
+        np.add(x["v"], th, out=vt)
+    np.tan(tv, out=tv)
+    trig = (k["ca"], k["sa"], k["ca2"], k["sa2"])
+    fused.atan_arguments(tv, *trig, k["gamma"], e1, e2)
+    np.arctan(e1, out=e1)
+    np.arctan(e2, out=e2)
+    m = tv.shape[0]
+    outs = [o[i, r, lo : lo + m] for i in range(4) for r in range(2)]
+    chambers = dch is not None
+    ka, kb = (k["ka"], k["kb"]) if chambers else (0.0, 0.0)
+    cham = (dch[0, lo : lo + m], dch[1, lo : lo + m]) if chambers else (w[4], w[5])
+    common = (k["h"], k["a0"], k["b0"], k["k"])
+    if n is not None:
+        fused.linear_outputs(
+            tv, th, 1.0 + n, e1, e2, *trig, *common, k["nc"], k["a2"], k["a3"], ka, kb,
+            *outs, chambers, *cham,
+        )  # fmt: skip
+    else:
+        fused.general_outputs(
+            tv, vt, e1, e2, *trig, *common, k["c"], k["mck"], k["ck2"], x["g1"], x["g2"],
+            x["g3"], ka, kb, *outs, chambers, *cham,
+        )  # fmt: skip
+
+
+def _chunks(arrays, flat, lo, hi, block=BLOCK):
     """``(start, stop, {name: block of the input})`` over the flat points ``lo:hi``.
 
     ``flat``: every array has the full shape and is C-contiguous, a block is a
@@ -217,15 +253,15 @@ def _chunks(arrays, flat, lo, hi):
     """
     names = list(arrays)
     if flat:
-        for start in range(lo, hi, BLOCK):
-            stop = min(hi, start + BLOCK)
+        for start in range(lo, hi, block):
+            stop = min(hi, start + block)
             yield start, stop, {name: arrays[name][start:stop] for name in names}
         return
     it = np.nditer(
         [arrays[name] for name in names],
         flags=["external_loop", "buffered", "ranged", "zerosize_ok"],
-        op_flags=[["readonly"]] * len(names),
-        buffersize=BLOCK,
+        op_flags=[["readonly", "contig"]] * len(names),
+        buffersize=block,
         order="C",
     )
     it.iterrange = (lo, hi)
@@ -268,7 +304,7 @@ def _coefficients(x, n, pistons):
     return out
 
 
-def _block(x, k, n, o, dch, w):
+def _block(x, k, n, o, dch, w, lo=0):
     """One block: fill ``o`` (4, 2, m) and ``dch`` (2, m) from inputs ``x``, constants ``k``.
 
     In terms of ``S = sin 2u``, ``C = cos 2u``, ``D = (1 + c^2)/2 - k/2 C``:

@@ -1,0 +1,228 @@
+"""Benchmarks over commits: a short regression gate on ratios, and the full refresh.
+
+::
+
+    python benchmarks/run.py --short                     # < 60 s; exit 1 on a regression
+    python benchmarks/run.py --short --update-baseline   # accept the current ratios
+    python benchmarks/run.py --full                      # every figure of docs/performance.md
+
+**Short mode** times every drive's kinematics at ``SHORT_POINTS`` points against its
+own floor (b') in the same rounds (``bench_kinematics.measure``) and compares three
+*ratios* per drive with ``benchmarks/baseline.json``: library / floor (b'), the numpy
+fallback / floor (b') and the allocating public call / the allocating floor. A ratio
+more than ``--tolerance`` (25 %) above its baseline fails the run (exit 1). Ratios,
+not times: both sides of a ratio are measured in the same rounds, so a shared,
+loaded machine or a different CPU moves them far less than the times. The baseline
+holds ratios per kernel (``numba`` when the ``fast`` extra is installed, else
+``numpy``); a kernel without a baseline is reported, not gated. Each run can be
+appended to ``benchmarks/results/history.jsonl`` (``--record``: commit, date, machine,
+load, ratios), the record of the figures over commits.
+
+**Full mode** refreshes the absolute figures: ``bench_kinematics.py`` (every drive, 1e4
+and 1e6 points) and ``bench_sweep.py`` (1e3 and 1e4 designs, like-for-like baseline),
+their result files in ``benchmarks/results/``, and the tables of ``docs/performance.md``
+between their ``<!-- bench:... -->`` markers. Best run in a quiet spell: the load
+average is recorded with every figure.
+
+Why a small JSON tracker rather than asv or pytest-benchmark: asv builds an
+environment per commit and stores absolute times, pytest-benchmark compares absolute
+times between runs; on a shared 2-core machine absolute times move by 2x with the
+neighbours' load, while the ratio of the library to its floor measured in the same
+rounds moves by a few percent. Neither tool gates on such in-run ratios without a
+plugin of our own, and both are one more dependency for CI.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+import bench_kinematics  # noqa: E402
+from _common import git_commit, load, machine, write_json  # noqa: E402
+from cases import CASES  # noqa: E402
+
+from rotorkin.core.fused import use_compiled  # noqa: E402
+
+BASELINE = HERE / "baseline.json"
+HISTORY = HERE / "results" / "history.jsonl"
+DOCS = HERE.parent / "docs" / "performance.md"
+#: Points of the short mode (above AUTO_MIN_POINTS: the kernel a large evaluation uses).
+SHORT_POINTS = 200_000
+#: Ratios gated in short mode (all "lower is better").
+GATED = ("lib_over_floor", "numpy_over_floor", "alloc_over_floor_alloc")
+TOLERANCE = 0.25
+
+
+def short(drives=None, rounds: int = 80, budget: float = 6.0, cap: int = 1000,
+          echo=print) -> dict:  # fmt: skip
+    """``drives`` (default all) at :data:`SHORT_POINTS` points: ratios, load, kernel."""
+    t0 = time.perf_counter()
+    info = machine()
+    start = load()
+    rows = {}
+    for name in drives or CASES:
+        case = CASES[name]
+        row = bench_kinematics.measure(case, SHORT_POINTS, cap, rounds, budget)
+        rows[name] = row
+        echo(f"  {name:<18} " + "  ".join(f"{k} {row['ratios'][k]:.2f}" for k in GATED)
+             + f"  (load {row['load_before'][0]:.1f})")  # fmt: skip
+    return {
+        "points": SHORT_POINTS,
+        "kernel": "numba" if use_compiled(SHORT_POINTS) else "numpy",
+        "commit": git_commit(),
+        "date": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        "machine": info,
+        "load_start": start,
+        "load_end": load(),
+        "seconds": time.perf_counter() - t0,
+        "ratios": {name: {k: row["ratios"][k] for k in GATED} for name, row in rows.items()},
+        "rows": rows,
+    }
+
+
+def compare(result: dict, baseline: dict, tolerance: float = TOLERANCE) -> list[str]:
+    """Regressions: lines ``drive ratio: now vs baseline (+x %)`` past ``tolerance``."""
+    ref = baseline.get("kernels", {}).get(result["kernel"])
+    if ref is None:
+        return []
+    bad = []
+    for name, ratios in result["ratios"].items():
+        for key, value in ratios.items():
+            base = ref.get(name, {}).get(key)
+            if base is not None and value > base * (1.0 + tolerance):
+                more, limit = (value / base - 1) * 100, tolerance * 100
+                bad.append(f"{name} {key}: {value:.2f} vs baseline {base:.2f} "
+                           f"(+{more:.0f} %, limit +{limit:.0f} %)")  # fmt: skip
+    return bad
+
+
+def update_baseline(result: dict, path: Path = BASELINE) -> Path:
+    """Store ``result``'s ratios as the baseline of its kernel (other kernels kept)."""
+    data = json.loads(path.read_text()) if path.exists() else {}
+    data.setdefault("about", "ratios of benchmarks/run.py --short (lower is better), per kernel")
+    data.setdefault("kernels", {})[result["kernel"]] = result["ratios"]
+    data.setdefault("recorded", {})[result["kernel"]] = {
+        "commit": result["commit"],
+        "date": result["date"],
+        "points": result["points"],
+        "cpu": result["machine"]["cpu"],
+        "vector_isa": result["machine"]["vector_isa"],
+        "numpy": result["machine"]["numpy"],
+        "numba": result["machine"]["numba"],
+        "load_start": result["load_start"],
+        "load_end": result["load_end"],
+    }
+    return write_json(path, data)
+
+
+def record(result: dict, path: Path = HISTORY) -> None:
+    """Append the run (without its per-method rows) to the history file."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    keep = {k: v for k, v in result.items() if k != "rows"}
+    with path.open("a") as f:
+        f.write(json.dumps(keep) + "\n")
+
+
+def _replace_between(text: str, tag: str, body: str) -> str:
+    start, end = f"<!-- bench:{tag} -->", f"<!-- /bench:{tag} -->"
+    i, j = text.find(start), text.find(end)
+    if i < 0 or j < i:
+        raise SystemExit(f"{DOCS}: markers {start} ... {end} not found")
+    return text[: i + len(start)] + "\n" + body.rstrip() + "\n" + text[j:]
+
+
+def full(update_docs: bool = True) -> int:
+    """Refresh the kinematics and sweep results and the tables of docs/performance.md."""
+    py = sys.executable
+    kin = HERE / "results" / "kinematics.json"
+    sweep = HERE / "results" / "sweep.json"
+    subprocess.run([py, str(HERE / "bench_kinematics.py"), "--out", str(kin)], check=True)
+    subprocess.run([py, str(HERE / "bench_sweep.py"), "--sizes", "1e3,1e4", "--repeat", "2",
+                    "--like-designs", "216", "--out", str(sweep)],
+                   check=True)  # fmt: skip
+    if update_docs:
+        text = DOCS.read_text()
+        text = _replace_between(text, "kinematics",
+                                bench_kinematics.markdown(json.loads(kin.read_text())))  # fmt: skip
+        text = _replace_between(text, "sweep", sweep_markdown(json.loads(sweep.read_text())))
+        DOCS.write_text(text)
+        print(f"updated the tables of {DOCS}")
+    return 0
+
+
+def sweep_markdown(result: dict) -> str:
+    """The sweep result as the markdown table of docs/performance.md."""
+    like = result["like_for_like"]
+    lines = [
+        "| designs | samples | compute s | us / design | CPU us / design | peak RSS MiB | load |",
+        "|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for r in result["rows"]:
+        lines.append(f"| {r['designs']} | {r['angles']} | {r['compute_s']:.2f} | "
+                     f"{r['compute_us_per_design']:.0f} | {r['cpu_us_per_design']:.0f} | "
+                     f"{r['peak_rss_MiB']:.0f} | {result['load_before'][0]:.1f}-"
+                     f"{result['load_after'][0]:.1f} |")  # fmt: skip
+    lines += [
+        "",
+        f"Like for like ({like['samples']} samples per design on both sides): the sweep "
+        f"{like['sweep_us_per_design']:.0f} us per design ({like['designs']} designs; CPU "
+        f"{like['sweep_cpu_us_per_design']:.0f} us), the study one design at a time "
+        f"{like['one_by_one_us_per_design']:.0f} us (CPU {like['one_by_one_cpu_us_per_design']:.0f}"
+        f" us): **{like['speedup_like_for_like']:.0f}x wall, "
+        f"{like['speedup_like_for_like_cpu']:.0f}x CPU**.",
+    ]
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    mode = ap.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--short", action="store_true", help="regression gate on ratios (< 60 s)")
+    mode.add_argument("--full", action="store_true", help="refresh every figure (minutes)")
+    ap.add_argument("--update-baseline", action="store_true", help="store the ratios as baseline")
+    ap.add_argument("--record", action="store_true", help=f"append the run to {HISTORY.name}")
+    ap.add_argument("--tolerance", type=float, default=TOLERANCE, help="allowed ratio increase")
+    ap.add_argument("--baseline", type=Path, default=BASELINE, help="baseline file")
+    ap.add_argument("--out", type=Path, default=HERE / "results" / "short.json")
+    ap.add_argument("--no-docs", action="store_true", help="--full: leave the docs as they are")
+    args = ap.parse_args(argv)
+    if args.full:
+        return full(update_docs=not args.no_docs)
+    print(f"short benchmark: every drive at {SHORT_POINTS} points, ratios to floor (b')")
+    result = short()
+    write_json(args.out, result)
+    if args.record:
+        record(result)
+    print(f"kernel {result['kernel']}, {result['seconds']:.0f} s, load {result['load_start']} "
+          f"-> {result['load_end']}")  # fmt: skip
+    if args.update_baseline:
+        path = update_baseline(result, args.baseline)
+        print(f"baseline of kernel {result['kernel']} written to {path}")
+        return 0
+    baseline = json.loads(args.baseline.read_text()) if args.baseline.exists() else {}
+    if result["kernel"] not in baseline.get("kernels", {}):
+        print(f"no baseline for kernel {result['kernel']} in {args.baseline}: not gated")
+        return 0
+    bad = compare(result, baseline, args.tolerance)
+    if bad:  # measured once more, the better of the two kept (noise only ever adds time)
+        again = sorted({line.split()[0] for line in bad})
+        print("measuring again:", ", ".join(again))
+        second = short(again)
+        for name in again:
+            for key, value in second["ratios"][name].items():
+                result["ratios"][name][key] = min(result["ratios"][name][key], value)
+        bad = compare(result, baseline, args.tolerance)
+    for line in bad:
+        print("REGRESSION", line)
+    print("ratios within tolerance of the baseline" if not bad else f"{len(bad)} regression(s)")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
