@@ -31,8 +31,10 @@ How the documents are read (the conventions they follow):
 * **json**: ``<!-- summary-of: COMMAND -->`` before the block: its keys and values must be
   in the ``summary.json`` that ``COMMAND`` (a ``rotorkin run``) writes.
 * ``<!-- summary-table: NAME = COMMAND; ... -->`` before a table: in each row, the cell of
-  column ``NAME`` must show the value of the row's first ``key`` in the summary.json of
-  ``COMMAND`` (numbers at their precision, ``true``/``false``, text as written).
+  column ``NAME`` must show the values of the row's ``keys`` (``a_min_cm3``, ``_max_cm3``
+  is ``a_min_cm3, a_max_cm3``) in the summary.json of ``COMMAND``: one value for each key
+  (comma-separated) or one for all; numbers at their precision, units after them
+  allowed, ``true``/``false``, text as written.
 * ``<!-- expect: 38.94, 16 -->`` right after a block: each number must be in the paragraph
   after the marker and in the output of the block's commands.
 * **Numbers** match when the output has one that rounds to the written one at its
@@ -190,7 +192,8 @@ def read_doc(doc: str):
                 j += 1
             rows = []
             while j < len(lines) and lines[j].lstrip().startswith("|"):
-                rows.append([c.strip() for c in lines[j].strip().strip("|").split("|")])
+                cells = re.split(r"(?<!\\)\|", lines[j].strip().strip("|"))
+                rows.append([c.strip().replace("\\|", "|") for c in cells])
                 j += 1
             if len(rows) < 3:
                 problems.append(f"{doc}:{i + 1}: summary-table marker without a table after it")
@@ -464,11 +467,24 @@ def _summary_of(runner: Runner, command: str, errors: list, where: str) -> dict 
 
 def _same(cell: str, value) -> bool:
     """Whether a table cell or json value as written shows the summary's ``value``."""
+    cell = cell.strip().strip("`")
     if isinstance(value, bool) or cell in ("true", "false"):
         return str(value).lower() == cell
-    if isinstance(value, (int, float)) and NUMBER.fullmatch(cell):
-        return number_shown(cell, json.dumps(value))
+    lead = NUMBER.match(cell)
+    if isinstance(value, (int, float)) and lead:  # a number, perhaps with its unit
+        return number_shown(lead.group(0), json.dumps(value))
     return str(value) == cell
+
+
+def _keys(cell: str) -> list[str]:
+    """The summary keys of a row: ``a_min_cm3``, ``_max_cm3`` is ``a_min_cm3, a_max_cm3``."""
+    keys: list[str] = []
+    for name in re.findall(r"`([^`]+)`", cell):
+        if name.startswith("_") and keys:
+            base = keys[-1].split("_")
+            name = "_".join(base[: len(base) - name.count("_")]) + name
+        keys.append(name)
+    return keys
 
 
 def _check_table(runner: Runner, table: Table, errors: list) -> None:
@@ -484,12 +500,18 @@ def _check_table(runner: Runner, table: Table, errors: list) -> None:
             continue
         col = header.index(name)
         for row in rows:
-            key = re.search(r"`([^`]+)`", row[0])
-            if key is None or key.group(1) not in summary:
-                errors.append(f"{where}: row {row[0]!r}: no summary key of {command}")
-            elif not _same(row[col], summary[key.group(1)]):
-                errors.append(f"{where}: {key.group(1)} = {summary[key.group(1)]!r} "
-                              f"({command}), the table says {row[col]!r}")  # fmt: skip
+            keys, values = _keys(row[0]), [v.strip() for v in row[col].split(", ")]
+            if len(values) == 1:  # one value for every key of the row
+                values = values * len(keys)
+            if not keys or len(values) != len(keys):
+                errors.append(f"{where}: row {row[0]!r}: {len(keys)} keys, {row[col]!r}")
+                continue
+            for key, cell in zip(keys, values, strict=True):
+                if key not in summary:
+                    errors.append(f"{where}: {key} is not a summary key of {command}")
+                elif not _same(cell, summary[key]):
+                    errors.append(f"{where}: {key} = {summary[key]!r} ({command}), "
+                                  f"the table says {cell!r}")  # fmt: skip
 
 
 def _check_python(runner: Runner, block: Block, errors: list) -> None:
