@@ -221,6 +221,7 @@ def read_doc(doc: str):
 
 
 def _logical_lines(body):
+    """``(first line index, line)`` with the lines continued by a trailing ``\\`` joined."""
     out, current, start = [], "", None
     for k, raw in enumerate(body):
         line = raw.rstrip()
@@ -238,9 +239,6 @@ def _logical_lines(body):
 
 def _split_comment(line: str) -> tuple[str, str]:
     """``command  # comment`` -> (command, comment); a ``#`` inside quotes is kept."""
-    lexer = shlex.shlex(line, posix=True, punctuation_chars=False)
-    lexer.whitespace_split = True
-    lexer.commenters = ""
     quote = None
     for k, ch in enumerate(line):
         if quote:
@@ -290,7 +288,7 @@ def commands_of(block: Block) -> list[Command]:
                 out[-1].context = "\n".join(shown)
             k += 1
     for cmd in out:
-        cmd.numbers += [n for n in block.expect]
+        cmd.numbers += list(block.expect)
     return out
 
 
@@ -423,21 +421,19 @@ def _check_command(runner: Runner, cmd: Command, errors: list) -> str | None:
 
 
 def _check_toml(runner: Runner, block: Block, errors: list) -> None:
-    from rotorkin.io.config import apply_sets, load_config, read_toml, validate_config
+    from rotorkin.io.config import load_config, validate_config
 
     text = "\n".join(block.body)
-    data = tomllib.loads(text)
-    name = block.markers.get("file", f"block_{block.line}.toml")
-    path = runner.work / name
     try:
-        if "drive" in data:
+        data = tomllib.loads(text)
+        if "drive" in data:  # a config, read from a file as the reader would
+            path = runner.work / block.markers.get("file", f"block_{block.line}.toml")
             path.write_text(text)
             load_config(path)
         else:  # a fragment: the default example with these keys
             _, raw, _ = load_config()
-            sets = [f"{s}.{k}={json.dumps(v)}" for s, keys in data.items() for k, v in keys.items()]
-            validate_config(apply_sets(raw, sets))
-            del read_toml
+            merged = {**raw, **{s: {**raw.get(s, {}), **keys} for s, keys in data.items()}}
+            validate_config(merged)
     except Exception as exc:  # noqa: BLE001 - every failure is the document's
         errors.append(f"{block.doc}:{block.line}: the toml block does not validate: {exc}")
 
