@@ -391,7 +391,7 @@ def adiabatic_cycle(gas, vc, ve, dvc, dve, vk, vr, vh, tk, th, gamma=1.4, r_gas=
                     tolerance=PERIODIC_TOLERANCE, max_iterations=40) -> CycleResult:  # fmt: skip
     """Ideal adiabatic cycle (Urieli and Berchowitz) at periodic steady state.
 
-    Per angle: ``p = M R / (V_c/T_c + V_k/T_k + V_r/T_r + V_h/T_h + V_e/T_e)``,
+    Per angle: ``p = M R / (V_c/T_c + V_k/T_k + V_r/T_r + V_h/T_h + V_e/T_e)``, and::
 
         dp = -gamma p (dV_c/T_ck + dV_e/T_he) / (V_c/T_ck + gamma (V_k/T_k + V_r/T_r + V_h/T_h)
              + V_e/T_he)
@@ -480,7 +480,7 @@ def periodic_pressure(result: CycleResult, theta, period: float):
 
     Returns
     -------
-    ndarray, shape (..., *theta.shape)
+    ndarray, shape ``(..., *theta.shape)``
         Designs first.
     """
     from scipy.interpolate import CubicSpline

@@ -60,7 +60,7 @@ class Line:
     end: tuple[float, float]
 
     def evaluate(self, s):
-        """Points at ``s`` in [0, 1], shape (2, *s.shape) [m]."""
+        """Points at ``s`` in [0, 1], shape ``(2, *s.shape)`` [m]."""
         s = np.asarray(s, dtype=float)
         a, b = np.asarray(self.start, dtype=float), np.asarray(self.end, dtype=float)
         return a.reshape((2,) + (1,) * s.ndim) + s[None] * (b - a).reshape((2,) + (1,) * s.ndim)
@@ -84,7 +84,7 @@ class Arc:
     a1: float
 
     def evaluate(self, s):
-        """Points at ``s`` in [0, 1] (angle ``a0 + s (a1 - a0)``), shape (2, *s.shape) [m]."""
+        """Points at ``s`` in [0, 1] (angle ``a0 + s (a1 - a0)``), shape ``(2, *s.shape)`` [m]."""
         a = self.a0 + np.asarray(s, dtype=float) * (self.a1 - self.a0)
         return np.stack([self.centre[0] + self.radius * np.cos(a),
                          self.centre[1] + self.radius * np.sin(a)])  # fmt: skip
@@ -122,7 +122,7 @@ class Spline:
         return float(self.knots[0]), float(self.knots[-1])
 
     def evaluate(self, s):
-        """Points at ``s`` in [0, 1] of the parameter range, shape (2, *s.shape) [m]."""
+        """Points at ``s`` in [0, 1] of the parameter range, shape ``(2, *s.shape)`` [m]."""
         u0, u1 = self.bounds
         s = np.asarray(s, dtype=float)
         u = np.clip(u0 + s * (u1 - u0), u0, u1)

@@ -329,7 +329,7 @@ def charge_cycle(machine, loads: FuelAirLoads, chambers_at, counter, turning, pe
         ``theta (any shape) -> Chambers`` of the machine on its drive (volumes ``(2N, ...)``
         and ``dV/dtheta``).
     counter : callable
-        ``theta -> `` chamber 1's stroke counter (integers at the turning points).
+        ``theta ->`` chamber 1's stroke counter (integers at the turning points).
     turning : ndarray
         The turning points of the relative angle in ``[0, period)`` [rad].
     period : float

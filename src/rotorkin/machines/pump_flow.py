@@ -22,6 +22,7 @@ flow delivered is the geometric flow less
   from one at ``p_s`` (all A chambers discharge while all B chambers suck, and
   the other way round), so each of the ``2 Z`` vanes leaks with ``dp = p_d - p_s``
   through
+
   - its tip (clearance ``h_t`` to the casing): ``b = w``, ``L = gamma R_c``;
   - its root (clearance ``h_h`` to the hub of the other impeller): ``b = w``,
     ``L = gamma R_h``;
@@ -29,6 +30,7 @@ flow delivered is the geometric flow less
     whose length grows with the radius, ``L = gamma rho``; integrating
     ``dQ = h_s^3 dp d rho / (12 mu gamma rho)`` from ``R_h`` to ``R_c`` gives
     ``Q = h_s^3 dp ln(R_c/R_h) / (12 mu gamma)`` per face;
+
 * the compression loss: a chamber switched from suction to discharge at its
   largest volume ``V_max = k phi_max`` holds fluid at ``p_s``; bringing it to
   ``p_d`` takes back ``V_max (p_d - p_s) / K`` from the discharge port (``K`` the

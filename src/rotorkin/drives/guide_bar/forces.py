@@ -23,8 +23,8 @@ mechanisms' members counter-clockwise; every torque below is along the member's 
 sense of turning (+q, +theta), every vector in the mechanism frame.
 
 Angles in the frame: crank angle ``phi_c`` and guide-bar angle ``phi_g`` from the x axis
-(:mod:`.kinematics`: crank-driven ``phi_c = x``, ``phi_g = g(x)``; guide-driven
-``phi_g = y``, ``phi_c = h(y)``). Crank pin (slider block) at
+(:mod:`~rotorkin.drives.guide_bar.kinematics`: crank-driven ``phi_c = x``,
+``phi_g = g(x)``; guide-driven ``phi_g = y``, ``phi_c = h(y)``). Crank pin (slider block) at
 ``P = s (cos phi_g, sin phi_g)``, ``s = a sqrt(1 + 2 lambda cos phi_c + lambda^2)`` from C;
 ``e_g = (cos phi_g, sin phi_g)`` along the guide, ``n_g = (-sin phi_g, cos phi_g)`` across
 it, pointing where the guide bar moves.

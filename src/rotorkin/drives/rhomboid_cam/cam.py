@@ -128,7 +128,7 @@ def pressure_angles(link_length, psi_min, a, b, alpha):
 
     Returns
     -------
-    ndarray, shape (4, *alpha.shape)
+    ndarray, shape ``(4, *alpha.shape)``
         Signed, in ``(-pi/2, pi/2)``; positive while the roller moves outwards.
     """
     r0, r1 = rc.profile_radius(link_length, psi_min, a, b, roller_alphas(alpha))[:2]

@@ -30,7 +30,7 @@ Frames and signs
   (wall 1 of ``cam.groove_walls``), ``N_j < 0`` by the ``+n`` wall (wall 0).
 
 Equations (the drive's own, derived here; the paper gives kinematics only)
--------------------------------------------------------------------------
+--------------------------------------------------------------------------
 * Rotor k (bearings about x): ``sum_j F_j rho_j = D_k = J_k qdd_k - M_k`` over its two
   rollers, ``rho_j = R sqrt(e_y^2 + e_z^2)``; the two rollers of a group have the same
   lever arm and share equally (rigid plate and rotor, equal contact stiffness).

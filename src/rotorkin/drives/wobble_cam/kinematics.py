@@ -521,7 +521,7 @@ def period(params: WobbleCam) -> float:
 
     With a spin ratio that is a multiple of 0.5, each rotor has then turned by
     ``2 pi (1 + n)``, a multiple of pi, which maps its 2 rails and 4 pistons
-    onto themselves; all derivatives are 2 pi periodic (in fact pi/|n|).
+    onto themselves; all derivatives are 2 pi periodic (in fact ``pi/|n|``).
     """
     return 2.0 * np.pi
 
