@@ -60,6 +60,7 @@ __all__ = [
     "kernel_choice",
     "numba_available",
     "prepare",
+    "shared_pool",
     "select",
     "split",
     "use_compiled",
@@ -246,7 +247,7 @@ def default_threads() -> int:
     return value
 
 
-def _pool(size: int) -> ThreadPoolExecutor:
+def shared_pool(size: int) -> ThreadPoolExecutor:
     """A shared pool with at least ``size`` threads (created on first use)."""
     global _POOL, _POOL_KEY
     with _POOL_LOCK:
@@ -286,7 +287,9 @@ def split(run, size: int, threads=None) -> None:
         return
     step = -(-size // nthreads)
     step = -(-step // BLOCK) * BLOCK
-    futures = [_pool(nthreads).submit(run, lo, min(size, lo + step)) for lo in range(0, size, step)]
+    futures = [
+        shared_pool(nthreads).submit(run, lo, min(size, lo + step)) for lo in range(0, size, step)
+    ]
     for f in futures:
         f.result()
 

@@ -46,14 +46,18 @@ compiled loops run when numba is installed and there are at least
 from __future__ import annotations
 
 import math
-import os
-import threading
-from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 from rotorkin.core.errors import ParameterError
-from rotorkin.core.fused import BLOCK, THREADS_ENV, default_threads, use_compiled
+from rotorkin.core.fused import (
+    BLOCK,
+    THREADS_ENV,
+    chunks,
+    default_threads,
+    shared_pool,
+    use_compiled,
+)
 from rotorkin.drives.wobble_cam import kinematics_fused as fused
 
 __all__ = ["BLOCK", "THREADS_ENV", "default_threads", "rotor_kinematics"]
@@ -65,22 +69,6 @@ COMPILED_BLOCK = 4 * BLOCK
 #: Fewest points for which a thread pool is used.
 _MIN_PARALLEL = 8 * BLOCK
 _SCRATCH = 14
-_POOL: ThreadPoolExecutor | None = None
-_POOL_KEY = (0, 0)  # (threads, pid): a pool inherited through fork() has no threads
-_POOL_LOCK = threading.Lock()
-
-
-def _pool(size: int) -> ThreadPoolExecutor:
-    """A shared pool with at least ``size`` threads (created on first use)."""
-    global _POOL, _POOL_KEY
-    with _POOL_LOCK:
-        if _POOL is None or _POOL_KEY[0] < size or _POOL_KEY[1] != os.getpid():
-            old, forked = _POOL, _POOL_KEY[1] != os.getpid()
-            _POOL = ThreadPoolExecutor(max_workers=size, thread_name_prefix="rotorkin")
-            _POOL_KEY = (size, os.getpid())
-            if old is not None and not forked:
-                old.shutdown(wait=False)
-        return _POOL
 
 
 def rotor_kinematics(
@@ -176,7 +164,7 @@ def rotor_kinematics(
         step = -(-size // nthreads)
         step = -(-step // BLOCK) * BLOCK
         cuts = [(lo, min(size, lo + step)) for lo in range(0, size, step)]
-        futures = [_pool(nthreads).submit(_run, job, lo, hi) for lo, hi in cuts]
+        futures = [shared_pool(nthreads).submit(_run, job, lo, hi) for lo, hi in cuts]
         for f in futures:
             f.result()
     return rotor, cham
@@ -200,7 +188,7 @@ def _run(job, lo, hi):
     if not arrays:  # a single point
         block(scalars, scalars, n, flat_r, flat_c, work[:, :1], 0)
         return
-    for start, stop, chunk in _chunks(arrays, flat, lo, hi, block_size):
+    for start, stop, chunk in chunks(arrays, flat, lo, hi, block_size):
         x = k = {**scalars, **chunk}  # inputs and the design's constants
         if compiled:
             _block_compiled(x, k, n, flat_r, flat_c, work[:, : stop - start], start)
@@ -243,33 +231,6 @@ def _block_compiled(x, k, n, o, dch, w, lo):
             tv, vt, e1, e2, *trig, *common, k["c"], k["mck"], k["ck2"], x["g1"], x["g2"],
             x["g3"], ka, kb, *outs, chambers, *cham,
         )  # fmt: skip
-
-
-def _chunks(arrays, flat, lo, hi, block=BLOCK):
-    """``(start, stop, {name: block of the input})`` over the flat points ``lo:hi``.
-
-    ``flat``: every array has the full shape and is C-contiguous, a block is a
-    slice; otherwise a buffered C-order :class:`numpy.nditer` broadcasts them.
-    """
-    names = list(arrays)
-    if flat:
-        for start in range(lo, hi, block):
-            stop = min(hi, start + block)
-            yield start, stop, {name: arrays[name][start:stop] for name in names}
-        return
-    it = np.nditer(
-        [arrays[name] for name in names],
-        flags=["external_loop", "buffered", "ranged", "zerosize_ok"],
-        op_flags=[["readonly", "contig"]] * len(names),
-        buffersize=block,
-        order="C",
-    )
-    it.iterrange = (lo, hi)
-    while not it.finished:
-        start = it.iterindex
-        chunk = it.value if len(names) > 1 else (it.value,)
-        yield start, start + chunk[0].shape[0], dict(zip(names, chunk, strict=True))
-        it.iternext()
 
 
 def _coefficients(x, n, pistons):
