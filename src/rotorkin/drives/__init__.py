@@ -214,9 +214,9 @@ def evaluate(cfg: dict):
     result.summary["limits_passed"] = ", ".join(line.split(":", 1)[0] for line in lines)
     # the drive's own checks that fail: one warning line each, unless the study's own
     # warnings already name the check's key
-    said = list(result.warnings)
-    lines += [failure_line(c) for c in checks
-              if not c.passed and not any(w.startswith(f"{c.key} ") for w in said)]  # fmt: skip
+    said = [*result.warnings, *lines]
+    lines += [failure_line(c) for c in checks if not c.passed
+              and not any(w.startswith((f"{c.key} ", f"{c.key}:")) for w in said)]  # fmt: skip
     result.warnings = (*result.warnings, *lines)
     result.checks = (*checks, *limit_checks(result.summary, cfg, result.columns))
     return result
