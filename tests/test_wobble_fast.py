@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rotorkin.core import fused as fused_core
 from rotorkin.core.errors import ParameterError
 from rotorkin.drives.wobble_cam import chambers as wobble_chambers
 from rotorkin.drives.wobble_cam import fast as wobble_kernel
@@ -200,10 +201,10 @@ def test_pool_recreated_after_fork(monkeypatch):
     theta = np.linspace(0, 1, 10 * wobble_kernel.BLOCK)
     ref = np.stack(wc.rotor_angles(p, theta, threads=1))
     wc.rotor_angles(p, theta, threads=2)
-    size, _ = wobble_kernel._POOL_KEY
-    monkeypatch.setattr(wobble_kernel, "_POOL_KEY", (size, -1))
+    size, _ = fused_core._POOL_KEY  # the thread pool the kernels share
+    monkeypatch.setattr(fused_core, "_POOL_KEY", (size, -1))
     np.testing.assert_array_equal(np.stack(wc.rotor_angles(p, theta, threads=2)), ref)
-    assert wobble_kernel._POOL_KEY[1] > 0
+    assert fused_core._POOL_KEY[1] > 0
 
 
 def test_split_modules_export_everything():
