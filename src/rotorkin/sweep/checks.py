@@ -142,15 +142,7 @@ def fill_drive_checks(p, names, out: dict, reason: np.ndarray, code: dict) -> No
     todo = np.flatnonzero(reason == 0)
     if todo.size == 0:
         return
-    keys = [k for k in p.table if k.split(".")[0] not in NOT_GEOMETRY]
-    if keys:
-        columns = np.column_stack([np.asarray(p.table[k], dtype=object)[todo] for k in keys])
-        groups: dict = {}
-        for j, row in enumerate(map(tuple, columns)):
-            groups.setdefault(row, []).append(todo[j])
-        members = [np.asarray(v) for v in groups.values()]
-    else:
-        members = [todo]
+    members = _geometries(p, todo)
     for idx in members:
         try:
             found = drives.design_checks(p.config(int(idx[0])))
@@ -161,6 +153,24 @@ def fill_drive_checks(p, names, out: dict, reason: np.ndarray, code: dict) -> No
             name = metric_name(c.name, c.unit)
             if name in out:
                 out[name][idx] = c.margin
+
+
+def _geometries(p, todo: np.ndarray) -> list[np.ndarray]:
+    """The designs ``todo`` grouped by their geometry (equal values of every swept key
+    outside :data:`NOT_GEOMETRY`), vectorised: each key's values as integer codes, the
+    codes combined into one, the designs sorted by it."""
+    keys = [k for k in p.table if k.split(".")[0] not in NOT_GEOMETRY]
+    if not keys:
+        return [todo]
+    codes, sizes = [], []
+    for k in keys:
+        values, inverse = np.unique(np.asarray(p.table[k])[todo], return_inverse=True)
+        codes.append(inverse.reshape(-1))
+        sizes.append(len(values))
+    combined = np.ravel_multi_index(codes, sizes)
+    order = np.argsort(combined, kind="stable")
+    starts = np.flatnonzero(np.diff(combined[order], prepend=-1))
+    return np.split(todo[order], starts[1:])
 
 
 def fill_limit_checks(p, names, out: dict) -> None:
