@@ -21,6 +21,9 @@ How the documents are read (the conventions they follow):
   listed in :data:`PLACEHOLDERS` and the test fails when the documents' set differs from
   that list. Setup commands (``pip install ...``) and the test suite itself
   (``python -m pytest``), :data:`SETUP`, are not run either. Nothing else is left out.
+* **Benchmarks** (``python benchmarks/<script>.py ...``) take minutes on a quiet machine:
+  their arguments are parsed by the script's own parser, which must accept them (exit 0),
+  and the script stops there; the numbers in their comments are timings, not compared.
 * **python**: each block is executed (``exec``) on its own in the working folder; a line
   ``expression  # comment`` whose comment holds numbers or a quoted string must show
   them in the expression's ``repr``.
@@ -66,9 +69,6 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
-#: Being rewritten on their own; they join :data:`DOCS` once they follow the conventions above.
-NOT_YET = ("docs/performance.md",)
-
 DOCS = [
     p.relative_to(ROOT).as_posix()
     for p in [
@@ -76,7 +76,6 @@ DOCS = [
         *sorted((ROOT / "docs").glob("*.md")),
         *sorted((ROOT / "docs").glob("*/*.md")),
     ]  # fmt: skip
-    if p.relative_to(ROOT).as_posix() not in NOT_YET
 ]
 
 #: Commands with placeholders, not run (the documents' set must equal this one).
@@ -114,6 +113,20 @@ PLACEHOLDERS = frozenset({
 
 #: Setup commands (``pip install ...``) and the test suite itself, not run.
 SETUP = ("pip install ", "python -m pytest")
+#: Benchmark commands: their arguments parsed by the script, which stops there.
+BENCHMARK = "python benchmarks/"
+#: Runs a benchmark script with ``parse_args`` ending the run once the arguments are read.
+PARSE_ONLY = """
+import argparse, runpy, sys
+parse = argparse.ArgumentParser.parse_args
+def parse_only(self, args=None, namespace=None):
+    parse(self, args, namespace)
+    print("arguments accepted")
+    raise SystemExit(0)
+argparse.ArgumentParser.parse_args = parse_only
+sys.argv = sys.argv[1:]
+runpy.run_path(sys.argv[0], run_name="__main__")
+"""
 
 LANGUAGES = ("bash", "python", "toml", "json", "text")
 NUMBER = re.compile(r"(?<![\w.])[-+]?\d+(?:[ \u202f]\d{3})*(?:\.\d+)?(?:[eE][-+]?\d+)?(?![\w.]*\w)")
@@ -366,6 +379,9 @@ class Runner:
     def run(self, text: str) -> tuple[int, str]:
         if text in self.done:
             return self.done[text]
+        if text.startswith(BENCHMARK):
+            self.done[text] = self.parse_benchmark(text)
+            return self.done[text]
         argv = shlex.split(text)
         assert argv[0] == "rotorkin", f"no way to run {text!r}"
         from rotorkin.cli import main
@@ -381,6 +397,16 @@ class Runner:
                 self.summaries[text] = json.loads(summary)
         self.done[text] = result
         return result
+
+    def parse_benchmark(self, text: str) -> tuple[int, str]:
+        """A benchmark's arguments read by its own parser (the benchmark does not run)."""
+        import subprocess
+        import sys
+
+        argv = shlex.split(text)
+        proc = subprocess.run([sys.executable, "-c", PARSE_ONLY, *argv[1:]], cwd=ROOT,
+                              capture_output=True, text=True, timeout=120)  # fmt: skip
+        return proc.returncode, proc.stdout + proc.stderr
 
     def exec_python(self, source: str) -> dict[int, str]:
         """Execute a python block; the repr of each expression statement by its line."""
@@ -556,6 +582,8 @@ def test_every_block_runs_as_documented(doc, runner):
             for cmd in commands_of(block):
                 if placeholder(cmd.text) or cmd.text.startswith(SETUP):
                     continue
+                if cmd.text.startswith(BENCHMARK):
+                    cmd.numbers = []  # timings
                 outputs.append(_check_command(runner, cmd, errors) or "")
             for n in block.expect:
                 if n not in block.after:
@@ -581,7 +609,7 @@ def test_placeholders_are_the_listed_ones_and_every_other_command_runs():
         for cmd in _all_commands(doc):
             if placeholder(cmd.text):
                 found.add(cmd.text)
-            elif not cmd.text.startswith(("rotorkin ", *SETUP)):
+            elif not cmd.text.startswith(("rotorkin ", BENCHMARK, *SETUP)):
                 strangers.append(f"{cmd.doc}:{cmd.line}: {cmd.text}")
     assert found == PLACEHOLDERS, (
         f"not listed: {sorted(found - PLACEHOLDERS)}; gone: {sorted(PLACEHOLDERS - found)}"
@@ -609,3 +637,11 @@ def test_numbers_are_read_at_their_precision():
     assert number_shown("-4.97e-14", "residual 3.1e-15")
     assert numbers_in("303 designs in 0.13 s, 16 strokes") == ["303", "16"]
     assert numbers_in("rotor1, H8/f7, p99, 8.0315 (8 + 0.0315)") == ["8.0315", "8", "0.0315"]
+
+
+def test_a_benchmark_command_is_checked_by_its_own_parser(tmp_path):
+    runner = Runner(tmp_path)
+    rc, out = runner.parse_benchmark("python benchmarks/bench_kinematics.py --sizes 1e5")
+    assert (rc, out.strip()) == (0, "arguments accepted")
+    rc, out = runner.parse_benchmark("python benchmarks/bench_kinematics.py --no-such-option 3")
+    assert rc == 2 and "--no-such-option" in out
