@@ -42,6 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorkin.analysis.gas import ConstantGas
+from rotorkin.core.fused import compiled_loop, formula, select, use_compiled
 
 __all__ = [
     "Charge",
@@ -179,7 +180,8 @@ class Walls:
 
 
 def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
-                 burn: Wiebe | None = None, walls: Walls | None = None) -> dict:  # fmt: skip
+                 burn: Wiebe | None = None, walls: Walls | None = None,
+                 kernel=None) -> dict:  # fmt: skip
     """Temperature and pressure of chambers from intake closure to exhaust opening.
 
     Parameters
@@ -195,13 +197,18 @@ def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
     heat : float or ndarray (...)
         Heat the charge releases [J].
     gas : ConstantGas or NasaGas, optional
-        Properties (default constant ``gamma = 1.3``).
+        Properties (default constant ``gamma = 1.3``), through their
+        :class:`~rotorkin.analysis.gas.GasTables`.
     temperature : float or ndarray, optional
         At intake closure [K]; default from the ideal gas law at ``x[0]`` with 1 bar.
     burn : Wiebe or None
         None: all the heat at once at ``x = 0``, at constant volume.
     walls : Walls or None
         None: adiabatic.
+    kernel : {"auto", "numpy", "numba"}, optional
+        With a Wiebe burn, the chambers' integration as numpy operations on arrays of
+        chambers or as one compiled loop per chamber
+        (:func:`rotorkin.core.fused.use_compiled`; the same formulas, in the same order).
 
     Returns
     -------
@@ -226,7 +233,7 @@ def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
     t0 = (1.0e5 * volume[..., 0] / (mass * gas.gas_constant(0.0)) if temperature is None
           else np.broadcast_to(np.asarray(temperature, float), shape))  # fmt: skip
     t0 = np.broadcast_to(t0, shape).astype(float)
-
+    zero = n_half
     if burn is None:
         at = np.flatnonzero(np.isclose(x[::2], 0.0, rtol=0.0, atol=1e-9 * abs(h)))
         zero = int(at[0]) if at.size else n_half  # no dead centre on the grid: motored
@@ -234,40 +241,124 @@ def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
         rate = np.zeros(n_half)
     else:
         fraction, rate = wiebe(burn, x)
-    ref = None
-    if walls is not None:  # Woschni: the motored pressure from the state at intake closure
-        r0 = gas.gas_constant(0.0)
-        gamma_m = 1.0 + r0 / gas.cv(t0, 0.0)
-        p0 = mass * r0 * t0 / volume[..., 0]
-        ref = (p0, volume[..., 0], t0, gamma_m, np.max(volume, -1) - np.min(volume, -1))
-        started = x >= (burn.start if burn is not None else 0.0)
+    tables = gas.tables()
+    r_half = np.broadcast_to(gas.gas_constant(fraction), (n_half,)).astype(float)
+    nodes = slice(0, None, 2)
+    dr = (gas.gas_constant(1.0) - gas.gas_constant(0.0)) * rate[nodes]
+    wall = _wall_constants(gas, walls, burn, x, shape, mass, t0, volume)
+    chambers = int(np.prod(shape))
+    if burn is not None and use_compiled(chambers * n_half, kernel):
+        args = (h, volume, dvolume, r_half, fraction, rate, dr, mass, heat, t0, walls, wall)
+        temp, pressure, dp, work, lost = _compiled_cycle(*args, tables, shape)
+        temp_left, p_left = temp, pressure
+    else:
+        args = (h, volume, dvolume, r_half, fraction, rate, zero, mass, heat, t0, gas, walls)
+        temp, temp_left, slopes, work, lost = _numpy_cycle(*args, wall, tables, shape)
+        m = mass[..., None] if np.ndim(mass) else mass
+        r_gas = r_half[nodes]
+        v_nodes = volume[..., nodes]
+        pressure = m * r_gas * temp / v_nodes
+        # dp/dx = m/V (R dT/dx + T dR/dx) - p dV/dx / V at the nodes
+        dp = (m * (r_gas * slopes + temp * dr) - pressure * dvolume[..., nodes]) / v_nodes
+        p_left = m * r_gas * temp_left / volume[..., nodes]
+    xb = fraction[nodes]
+    energy0 = gas.energy(t0, 0.0)
+    energy1 = gas.energy(temp[..., -1], xb[-1])
+    return {
+        "x": x[nodes],
+        "T": temp,
+        "p": pressure,
+        "p_left": p_left,
+        "dp": dp,
+        "burnt": xb,
+        "work": work,
+        "heat_wall": lost,
+        "heat_released": heat * xb[-1],
+        "energy_rise": mass * (energy1 - energy0),
+    }
+
+
+def _wall_constants(gas, walls, burn, x, shape, mass, t0, volume):
+    """Per chamber: Woschni's constant factors and the motored state from intake closure."""
+    if walls is None:
+        return None
+    r0 = gas.gas_constant(0.0)
+    gamma_m = 1.0 + r0 / gas.cv(t0, 0.0)
+    v0 = volume[..., 0]
+    p0 = mass * r0 * t0 / v0
+    v_d = np.max(volume, -1) - np.min(volume, -1)
+    full = lambda a: np.broadcast_to(np.asarray(a, dtype=float), shape)  # noqa: E731
+    return {
+        "p0": full(p0),
+        "v0": full(v0),
+        "gamma": full(gamma_m),
+        "c1sp": full(WOSCHNI_C1 * np.asarray(walls.wall_speed, dtype=float)),
+        "c2k": full(WOSCHNI_C2 * v_d * t0 / (p0 * v0)),
+        "cd": full(3.26 * np.asarray(walls.diameter, dtype=float) ** -0.2),
+        "started": x >= (burn.start if burn is not None else 0.0),
+    }
+
+
+@formula
+def _motored(p0, v0, v, gamma):
+    """Pressure of the motored charge, ``p_0 (V_0 / V)^gamma`` [Pa]."""
+    return p0 * np.exp(gamma * np.log(v0 / v))
+
+
+@formula
+def _pressure(mass, r, t, v):
+    """``p = m R T / V`` [Pa]."""
+    return mass * r * t / v
+
+
+@formula
+def _wall_rate(t, p, started, motored, area, seconds, c1sp, c2k, cd, t_wall):
+    """Heat to the walls per radian of cycle angle [J/rad], Woschni (numbers or arrays).
+
+    The coefficient ``3.26 B^-0.2 (p w)^0.8 T^-0.55`` of :func:`woschni` as one
+    exponential of logarithms; ``w = C_1 S_p + C_2 V_d T_r / (p_r V_r) (p - p_m)``.
+    """
+    excess = p - motored
+    speed = c1sp + select(started, c2k * select(excess > 0.0, excess, 0.0), 0.0)
+    coeff = cd * np.exp(0.8 * np.log(p / 1e3 * speed) - 0.55 * np.log(t))
+    return coeff * area * (t - t_wall) * seconds
+
+
+@formula
+def _stage(t, p, dv, xb, dxb, mass, heat, cvu, cvb, du, q_wall):
+    """``dT/dx`` and ``p dV/dx`` of one chamber at one grid point (numbers or arrays).
+
+    ``cvu, cvb, du``: the gas tables at ``t``; ``q_wall``: :func:`_wall_rate`.
+    """
+    cv = (1.0 - xb) * cvu + xb * cvb
+    return (heat * dxb - q_wall - p * dv - mass * (du * dxb)) / (mass * cv), p * dv
+
+
+def _numpy_cycle(h, volume, dvolume, r_half, fraction, rate, zero, mass, heat, t0, gas, walls,
+                 wall, tables, shape):  # fmt: skip
+    """The classical Runge-Kutta steps as numpy operations on arrays of chambers."""
+    n_half = r_half.size
+    zeros = np.zeros(shape)
 
     def rates(i, t):
-        """d(T, work, heat to the walls)/dx at half-step index ``i``."""
-        v, dv, xb, dxb = volume[..., i], dvolume[..., i], fraction[i], rate[i]
-        p = mass * gas.gas_constant(xb) * t / v
+        cvu, cvb, du = tables.lookup(t)
+        v = volume[..., i]
+        p = _pressure(mass, r_half[i], t, v)
         q_wall = 0.0 * t
         if walls is not None:
-            p0, v0, t_r, g_m, v_d = ref
-            motored = p0 * (v0 / v) ** g_m
-            speed = WOSCHNI_C1 * walls.wall_speed + (
-                WOSCHNI_C2 * v_d * t_r / (p0 * v0) * np.maximum(p - motored, 0.0)
-                if started[i] else 0.0
-            )  # fmt: skip
-            coeff = woschni(p, t, walls.diameter, speed)
-            q_wall = coeff * walls.area[..., i] * (t - walls.temperature) * walls.seconds[..., i]
-        du = gas.burnt_minus_unburnt(t) * dxb
-        dt = (heat * dxb - q_wall - p * dv - mass * du) / (mass * gas.cv(t, xb))
-        return dt, p * dv, q_wall
+            motored = _motored(wall["p0"], wall["v0"], v, wall["gamma"])
+            q_wall = _wall_rate(t, p, bool(wall["started"][i]), motored, walls.area[..., i],
+                                walls.seconds[..., i], wall["c1sp"], wall["c2k"], wall["cd"],
+                                walls.temperature)  # fmt: skip
+        dt, pdv = _stage(t, p, dvolume[..., i], fraction[i], rate[i], mass, heat, cvu, cvb, du,
+                         q_wall)  # fmt: skip
+        return dt, pdv, q_wall
 
     t = t0
-    work = np.zeros(shape)
-    lost = np.zeros(shape)
-    temps = [t]
-    left = [t]
-    slopes = []
+    work, lost = zeros, zeros
+    temps, left, slopes = [t], [t], []
     for k in range(0, n_half - 1, 2):  # the cycle's steps, chambers in arrays
-        if burn is None and k == 2 * zero:  # all the heat at the dead centre
+        if k == 2 * zero:  # all the heat at the dead centre
             before = gas.energy(t, 0.0)
             t = gas.temperature_after(before + heat / mass, 1.0)
             temps[-1] = t
@@ -280,32 +371,105 @@ def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
         t, work, lost = t + steps[0], work + steps[1], lost + steps[2]
         temps.append(t)
         left.append(t)
-    temp = np.stack(temps, axis=-1)
-    temp_left = np.stack(left, axis=-1)
-    nodes = slice(0, None, 2)
-    xb = fraction[nodes]
-    r_gas = gas.gas_constant(xb)
-    m = mass[..., None] if np.ndim(mass) else mass
-    pressure = m * r_gas * temp / volume[..., nodes]
-    # dp/dx = m/V (R dT/dx + T dR/dx) - p dV/dx / V at the nodes
     slopes.append(rates(n_half - 1, t)[0])  # the last node
-    slopes = np.stack(slopes, axis=-1)
-    dr = (gas.gas_constant(1.0) - gas.gas_constant(0.0)) * rate[nodes]
-    dp = (m * (r_gas * slopes + temp * dr) - pressure * dvolume[..., nodes]) / volume[..., nodes]
-    energy0 = gas.energy(t0, 0.0)
-    energy1 = gas.energy(temp[..., -1], xb[-1])
-    return {
-        "x": x[nodes],
-        "T": temp,
-        "p": pressure,
-        "p_left": m * r_gas * temp_left / volume[..., nodes],
-        "dp": dp,
-        "burnt": xb,
-        "work": work,
-        "heat_wall": lost,
-        "heat_released": heat * xb[-1],
-        "energy_rise": mass * (energy1 - energy0),
-    }
+    stack = lambda a: np.stack([np.broadcast_to(v, shape) for v in a], axis=-1)  # noqa: E731
+    work, lost = (np.broadcast_to(a, shape) + 0.0 for a in (work, lost))
+    return stack(temps), stack(left), stack(slopes), work, lost
+
+
+def _compiled_cycle(h, volume, dvolume, r_half, fraction, rate, dr, mass, heat, t0, walls, wall,
+                    tables, shape):  # fmt: skip
+    """The same steps as one compiled loop per chamber (numba), chambers flattened."""
+    n_half = r_half.size
+    n = int(np.prod(shape))
+    flat = lambda a: np.ascontiguousarray(np.broadcast_to(a, shape).reshape(n))  # noqa: E731
+    grid = lambda a: np.ascontiguousarray(np.broadcast_to(a, shape + (n_half,)).reshape(n, -1))  # noqa: E731
+    if walls is None:
+        lazy = np.zeros((n, n_half))  # never read (calloc: never touched either)
+        area, seconds, per = lazy, lazy, [np.zeros(n)] * 6
+        started, t_wall = np.zeros(n_half, dtype=np.bool_), 0.0
+    else:
+        area, seconds = grid(walls.area), grid(walls.seconds)
+        per = [flat(wall[k]) for k in ("p0", "v0", "gamma", "c1sp", "c2k", "cd")]
+        started, t_wall = wall["started"], float(walls.temperature)
+    k = (n_half - 1) // 2
+    temp, pressure, dp = np.empty((n, k + 1)), np.empty((n, k + 1)), np.empty((n, k + 1))
+    work, lost = np.empty(n), np.empty(n)
+    _cycle_loop(float(h), grid(volume), grid(dvolume), r_half, fraction, rate, dr, flat(mass),
+                flat(heat), flat(t0), walls is not None, started, area, seconds, *per, t_wall,
+                tables.lo, tables.inv_step, tables.values, tables.slopes, temp, pressure, dp,
+                work, lost)  # fmt: skip
+    out = (temp, pressure, dp)
+    return (*(a.reshape(shape + (k + 1,)) for a in out), work.reshape(shape),
+            lost.reshape(shape))  # fmt: skip
+
+
+@formula
+def _lookup(lo, inv_step, values, slopes, t):
+    """The gas tables at one temperature (a number; NaN propagates), as :func:`table_index`."""
+    nodes = values.shape[1]
+    top = nodes - 1.0
+    s = (t - lo) * inv_step
+    s = select(s < 0.0, 0.0, select(s > top, top, s))
+    j = min(int(select(s == s, s, 0.0)), nodes - 2)
+    f = s - j
+    return (values[0, j] + f * slopes[0, j], values[1, j] + f * slopes[1, j],
+            values[2, j] + f * slopes[2, j])  # fmt: skip
+
+
+@compiled_loop
+def _cycle_loop(h, volume, dvolume, r_half, fraction, rate, dr, mass, heat, t0, walls, started,
+                area, seconds, p0, v0, gamma, c1sp, c2k, cd, t_wall, lo, inv_step, values,
+                slopes, temp, pressure, dp, work, lost):  # fmt: skip
+    """Runge-Kutta steps of each chamber; ``T``, ``p``, ``dp/dx`` at the nodes, work, heat lost.
+
+    The steps of :func:`_numpy_cycle` (a Wiebe burn), one chamber at a time.
+    """
+    n, n_half = volume.shape
+    for c in range(n):
+        m, q = mass[c], heat[c]
+        t = t0[c]
+        w_sum, q_sum = 0.0, 0.0
+        m0 = m1 = m2 = 0.0  # the motored pressure at the step's start, middle and end
+        if walls:
+            m2 = _motored(p0[c], v0[c], volume[c, 0], gamma[c])
+        node = 0
+        for k in range(0, n_half, 2):
+            m0 = m2
+            if walls and k < n_half - 1:
+                m1 = _motored(p0[c], v0[c], volume[c, k + 1], gamma[c])
+                m2 = _motored(p0[c], v0[c], volume[c, k + 2], gamma[c])
+            ts, s_t, s_w, s_q = t, 0.0, 0.0, 0.0
+            for stage in range(4):
+                i = k + (stage + 1) // 2
+                v = volume[c, i]
+                p = _pressure(m, r_half[i], ts, v)
+                q_wall = 0.0
+                if walls:
+                    mo = m0 if stage == 0 else (m1 if stage < 3 else m2)
+                    q_wall = _wall_rate(ts, p, started[i], mo, area[c, i], seconds[c, i], c1sp[c],
+                                        c2k[c], cd[c], t_wall)  # fmt: skip
+                cvu, cvb, du = _lookup(lo, inv_step, values, slopes, ts)
+                dt, pdv = _stage(ts, p, dvolume[c, i], fraction[i], rate[i], m, q, cvu, cvb, du,
+                                 q_wall)  # fmt: skip
+                if stage == 0:  # the node
+                    temp[c, node] = t
+                    pressure[c, node] = p
+                    dp[c, node] = (m * (r_half[i] * dt + t * dr[node]) - p * dvolume[c, i]) / v
+                    node += 1
+                    if k == n_half - 1:
+                        break
+                    s_t, s_w, s_q = dt, pdv, q_wall
+                    ts = t + h / 2 * dt
+                elif stage < 3:
+                    s_t, s_w, s_q = s_t + 2 * dt, s_w + 2 * pdv, s_q + 2 * q_wall
+                    ts = t + (h / 2 if stage == 1 else h) * dt
+                else:
+                    t = t + h / 6 * (s_t + dt)
+                    w_sum = w_sum + h / 6 * (s_w + pdv)
+                    q_sum = q_sum + h / 6 * (s_q + q_wall)
+        work[c] = w_sum
+        lost[c] = q_sum
 
 
 def hermite(x_nodes, values, slopes, rows, xq, left=None):
