@@ -417,59 +417,80 @@ def _lookup(lo, inv_step, values, slopes, t):
             values[2, j] + f * slopes[2, j])  # fmt: skip
 
 
+#: Chambers integrated side by side in the compiled loop (independent work for the CPU to
+#: overlap while one chamber waits for its exponential).
+INTERLEAVE = 8
+
+
 @compiled_loop
 def _cycle_loop(h, volume, dvolume, r_half, fraction, rate, dr, mass, heat, t0, walls, started,
                 area, seconds, p0, v0, gamma, c1sp, c2k, cd, t_wall, lo, inv_step, values,
                 slopes, temp, pressure, dp, work, lost):  # fmt: skip
     """Runge-Kutta steps of each chamber; ``T``, ``p``, ``dp/dx`` at the nodes, work, heat lost.
 
-    The steps of :func:`_numpy_cycle` (a Wiebe burn), one chamber at a time.
+    The steps of :func:`_numpy_cycle` (a Wiebe burn), :data:`INTERLEAVE` chambers at a time,
+    each with the same operations in the same order.
     """
     n, n_half = volume.shape
-    for c in range(n):
-        m, q = mass[c], heat[c]
-        t = t0[c]
-        w_sum, q_sum = 0.0, 0.0
-        m0 = m1 = m2 = 0.0  # the motored pressure at the step's start, middle and end
-        if walls:
-            m2 = _motored(p0[c], v0[c], volume[c, 0], gamma[c])
+    g = INTERLEAVE
+    state = np.zeros((7, g))  # T, the stage's T, the Runge-Kutta sums (3), work, heat lost
+    t_, ts_, st_, sw_, sq_, ws_, qs_ = (state[0], state[1], state[2], state[3], state[4],
+                                        state[5], state[6])  # fmt: skip
+    motored = np.zeros((3, g))  # at the step's start, middle and end
+    for c0 in range(0, n, g):
+        cnt = min(g, n - c0)
+        for j in range(cnt):
+            t_[j], ws_[j], qs_[j] = t0[c0 + j], 0.0, 0.0
+            if walls:
+                c = c0 + j
+                motored[2, j] = _motored(p0[c], v0[c], volume[c, 0], gamma[c])
         node = 0
         for k in range(0, n_half, 2):
-            m0 = m2
-            if walls and k < n_half - 1:
-                m1 = _motored(p0[c], v0[c], volume[c, k + 1], gamma[c])
-                m2 = _motored(p0[c], v0[c], volume[c, k + 2], gamma[c])
-            ts, s_t, s_w, s_q = t, 0.0, 0.0, 0.0
+            last = k == n_half - 1
+            if walls:
+                for j in range(cnt):
+                    c = c0 + j
+                    motored[0, j] = motored[2, j]
+                    if not last:
+                        motored[1, j] = _motored(p0[c], v0[c], volume[c, k + 1], gamma[c])
+                        motored[2, j] = _motored(p0[c], v0[c], volume[c, k + 2], gamma[c])
             for stage in range(4):
                 i = k + (stage + 1) // 2
-                v = volume[c, i]
-                p = _pressure(m, r_half[i], ts, v)
-                q_wall = 0.0
-                if walls:
-                    mo = m0 if stage == 0 else (m1 if stage < 3 else m2)
-                    q_wall = _wall_rate(ts, p, started[i], mo, area[c, i], seconds[c, i], c1sp[c],
-                                        c2k[c], cd[c], t_wall)  # fmt: skip
-                cvu, cvb, du = _lookup(lo, inv_step, values, slopes, ts)
-                dt, pdv = _stage(ts, p, dvolume[c, i], fraction[i], rate[i], m, q, cvu, cvb, du,
-                                 q_wall)  # fmt: skip
-                if stage == 0:  # the node
-                    temp[c, node] = t
-                    pressure[c, node] = p
-                    dp[c, node] = (m * (r_half[i] * dt + t * dr[node]) - p * dvolume[c, i]) / v
-                    node += 1
-                    if k == n_half - 1:
-                        break
-                    s_t, s_w, s_q = dt, pdv, q_wall
-                    ts = t + h / 2 * dt
-                elif stage < 3:
-                    s_t, s_w, s_q = s_t + 2 * dt, s_w + 2 * pdv, s_q + 2 * q_wall
-                    ts = t + (h / 2 if stage == 1 else h) * dt
-                else:
-                    t = t + h / 6 * (s_t + dt)
-                    w_sum = w_sum + h / 6 * (s_w + pdv)
-                    q_sum = q_sum + h / 6 * (s_q + q_wall)
-        work[c] = w_sum
-        lost[c] = q_sum
+                at = (stage + 1) // 2
+                for j in range(cnt):
+                    c = c0 + j
+                    m, q, t = mass[c], heat[c], t_[j]
+                    ts = t if stage == 0 else ts_[j]
+                    v = volume[c, i]
+                    p = _pressure(m, r_half[i], ts, v)
+                    q_wall = 0.0
+                    if walls:
+                        q_wall = _wall_rate(ts, p, started[i], motored[at, j], area[c, i],
+                                            seconds[c, i], c1sp[c], c2k[c], cd[c],
+                                            t_wall)  # fmt: skip
+                    cvu, cvb, du = _lookup(lo, inv_step, values, slopes, ts)
+                    dt, pdv = _stage(ts, p, dvolume[c, i], fraction[i], rate[i], m, q, cvu, cvb,
+                                     du, q_wall)  # fmt: skip
+                    if stage == 0:  # the node
+                        temp[c, node] = t
+                        pressure[c, node] = p
+                        dp[c, node] = (m * (r_half[i] * dt + t * dr[node])
+                                       - p * dvolume[c, i]) / v  # fmt: skip
+                        st_[j], sw_[j], sq_[j] = dt, pdv, q_wall
+                        ts_[j] = t + h / 2 * dt
+                    elif stage < 3:
+                        st_[j], sw_[j] = st_[j] + 2 * dt, sw_[j] + 2 * pdv
+                        sq_[j] = sq_[j] + 2 * q_wall
+                        ts_[j] = t + (h / 2 if stage == 1 else h) * dt
+                    else:
+                        t_[j] = t + h / 6 * (st_[j] + dt)
+                        ws_[j] = ws_[j] + h / 6 * (sw_[j] + pdv)
+                        qs_[j] = qs_[j] + h / 6 * (sq_[j] + q_wall)
+                if last:
+                    break
+            node += 1
+        for j in range(cnt):
+            work[c0 + j], lost[c0 + j] = ws_[j], qs_[j]
 
 
 def hermite(x_nodes, values, slopes, rows, xq, left=None):
