@@ -339,6 +339,9 @@ def _numpy_cycle(h, volume, dvolume, r_half, fraction, rate, zero, mass, heat, t
     """The classical Runge-Kutta steps as numpy operations on arrays of chambers."""
     n_half = r_half.size
     zeros = np.zeros(shape)
+    if walls is not None:  # the motored pressure on the whole grid at once
+        ex = lambda a: np.asarray(a)[..., None]  # noqa: E731
+        motored = _motored(ex(wall["p0"]), ex(wall["v0"]), volume, ex(wall["gamma"]))
 
     def rates(i, t):
         cvu, cvb, du = tables.lookup(t)
@@ -346,8 +349,7 @@ def _numpy_cycle(h, volume, dvolume, r_half, fraction, rate, zero, mass, heat, t
         p = _pressure(mass, r_half[i], t, v)
         q_wall = 0.0 * t
         if walls is not None:
-            motored = _motored(wall["p0"], wall["v0"], v, wall["gamma"])
-            q_wall = _wall_rate(t, p, bool(wall["started"][i]), motored, walls.area[..., i],
+            q_wall = _wall_rate(t, p, bool(wall["started"][i]), motored[..., i], walls.area[..., i],
                                 walls.seconds[..., i], wall["c1sp"], wall["c2k"], wall["cd"],
                                 walls.temperature)  # fmt: skip
         dt, pdv = _stage(t, p, dvolume[..., i], fraction[i], rate[i], mass, heat, cvu, cvb, du,

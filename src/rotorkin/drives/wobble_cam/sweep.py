@@ -30,6 +30,7 @@ their vectorised ``violation`` functions.
 from __future__ import annotations
 
 import contextlib
+import math
 import threading
 
 import numpy as np
@@ -46,6 +47,7 @@ from rotorkin.core.batch import (
     run_blocks,
     sample_grid,
 )
+from rotorkin.core.fused import use_compiled
 from rotorkin.drives.wobble_cam import chambers as wch
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam.fast import rotor_kinematics
@@ -396,8 +398,11 @@ def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi, threa
     return out
 
 
-#: Designs per block of the fuel-air cycle (its working set, ~0.3 MB per design, stays small).
-CYCLE_BLOCK = 256
+#: Designs per block of the fuel-air cycle (its working set, ~0.15 MB per design, stays
+#: small): compiled, and as numpy operations (on longer arrays, fewer calls).
+CYCLE_BLOCK = {"numba": 256, "numpy": 1024}
+#: Designs per call of the kinematics within a block.
+_KINEMATICS_BLOCK = 256
 _SCRATCH = threading.local()
 
 
@@ -430,28 +435,25 @@ def _fuel_air_cycle(p, n_f, per_rev, kind_a, beta, kvol, vc, vol_a, vol_b, disp,
     per = {k: full(v, n) for k, v in per.items()}
     gas = loads.gas()
     steps = fa.steps_per_stroke(loads)
+    block = CYCLE_BLOCK["numba" if use_compiled(n * 2 * (4 * steps + 1)) else "numpy"]
 
     def fn(lo, hi):
         return _cycle_block(loads, gas, steps, {k: v[lo:hi] for k, v in per.items()}, omega)
 
-    return run_blocks(fn, n, BLOCK_ELEMENTS // CYCLE_BLOCK, threads)
+    return run_blocks(fn, n, BLOCK_ELEMENTS // block, threads)
 
 
 def _scratch(shape) -> tuple:
-    """This thread's arrays for a block's kinematics (reused block after block)."""
+    """This thread's arrays for the kinematics of ``shape`` (memory reused call after call)."""
+    size = math.prod(shape)
     buf = getattr(_SCRATCH, "kinematics", None)
-    if buf is None or buf[1].shape != (2, *shape):
-        buf = (np.empty((4, 2, *shape)), np.empty((2, *shape)))
-        _SCRATCH.kinematics = buf
-    return buf
+    if buf is None or buf.size < 10 * size:
+        buf = _SCRATCH.kinematics = np.empty(10 * size)
+    return buf[: 8 * size].reshape(4, 2, *shape), buf[8 * size : 10 * size].reshape(2, *shape)
 
 
-def _cycle_block(loads, gas, steps, d, omega) -> dict:
-    """The fuel-air cycle's metrics of one block of designs (arrays ``d`` of the block)."""
-    m = d["tilt"].size
-    half = np.linspace(-np.pi, np.pi, 4 * steps + 1)
-    stroke = np.pi / (2.0 * np.abs(d["spin"]))  # shaft angle per stroke
-    volume, dvolume = np.empty((m, 2, half.size)), np.empty((m, 2, half.size))
+def _volumes(d, half, stroke, volume, dvolume) -> None:
+    """Chamber volumes and ``dV/dx`` of both closed parts on the grid ``half`` (in place)."""
     groups = np.unique(np.stack([d["spin"], d["n_f"]], axis=-1), axis=0)
     for n_spin, pistons in groups:
         rows = (slice(None) if len(groups) == 1
@@ -467,6 +469,18 @@ def _cycle_block(loads, gas, steps, d, omega) -> dict:
         volume[rows, 1] = kv[:, 0] * ch[1][:, 1] + col(d["vc"])[:, 0]
         dvolume[rows] = kv * (rot[1, 1] - rot[1, 0]) * (col(stroke) / np.pi)
         dvolume[rows, 1] *= -1.0  # delta_A = s - lo_a, delta_B = hi_b - s
+
+
+def _cycle_block(loads, gas, steps, d, omega) -> dict:
+    """The fuel-air cycle's metrics of one block of designs (arrays ``d`` of the block)."""
+    m = d["tilt"].size
+    half = np.linspace(-np.pi, np.pi, 4 * steps + 1)
+    stroke = np.pi / (2.0 * np.abs(d["spin"]))  # shaft angle per stroke
+    volume, dvolume = np.empty((m, 2, half.size)), np.empty((m, 2, half.size))
+    for lo in range(0, m, _KINEMATICS_BLOCK):
+        part = slice(lo, min(m, lo + _KINEMATICS_BLOCK))
+        _volumes({k: v[part] for k, v in d.items()}, half, stroke[part], volume[part],
+                 dvolume[part])  # fmt: skip
     charge = loads.charge()
     v_max, v_min = volume[..., 0], volume[..., 2 * steps]
     mass = cb.trapped_mass(charge, v_max, gas.gas_constant(0.0))
