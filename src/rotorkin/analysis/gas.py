@@ -98,7 +98,7 @@ class GasTables:
         """``(c_v unburnt, c_v burnt, u_b - u_u)`` at temperatures ``t`` (arrays)."""
         j, f = table_index(self.lo, self.inv_step, self.values.shape[1], t)
         v, d = self.values, self.slopes
-        return v[0][j] + f * d[0][j], v[1][j] + f * d[1][j], v[2][j] + f * d[2][j]
+        return tuple(v[k].take(j) + f * d[k].take(j) for k in range(3))
 
 
 def table_index(lo, inv_step, nodes, t):
@@ -107,10 +107,10 @@ def table_index(lo, inv_step, nodes, t):
     ``s = (t - lo) inv_step`` clipped to ``[0, nodes - 1]``, ``j = min(floor(s), nodes - 2)``,
     ``f = s - j``; a NaN temperature gives ``j = 0`` and ``f = NaN``.
     """
-    s = np.clip((np.asarray(t, dtype=float) - lo) * inv_step, 0.0, nodes - 1.0)
+    s = np.minimum(np.maximum((np.asarray(t, dtype=float) - lo) * inv_step, 0.0), nodes - 1.0)
     with np.errstate(invalid="ignore"):
         j = s.astype(np.intp)
-    j = np.clip(j, 0, nodes - 2)
+    j = np.minimum(np.maximum(j, 0), nodes - 2)
     return j, s - j
 
 
