@@ -312,15 +312,28 @@ def _pressure(mass, r, t, v):
 
 
 @formula
-def _wall_rate(t, p, started, motored, area, seconds, c1sp, c2k, cd, t_wall):
-    """Heat to the walls per radian of cycle angle [J/rad], Woschni (numbers or arrays).
-
-    The coefficient ``3.26 B^-0.2 (p w)^0.8 T^-0.55`` of :func:`woschni` as one
-    exponential of logarithms; ``w = C_1 S_p + C_2 V_d T_r / (p_r V_r) (p - p_m)``.
-    """
+def _gas_speed(p, motored, started, c1sp, c2k):
+    """Woschni's gas speed ``w = C_1 S_p + C_2 V_d T_r / (p_r V_r) (p - p_m)`` [m/s]."""
     excess = p - motored
-    speed = c1sp + select(started, c2k * select(excess > 0.0, excess, 0.0), 0.0)
-    coeff = cd * np.exp(0.8 * np.log(p / 1e3 * speed) - 0.55 * np.log(t))
+    return c1sp + select(started, c2k * select(excess > 0.0, excess, 0.0), 0.0)
+
+
+@formula
+def _wall_factor(mass, r, speed, v):
+    """``(p w / 1e3)^0.8 T^-0.8 = (m R w / (1e3 V))^0.8`` of Woschni's coefficient."""
+    return np.exp(0.8 * np.log(mass * r * speed / (1e3 * v)))
+
+
+@formula
+def _wall_heat(t, factor, cd, area, seconds, t_wall):
+    """Heat to the walls per radian of cycle angle [J/rad] (numbers or arrays).
+
+    Woschni's coefficient ``3.26 B^-0.2 (p/1e3)^0.8 T^-0.55 w^0.8`` (:func:`woschni`)
+    as ``cd factor T^0.25``, ``cd = 3.26 B^-0.2``, ``factor`` from :func:`_wall_factor`
+    (before the burn it depends on the volume only: the compiled loop takes it once per
+    grid point), ``T^0.25`` two square roots.
+    """
+    coeff = cd * factor * np.sqrt(np.sqrt(t))
     return coeff * area * (t - t_wall) * seconds
 
 
@@ -328,7 +341,7 @@ def _wall_rate(t, p, started, motored, area, seconds, c1sp, c2k, cd, t_wall):
 def _stage(t, p, dv, xb, dxb, mass, heat, cvu, cvb, du, q_wall):
     """``dT/dx`` and ``p dV/dx`` of one chamber at one grid point (numbers or arrays).
 
-    ``cvu, cvb, du``: the gas tables at ``t``; ``q_wall``: :func:`_wall_rate`.
+    ``cvu, cvb, du``: the gas tables at ``t``; ``q_wall``: :func:`_wall_heat`.
     """
     cv = (1.0 - xb) * cvu + xb * cvb
     return (heat * dxb - q_wall - p * dv - mass * (du * dxb)) / (mass * cv), p * dv
@@ -349,8 +362,10 @@ def _numpy_cycle(h, volume, dvolume, r_half, fraction, rate, zero, mass, heat, t
         p = _pressure(mass, r_half[i], t, v)
         q_wall = 0.0 * t
         if walls is not None:
-            q_wall = _wall_rate(t, p, bool(wall["started"][i]), motored[..., i], walls.area[..., i],
-                                walls.seconds[..., i], wall["c1sp"], wall["c2k"], wall["cd"],
+            speed = _gas_speed(p, motored[..., i], bool(wall["started"][i]), wall["c1sp"],
+                               wall["c2k"])  # fmt: skip
+            factor = _wall_factor(mass, r_half[i], speed, v)
+            q_wall = _wall_heat(t, factor, wall["cd"], walls.area[..., i], walls.seconds[..., i],
                                 walls.temperature)  # fmt: skip
         dt, pdv = _stage(t, p, dvolume[..., i], fraction[i], rate[i], mass, heat, cvu, cvb, du,
                          q_wall)  # fmt: skip
@@ -438,24 +453,28 @@ def _cycle_loop(h, volume, dvolume, r_half, fraction, rate, dr, mass, heat, t0, 
     state = np.zeros((7, g))  # T, the stage's T, the Runge-Kutta sums (3), work, heat lost
     t_, ts_, st_, sw_, sq_, ws_, qs_ = (state[0], state[1], state[2], state[3], state[4],
                                         state[5], state[6])  # fmt: skip
-    motored = np.zeros((3, g))  # at the step's start, middle and end
+    # per grid point of the step (start, middle, end): the motored pressure (after the burn's
+    # start) and Woschni's factor (before it, where it does not depend on the temperature)
+    motored, factor = np.zeros((3, g)), np.zeros((3, g))
     for c0 in range(0, n, g):
         cnt = min(g, n - c0)
         for j in range(cnt):
             t_[j], ws_[j], qs_[j] = t0[c0 + j], 0.0, 0.0
-            if walls:
-                c = c0 + j
-                motored[2, j] = _motored(p0[c], v0[c], volume[c, 0], gamma[c])
         node = 0
         for k in range(0, n_half, 2):
             last = k == n_half - 1
             if walls:
                 for j in range(cnt):
                     c = c0 + j
-                    motored[0, j] = motored[2, j]
-                    if not last:
-                        motored[1, j] = _motored(p0[c], v0[c], volume[c, k + 1], gamma[c])
-                        motored[2, j] = _motored(p0[c], v0[c], volume[c, k + 2], gamma[c])
+                    for at in range(3):
+                        i = k + at
+                        if (at == 0 and k > 0) or i >= n_half:
+                            continue
+                        if started[i]:
+                            motored[at, j] = _motored(p0[c], v0[c], volume[c, i], gamma[c])
+                        else:
+                            factor[at, j] = _wall_factor(mass[c], r_half[i], c1sp[c],
+                                                         volume[c, i])  # fmt: skip
             for stage in range(4):
                 i = k + (stage + 1) // 2
                 at = (stage + 1) // 2
@@ -467,9 +486,11 @@ def _cycle_loop(h, volume, dvolume, r_half, fraction, rate, dr, mass, heat, t0, 
                     p = _pressure(m, r_half[i], ts, v)
                     q_wall = 0.0
                     if walls:
-                        q_wall = _wall_rate(ts, p, started[i], motored[at, j], area[c, i],
-                                            seconds[c, i], c1sp[c], c2k[c], cd[c],
-                                            t_wall)  # fmt: skip
+                        f = factor[at, j]
+                        if started[i]:
+                            speed = _gas_speed(p, motored[at, j], True, c1sp[c], c2k[c])
+                            f = _wall_factor(m, r_half[i], speed, v)
+                        q_wall = _wall_heat(ts, f, cd[c], area[c, i], seconds[c, i], t_wall)
                     cvu, cvb, du = _lookup(lo, inv_step, values, slopes, ts)
                     dt, pdv = _stage(ts, p, dvolume[c, i], fraction[i], rate[i], m, q, cvu, cvb,
                                      du, q_wall)  # fmt: skip
@@ -491,6 +512,9 @@ def _cycle_loop(h, volume, dvolume, r_half, fraction, rate, dr, mass, heat, t0, 
                 if last:
                     break
             node += 1
+            if walls:  # the step's end is the next one's start
+                for j in range(cnt):
+                    motored[0, j], factor[0, j] = motored[2, j], factor[2, j]
         for j in range(cnt):
             work[c0 + j], lost[c0 + j] = ws_[j], qs_[j]
 
