@@ -78,6 +78,27 @@ def test_the_sweeps_cycle_equals_the_study_of_each_design(base, monkeypatch):
     assert np.ptp([s["indicated_work_J"] for s in studies]) > 0.1 * studies[0]["indicated_work_J"]
 
 
+def test_blocks_mixing_spin_ratios_pistons_and_sections_equal_the_study(monkeypatch):
+    """Designs of different spin ratios, piston counts and sections in the same blocks (of 3):
+    each equals its own study to 1e-9."""
+    cases = [(-2, 4, "rectangular"), (-1, 4, "circular"), (-2, 6, "rectangular"),
+             (2, 4, "circular"), (-3, 6, "rectangular"), (-2, 4, "circular")]  # fmt: skip
+    cfgs = [load_config(example=EXAMPLE, sets=[f"drive.spin_ratio={n}",
+                                               f"machine.pistons_per_rotor={z}",
+                                               f"machine.section={sec}",
+                                               "drive.plate_tilt=30 deg"])[0]
+            for n, z, sec in cases]  # fmt: skip
+    studies = [drives.evaluate(cfg).summary for cfg in cfgs]
+    keys = ("drive.spin_ratio", "machine.pistons_per_rotor", "machine.section")
+    table = {k: np.array([c[k.split(".")[0]][k.split(".")[1]] for c in cfgs]) for k in keys}
+    monkeypatch.setattr(wsweep, "CYCLE_BLOCK", {"numba": 3, "numpy": 3})
+    res = evaluate_designs(Designs(cfgs[0], table, len(cfgs)), CYCLE, samples=361, threads=2)
+    assert np.all(res["reason"] == 0)
+    for i, s in enumerate(studies):
+        for key in CYCLE:
+            assert res["metrics"][key][i] == pytest.approx(s[key], rel=1e-9, abs=1e-12), (i, key)
+
+
 def _chambers(n: int, seed: int, thin: bool = False):
     """Random piston-like chambers on the cycle grid, their charge and walls."""
     rng = np.random.default_rng(seed)
