@@ -31,8 +31,18 @@ apparent heat release ``Q dx_b``):
 
 integrated from intake closure (``x = -180 deg``) to exhaust opening (``+180 deg``) by
 the classical Runge-Kutta method on a fixed grid (the volumes given on the half
-steps), all chambers (designs) at once in arrays. Without walls, with an instant burn
-at the dead centre and a constant ``gamma`` it is the ideal Otto cycle.
+steps). Without walls, with an instant burn at the dead centre and a constant ``gamma``
+it is the ideal Otto cycle.
+
+Two paths run the same formulas in the same order (:mod:`rotorkin.core.fused` chooses,
+``kernel=`` or ``$ROTORKIN_KERNEL``): numpy operations on arrays of all chambers
+(designs) at once, step by step, or -- with a Wiebe burn and numba installed -- one
+compiled loop over the chambers, a few side by side, each through all its steps
+(:data:`INTERLEAVE`). The gas comes from its uniform tables
+(:class:`~rotorkin.analysis.gas.GasTables`: one index per temperature for ``c_v`` of
+both gases and ``u_b - u_u``); Woschni's coefficient is evaluated as
+``3.26 B^-0.2 (m R w / (1e3 V))^0.8 T^0.25`` (the same value: ``p = m R T / V``), whose
+first factor before the burn depends on the volume only.
 """
 
 from __future__ import annotations

@@ -23,6 +23,10 @@ volume ``c_v(T, x)`` and the sensible internal energy ``u(T, x)`` (zero at 298.1
   interpolated linearly (``c_v``) and by the trapezoid integral of that table
   (``u``), so that ``du = c_v dT`` holds on the tables exactly.
 
+Both give :class:`GasTables`: ``c_v`` of the unburnt and of the burnt gas and
+``u_b - u_u`` on one uniform grid, read with one index per temperature (what the
+single-zone cycle needs at every Runge-Kutta stage).
+
 J. B. Heywood, *Internal Combustion Engine Fundamentals*, 2nd ed., 2018, ch. 4.
 """
 
