@@ -18,7 +18,7 @@ from rotorkin.analysis import combustion as cb
 from rotorkin.analysis import gas as gs
 from rotorkin.core import fused
 from rotorkin.core.batch import Designs
-from rotorkin.drives.wobble_cam import sweep as wsweep
+from rotorkin.drives.wobble_cam import sweep_cycle
 from rotorkin.io.config import load_config
 from rotorkin.sweep import evaluate_designs
 
@@ -64,7 +64,7 @@ def test_the_sweeps_cycle_equals_the_study_of_each_design(base, monkeypatch):
     studies = [drives.evaluate(cfg).summary for cfg in cfgs]
     base_cfg = load_config(example=EXAMPLE, sets=BASES[base])[0]
     table = {k: np.array([c[k.split(".")[0]][k.split(".")[1]] for c in cfgs]) for k in KEYS}
-    monkeypatch.setattr(wsweep, "CYCLE_BLOCK", {"numba": 2, "numpy": 2})
+    monkeypatch.setattr(sweep_cycle, "CYCLE_BLOCK", {"numba": 2, "numpy": 2})
     for kernel in ("numba", "numpy"):
         monkeypatch.setenv(fused.KERNEL_ENV, kernel)
         res = evaluate_designs(Designs(base_cfg, table, len(cfgs)), CYCLE, samples=361,
@@ -91,7 +91,7 @@ def test_blocks_mixing_spin_ratios_pistons_and_sections_equal_the_study(monkeypa
     studies = [drives.evaluate(cfg).summary for cfg in cfgs]
     keys = ("drive.spin_ratio", "machine.pistons_per_rotor", "machine.section")
     table = {k: np.array([c[k.split(".")[0]][k.split(".")[1]] for c in cfgs]) for k in keys}
-    monkeypatch.setattr(wsweep, "CYCLE_BLOCK", {"numba": 3, "numpy": 3})
+    monkeypatch.setattr(sweep_cycle, "CYCLE_BLOCK", {"numba": 3, "numpy": 3})
     res = evaluate_designs(Designs(cfgs[0], table, len(cfgs)), CYCLE, samples=361, threads=2)
     assert np.all(res["reason"] == 0)
     for i, s in enumerate(studies):
