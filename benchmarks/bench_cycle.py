@@ -11,8 +11,10 @@ ratio (8 ... 16) of the ``wobble-cam-engine`` example, whose loads are the fuel-
 design gets the kernel's default metrics, among them the cycle's: two closed parts (chamber
 kinds A and B) of 720 Runge-Kutta steps each (360 per stroke,
 :func:`rotorkin.machines.fuel_air.steps_per_stroke`), on volumes from the drive's
-kinematics on 2 x 1441 angles. ``build_spec`` (which also runs one design through the
-study, about a second) and ``execute`` of :mod:`rotorkin.sweep`, timed together and apart.
+kinematics on 2 x 1441 angles; the rotors' acceleration and jerk peaks on ``--samples``
+shaft angles per design (default 360, as ``bench_sweep.py``; the sweep's own default,
+20 001, adds about 0.2 ms of CPU per design). ``build_spec`` and ``execute`` of
+:mod:`rotorkin.sweep`, timed together and apart.
 
 Each size runs once in a fresh process (after a warm-up sweep of 8 designs, which loads
 the compiled loops): wall and CPU time (``time.process_time``, all threads), peak RSS
@@ -69,22 +71,23 @@ def _vary(designs: int) -> dict:
     }
 
 
-def child(designs: int, threads) -> dict:
+def child(designs: int, threads, samples: int) -> dict:
     """One sweep of ``designs``, alone in this (fresh) process: wall, CPU, peak RSS."""
     from rotorkin.io.config import load_config
     from rotorkin.sweep import build_spec, execute
 
     _, raw, _ = load_config(None, EXAMPLE)
-    execute(build_spec(raw, _vary(8)), progress=False, threads=threads)  # warm-up
+    execute(build_spec(raw, _vary(8), samples=samples), progress=False, threads=threads)
     rss_start = peak_rss()
     t0, c0 = time.perf_counter(), time.process_time()
-    spec = build_spec(raw, _vary(designs))
+    spec = build_spec(raw, _vary(designs), samples=samples)
     t1 = time.perf_counter()
     ds = execute(spec, progress=False, threads=threads)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     n = int(ds["reason"].size)
     return {
         "designs": n,
+        "samples": samples,
         "grid": [len(v) for v in spec.varies],
         "metrics": len(spec.metrics),
         "inadmissible": int(np.count_nonzero(ds["reason"].values)),
@@ -155,6 +158,8 @@ def main() -> None:
     ap.add_argument("--threads", type=int, default=None, help="kernel threads (default: cores)")
     ap.add_argument("--kernel", default=None, choices=("auto", "numpy", "numba"),
                     help="ROTORKIN_KERNEL of the sweeps (default: as set, else auto)")  # fmt: skip
+    ap.add_argument("--samples", type=int, default=360,
+                    help="shaft angles per design of the rotors' sampled peaks")  # fmt: skip
     ap.add_argument("--one-by-one", type=int, default=200, help="designs of the yardstick")
     ap.add_argument("--studies", type=int, default=5, help="designs through the whole study")
     ap.add_argument("--out", default=str(Path(__file__).parent / "results" / "cycle.json"))
@@ -163,13 +168,13 @@ def main() -> None:
     if args.kernel:
         os.environ["ROTORKIN_KERNEL"] = args.kernel
     if args.child is not None:
-        print(json.dumps(child(args.child, args.threads)))
+        print(json.dumps(child(args.child, args.threads, args.samples)))
         return
     sizes = [int(float(s)) for s in args.sizes.split(",")]
     load_before = load()
     rows = []
     for size in sizes:  # each size alone in a fresh process
-        cmd = [sys.executable, __file__, "--child", str(size)]
+        cmd = [sys.executable, __file__, "--child", str(size), "--samples", str(args.samples)]
         if args.threads:
             cmd += ["--threads", str(args.threads)]
         before = load()
