@@ -24,7 +24,7 @@ Yardstick, like for like: ``--one-by-one`` designs of the same ranges (default 2
 through the one-design cycle path of the study
 (:func:`rotorkin.drives.wobble_cam.study.models`: the drive, its turning points, the
 chambers' volumes and :func:`rotorkin.machines.fuel_air.charge_cycle`), with the compiled
-integrator and with numpy; and a few (``--studies``, default 5) through the whole study
+integrator and with numpy; and some (``--studies``, default 20) through the whole study
 (:func:`rotorkin.drives.evaluate`). The first of these designs are also swept and their
 cycle metrics compared with the study's (``max_rel_diff_vs_study``; the target is 1e-9).
 
@@ -161,7 +161,7 @@ def main() -> None:
     ap.add_argument("--samples", type=int, default=360,
                     help="shaft angles per design of the rotors' sampled peaks")  # fmt: skip
     ap.add_argument("--one-by-one", type=int, default=200, help="designs of the yardstick")
-    ap.add_argument("--studies", type=int, default=5, help="designs through the whole study")
+    ap.add_argument("--studies", type=int, default=20, help="designs through the whole study")
     ap.add_argument("--out", default=str(Path(__file__).parent / "results" / "cycle.json"))
     ap.add_argument("--child", type=int, default=None, help=argparse.SUPPRESS)
     args = ap.parse_args()
