@@ -260,7 +260,7 @@ def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
     if burn is not None and use_compiled(chambers * n_half, kernel):
         args = (h, volume, dvolume, r_half, fraction, rate, dr, mass, heat, t0, walls, wall)
         temp, pressure, dp, work, lost = _compiled_cycle(*args, tables, shape)
-        temp_left, p_left = temp, pressure
+        p_left = pressure.copy()  # a Wiebe burn: no jump, the limits from both sides agree
     else:
         args = (h, volume, dvolume, r_half, fraction, rate, zero, mass, heat, t0, gas, walls)
         temp, temp_left, slopes, work, lost = _numpy_cycle(*args, wall, tables, shape)
