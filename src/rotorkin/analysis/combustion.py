@@ -31,8 +31,18 @@ apparent heat release ``Q dx_b``):
 
 integrated from intake closure (``x = -180 deg``) to exhaust opening (``+180 deg``) by
 the classical Runge-Kutta method on a fixed grid (the volumes given on the half
-steps), all chambers (designs) at once in arrays. Without walls, with an instant burn
-at the dead centre and a constant ``gamma`` it is the ideal Otto cycle.
+steps). Without walls, with an instant burn at the dead centre and a constant ``gamma``
+it is the ideal Otto cycle.
+
+Two paths run the same formulas in the same order (:mod:`rotorkin.core.fused` chooses,
+``kernel=`` or ``$ROTORKIN_KERNEL``): numpy operations on arrays of all chambers
+(designs) at once, step by step, or -- with a Wiebe burn and numba installed -- one
+compiled loop over the chambers, a few side by side, each through all its steps
+(:data:`INTERLEAVE`). The gas comes from its uniform tables
+(:class:`~rotorkin.analysis.gas.GasTables`: one index per temperature for ``c_v`` of
+both gases and ``u_b - u_u``); Woschni's coefficient is evaluated as
+``3.26 B^-0.2 (m R w / (1e3 V))^0.8 T^0.25`` (the same value: ``p = m R T / V``), whose
+first factor before the burn depends on the volume only.
 """
 
 from __future__ import annotations
@@ -42,6 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorkin.analysis.gas import ConstantGas
+from rotorkin.core.fused import compiled_loop, formula, select, use_compiled
 
 __all__ = [
     "Charge",
@@ -179,7 +190,8 @@ class Walls:
 
 
 def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
-                 burn: Wiebe | None = None, walls: Walls | None = None) -> dict:  # fmt: skip
+                 burn: Wiebe | None = None, walls: Walls | None = None,
+                 kernel=None) -> dict:  # fmt: skip
     """Temperature and pressure of chambers from intake closure to exhaust opening.
 
     Parameters
@@ -195,13 +207,18 @@ def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
     heat : float or ndarray (...)
         Heat the charge releases [J].
     gas : ConstantGas or NasaGas, optional
-        Properties (default constant ``gamma = 1.3``).
+        Properties (default constant ``gamma = 1.3``), through their
+        :class:`~rotorkin.analysis.gas.GasTables`.
     temperature : float or ndarray, optional
         At intake closure [K]; default from the ideal gas law at ``x[0]`` with 1 bar.
     burn : Wiebe or None
         None: all the heat at once at ``x = 0``, at constant volume.
     walls : Walls or None
         None: adiabatic.
+    kernel : {"auto", "numpy", "numba"}, optional
+        With a Wiebe burn, the chambers' integration as numpy operations on arrays of
+        chambers or as one compiled loop per chamber
+        (:func:`rotorkin.core.fused.use_compiled`; the same formulas, in the same order).
 
     Returns
     -------
@@ -226,7 +243,7 @@ def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
     t0 = (1.0e5 * volume[..., 0] / (mass * gas.gas_constant(0.0)) if temperature is None
           else np.broadcast_to(np.asarray(temperature, float), shape))  # fmt: skip
     t0 = np.broadcast_to(t0, shape).astype(float)
-
+    zero = n_half
     if burn is None:
         at = np.flatnonzero(np.isclose(x[::2], 0.0, rtol=0.0, atol=1e-9 * abs(h)))
         zero = int(at[0]) if at.size else n_half  # no dead centre on the grid: motored
@@ -234,40 +251,141 @@ def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
         rate = np.zeros(n_half)
     else:
         fraction, rate = wiebe(burn, x)
-    ref = None
-    if walls is not None:  # Woschni: the motored pressure from the state at intake closure
-        r0 = gas.gas_constant(0.0)
-        gamma_m = 1.0 + r0 / gas.cv(t0, 0.0)
-        p0 = mass * r0 * t0 / volume[..., 0]
-        ref = (p0, volume[..., 0], t0, gamma_m, np.max(volume, -1) - np.min(volume, -1))
-        started = x >= (burn.start if burn is not None else 0.0)
+    tables = gas.tables()
+    r_half = np.broadcast_to(gas.gas_constant(fraction), (n_half,)).astype(float)
+    nodes = slice(0, None, 2)
+    dr = (gas.gas_constant(1.0) - gas.gas_constant(0.0)) * rate[nodes]
+    wall = _wall_constants(gas, walls, burn, x, shape, mass, t0, volume)
+    chambers = int(np.prod(shape))
+    if burn is not None and use_compiled(chambers * n_half, kernel):
+        args = (h, volume, dvolume, r_half, fraction, rate, dr, mass, heat, t0, walls, wall)
+        temp, pressure, dp, work, lost = _compiled_cycle(*args, tables, shape)
+        p_left = pressure.copy()  # a Wiebe burn: no jump, the limits from both sides agree
+    else:
+        args = (h, volume, dvolume, r_half, fraction, rate, zero, mass, heat, t0, gas, walls)
+        temp, temp_left, slopes, work, lost = _numpy_cycle(*args, wall, tables, shape)
+        m = mass[..., None] if np.ndim(mass) else mass
+        r_gas = r_half[nodes]
+        v_nodes = volume[..., nodes]
+        pressure = m * r_gas * temp / v_nodes
+        # dp/dx = m/V (R dT/dx + T dR/dx) - p dV/dx / V at the nodes
+        dp = (m * (r_gas * slopes + temp * dr) - pressure * dvolume[..., nodes]) / v_nodes
+        p_left = m * r_gas * temp_left / volume[..., nodes]
+    xb = fraction[nodes]
+    energy0 = gas.energy(t0, 0.0)
+    energy1 = gas.energy(temp[..., -1], xb[-1])
+    return {
+        "x": x[nodes],
+        "T": temp,
+        "p": pressure,
+        "p_left": p_left,
+        "dp": dp,
+        "burnt": xb,
+        "work": work,
+        "heat_wall": lost,
+        "heat_released": heat * xb[-1],
+        "energy_rise": mass * (energy1 - energy0),
+    }
+
+
+def _wall_constants(gas, walls, burn, x, shape, mass, t0, volume):
+    """Per chamber: Woschni's constant factors and the motored state from intake closure."""
+    if walls is None:
+        return None
+    r0 = gas.gas_constant(0.0)
+    gamma_m = 1.0 + r0 / gas.cv(t0, 0.0)
+    v0 = volume[..., 0]
+    p0 = mass * r0 * t0 / v0
+    v_d = np.max(volume, -1) - np.min(volume, -1)
+    full = lambda a: np.broadcast_to(np.asarray(a, dtype=float), shape)  # noqa: E731
+    return {
+        "p0": full(p0),
+        "v0": full(v0),
+        "gamma": full(gamma_m),
+        "c1sp": full(WOSCHNI_C1 * np.asarray(walls.wall_speed, dtype=float)),
+        "c2k": full(WOSCHNI_C2 * v_d * t0 / (p0 * v0)),
+        "cd": full(3.26 * np.asarray(walls.diameter, dtype=float) ** -0.2),
+        "started": x >= (burn.start if burn is not None else 0.0),
+    }
+
+
+@formula
+def _motored(p0, v0, v, gamma):
+    """Pressure of the motored charge, ``p_0 (V_0 / V)^gamma`` [Pa]."""
+    return p0 * np.exp(gamma * np.log(v0 / v))
+
+
+@formula
+def _pressure(mass, r, t, v):
+    """``p = m R T / V`` [Pa]."""
+    return mass * r * t / v
+
+
+@formula
+def _gas_speed(p, motored, started, c1sp, c2k):
+    """Woschni's gas speed ``w = C_1 S_p + C_2 V_d T_r / (p_r V_r) (p - p_m)`` [m/s]."""
+    excess = p - motored
+    return c1sp + select(started, c2k * select(excess > 0.0, excess, 0.0), 0.0)
+
+
+@formula
+def _wall_factor(mass, r, speed, v):
+    """``(p w / 1e3)^0.8 T^-0.8 = (m R w / (1e3 V))^0.8`` of Woschni's coefficient."""
+    return np.exp(0.8 * np.log(mass * r * speed / (1e3 * v)))
+
+
+@formula
+def _wall_heat(t, factor, cd, area, seconds, t_wall):
+    """Heat to the walls per radian of cycle angle [J/rad] (numbers or arrays).
+
+    Woschni's coefficient ``3.26 B^-0.2 (p/1e3)^0.8 T^-0.55 w^0.8`` (:func:`woschni`)
+    as ``cd factor T^0.25``, ``cd = 3.26 B^-0.2``, ``factor`` from :func:`_wall_factor`
+    (before the burn it depends on the volume only: the compiled loop takes it once per
+    grid point), ``T^0.25`` two square roots.
+    """
+    coeff = cd * factor * np.sqrt(np.sqrt(t))
+    return coeff * area * (t - t_wall) * seconds
+
+
+@formula
+def _stage(t, p, dv, xb, dxb, mass, heat, cvu, cvb, du, q_wall):
+    """``dT/dx`` and ``p dV/dx`` of one chamber at one grid point (numbers or arrays).
+
+    ``cvu, cvb, du``: the gas tables at ``t``; ``q_wall``: :func:`_wall_heat`.
+    """
+    cv = (1.0 - xb) * cvu + xb * cvb
+    return (heat * dxb - q_wall - p * dv - mass * (du * dxb)) / (mass * cv), p * dv
+
+
+def _numpy_cycle(h, volume, dvolume, r_half, fraction, rate, zero, mass, heat, t0, gas, walls,
+                 wall, tables, shape):  # fmt: skip
+    """The classical Runge-Kutta steps as numpy operations on arrays of chambers."""
+    n_half = r_half.size
+    zeros = np.zeros(shape)
+    if walls is not None:  # the motored pressure on the whole grid at once
+        ex = lambda a: np.asarray(a)[..., None]  # noqa: E731
+        motored = _motored(ex(wall["p0"]), ex(wall["v0"]), volume, ex(wall["gamma"]))
 
     def rates(i, t):
-        """d(T, work, heat to the walls)/dx at half-step index ``i``."""
-        v, dv, xb, dxb = volume[..., i], dvolume[..., i], fraction[i], rate[i]
-        p = mass * gas.gas_constant(xb) * t / v
+        cvu, cvb, du = tables.lookup(t)
+        v = volume[..., i]
+        p = _pressure(mass, r_half[i], t, v)
         q_wall = 0.0 * t
         if walls is not None:
-            p0, v0, t_r, g_m, v_d = ref
-            motored = p0 * (v0 / v) ** g_m
-            speed = WOSCHNI_C1 * walls.wall_speed + (
-                WOSCHNI_C2 * v_d * t_r / (p0 * v0) * np.maximum(p - motored, 0.0)
-                if started[i] else 0.0
-            )  # fmt: skip
-            coeff = woschni(p, t, walls.diameter, speed)
-            q_wall = coeff * walls.area[..., i] * (t - walls.temperature) * walls.seconds[..., i]
-        du = gas.burnt_minus_unburnt(t) * dxb
-        dt = (heat * dxb - q_wall - p * dv - mass * du) / (mass * gas.cv(t, xb))
-        return dt, p * dv, q_wall
+            speed = _gas_speed(p, motored[..., i], bool(wall["started"][i]), wall["c1sp"],
+                               wall["c2k"])  # fmt: skip
+            factor = _wall_factor(mass, r_half[i], speed, v)
+            q_wall = _wall_heat(t, factor, wall["cd"], walls.area[..., i], walls.seconds[..., i],
+                                walls.temperature)  # fmt: skip
+        dt, pdv = _stage(t, p, dvolume[..., i], fraction[i], rate[i], mass, heat, cvu, cvb, du,
+                         q_wall)  # fmt: skip
+        return dt, pdv, q_wall
 
     t = t0
-    work = np.zeros(shape)
-    lost = np.zeros(shape)
-    temps = [t]
-    left = [t]
-    slopes = []
+    work, lost = zeros, zeros
+    temps, left, slopes = [t], [t], []
     for k in range(0, n_half - 1, 2):  # the cycle's steps, chambers in arrays
-        if burn is None and k == 2 * zero:  # all the heat at the dead centre
+        if k == 2 * zero:  # all the heat at the dead centre
             before = gas.energy(t, 0.0)
             t = gas.temperature_after(before + heat / mass, 1.0)
             temps[-1] = t
@@ -280,32 +398,135 @@ def closed_cycle(x, volume, dvolume, *, mass, heat, gas=None, temperature=None,
         t, work, lost = t + steps[0], work + steps[1], lost + steps[2]
         temps.append(t)
         left.append(t)
-    temp = np.stack(temps, axis=-1)
-    temp_left = np.stack(left, axis=-1)
-    nodes = slice(0, None, 2)
-    xb = fraction[nodes]
-    r_gas = gas.gas_constant(xb)
-    m = mass[..., None] if np.ndim(mass) else mass
-    pressure = m * r_gas * temp / volume[..., nodes]
-    # dp/dx = m/V (R dT/dx + T dR/dx) - p dV/dx / V at the nodes
     slopes.append(rates(n_half - 1, t)[0])  # the last node
-    slopes = np.stack(slopes, axis=-1)
-    dr = (gas.gas_constant(1.0) - gas.gas_constant(0.0)) * rate[nodes]
-    dp = (m * (r_gas * slopes + temp * dr) - pressure * dvolume[..., nodes]) / volume[..., nodes]
-    energy0 = gas.energy(t0, 0.0)
-    energy1 = gas.energy(temp[..., -1], xb[-1])
-    return {
-        "x": x[nodes],
-        "T": temp,
-        "p": pressure,
-        "p_left": m * r_gas * temp_left / volume[..., nodes],
-        "dp": dp,
-        "burnt": xb,
-        "work": work,
-        "heat_wall": lost,
-        "heat_released": heat * xb[-1],
-        "energy_rise": mass * (energy1 - energy0),
-    }
+    stack = lambda a: np.stack([np.broadcast_to(v, shape) for v in a], axis=-1)  # noqa: E731
+    work, lost = (np.broadcast_to(a, shape) + 0.0 for a in (work, lost))
+    return stack(temps), stack(left), stack(slopes), work, lost
+
+
+def _compiled_cycle(h, volume, dvolume, r_half, fraction, rate, dr, mass, heat, t0, walls, wall,
+                    tables, shape):  # fmt: skip
+    """The same steps as one compiled loop per chamber (numba), chambers flattened."""
+    n_half = r_half.size
+    n = int(np.prod(shape))
+    flat = lambda a: np.ascontiguousarray(np.broadcast_to(a, shape).reshape(n))  # noqa: E731
+    grid = lambda a: np.ascontiguousarray(np.broadcast_to(a, shape + (n_half,)).reshape(n, -1))  # noqa: E731
+    if walls is None:
+        lazy = np.zeros((n, n_half))  # never read (calloc: never touched either)
+        area, seconds, per = lazy, lazy, [np.zeros(n)] * 6
+        started, t_wall = np.zeros(n_half, dtype=np.bool_), 0.0
+    else:
+        area, seconds = grid(walls.area), grid(walls.seconds)
+        per = [flat(wall[k]) for k in ("p0", "v0", "gamma", "c1sp", "c2k", "cd")]
+        started, t_wall = wall["started"], float(walls.temperature)
+    k = (n_half - 1) // 2
+    temp, pressure, dp = np.empty((n, k + 1)), np.empty((n, k + 1)), np.empty((n, k + 1))
+    work, lost = np.empty(n), np.empty(n)
+    _cycle_loop(float(h), grid(volume), grid(dvolume), r_half, fraction, rate, dr, flat(mass),
+                flat(heat), flat(t0), walls is not None, started, area, seconds, *per, t_wall,
+                tables.lo, tables.inv_step, tables.values, tables.slopes, temp, pressure, dp,
+                work, lost)  # fmt: skip
+    out = (temp, pressure, dp)
+    return (*(a.reshape(shape + (k + 1,)) for a in out), work.reshape(shape),
+            lost.reshape(shape))  # fmt: skip
+
+
+@formula
+def _lookup(lo, inv_step, values, slopes, t):
+    """The gas tables at one temperature (a number; NaN propagates), as :func:`table_index`."""
+    nodes = values.shape[1]
+    top = nodes - 1.0
+    s = (t - lo) * inv_step
+    s = select(s < 0.0, 0.0, select(s > top, top, s))
+    j = min(int(select(s == s, s, 0.0)), nodes - 2)
+    f = s - j
+    return (values[0, j] + f * slopes[0, j], values[1, j] + f * slopes[1, j],
+            values[2, j] + f * slopes[2, j])  # fmt: skip
+
+
+#: Chambers integrated side by side in the compiled loop (independent work for the CPU to
+#: overlap while one chamber waits for its exponential).
+INTERLEAVE = 8
+
+
+@compiled_loop
+def _cycle_loop(h, volume, dvolume, r_half, fraction, rate, dr, mass, heat, t0, walls, started,
+                area, seconds, p0, v0, gamma, c1sp, c2k, cd, t_wall, lo, inv_step, values,
+                slopes, temp, pressure, dp, work, lost):  # fmt: skip
+    """Runge-Kutta steps of each chamber; ``T``, ``p``, ``dp/dx`` at the nodes, work, heat lost.
+
+    The steps of :func:`_numpy_cycle` (a Wiebe burn), :data:`INTERLEAVE` chambers at a time,
+    each with the same operations in the same order.
+    """
+    n, n_half = volume.shape
+    g = INTERLEAVE
+    state = np.zeros((7, g))  # T, the stage's T, the Runge-Kutta sums (3), work, heat lost
+    t_, ts_, st_, sw_, sq_, ws_, qs_ = (state[0], state[1], state[2], state[3], state[4],
+                                        state[5], state[6])  # fmt: skip
+    # per grid point of the step (start, middle, end): the motored pressure (after the burn's
+    # start) and Woschni's factor (before it, where it does not depend on the temperature)
+    motored, factor = np.zeros((3, g)), np.zeros((3, g))
+    for c0 in range(0, n, g):
+        cnt = min(g, n - c0)
+        for j in range(cnt):
+            t_[j], ws_[j], qs_[j] = t0[c0 + j], 0.0, 0.0
+        node = 0
+        for k in range(0, n_half, 2):
+            last = k == n_half - 1
+            if walls:
+                for j in range(cnt):
+                    c = c0 + j
+                    for at in range(3):
+                        i = k + at
+                        if (at == 0 and k > 0) or i >= n_half:
+                            continue
+                        if started[i]:
+                            motored[at, j] = _motored(p0[c], v0[c], volume[c, i], gamma[c])
+                        else:
+                            factor[at, j] = _wall_factor(mass[c], r_half[i], c1sp[c],
+                                                         volume[c, i])  # fmt: skip
+            for stage in range(4):
+                i = k + (stage + 1) // 2
+                at = (stage + 1) // 2
+                for j in range(cnt):
+                    c = c0 + j
+                    m, q, t = mass[c], heat[c], t_[j]
+                    ts = t if stage == 0 else ts_[j]
+                    v = volume[c, i]
+                    p = _pressure(m, r_half[i], ts, v)
+                    q_wall = 0.0
+                    if walls:
+                        f = factor[at, j]
+                        if started[i]:
+                            speed = _gas_speed(p, motored[at, j], True, c1sp[c], c2k[c])
+                            f = _wall_factor(m, r_half[i], speed, v)
+                        q_wall = _wall_heat(ts, f, cd[c], area[c, i], seconds[c, i], t_wall)
+                    cvu, cvb, du = _lookup(lo, inv_step, values, slopes, ts)
+                    dt, pdv = _stage(ts, p, dvolume[c, i], fraction[i], rate[i], m, q, cvu, cvb,
+                                     du, q_wall)  # fmt: skip
+                    if stage == 0:  # the node
+                        temp[c, node] = t
+                        pressure[c, node] = p
+                        dp[c, node] = (m * (r_half[i] * dt + t * dr[node])
+                                       - p * dvolume[c, i]) / v  # fmt: skip
+                        st_[j], sw_[j], sq_[j] = dt, pdv, q_wall
+                        ts_[j] = t + h / 2 * dt
+                    elif stage < 3:
+                        st_[j], sw_[j] = st_[j] + 2 * dt, sw_[j] + 2 * pdv
+                        sq_[j] = sq_[j] + 2 * q_wall
+                        ts_[j] = t + (h / 2 if stage == 1 else h) * dt
+                    else:
+                        t_[j] = t + h / 6 * (st_[j] + dt)
+                        ws_[j] = ws_[j] + h / 6 * (sw_[j] + pdv)
+                        qs_[j] = qs_[j] + h / 6 * (sq_[j] + q_wall)
+                if last:
+                    break
+            node += 1
+            if walls:  # the step's end is the next one's start
+                for j in range(cnt):
+                    motored[0, j], factor[0, j] = motored[2, j], factor[2, j]
+        for j in range(cnt):
+            work[c0 + j], lost[c0 + j] = ws_[j], qs_[j]
 
 
 def hermite(x_nodes, values, slopes, rows, xq, left=None):

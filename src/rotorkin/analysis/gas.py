@@ -23,6 +23,10 @@ volume ``c_v(T, x)`` and the sensible internal energy ``u(T, x)`` (zero at 298.1
   interpolated linearly (``c_v``) and by the trapezoid integral of that table
   (``u``), so that ``du = c_v dT`` holds on the tables exactly.
 
+Both give :class:`GasTables`: ``c_v`` of the unburnt and of the burnt gas and
+``u_b - u_u`` on one uniform grid, read with one index per temperature (what the
+single-zone cycle needs at every Runge-Kutta stage).
+
 J. B. Heywood, *Internal Combustion Engine Fundamentals*, 2nd ed., 2018, ch. 4.
 """
 
@@ -42,6 +46,8 @@ __all__ = [
     "R_AIR",
     "cantera_available",
     "burnt_composition",
+    "GasTables",
+    "table_index",
 ]
 
 #: Universal gas constant [J/(mol K)].
@@ -52,6 +58,64 @@ R_AIR = R_UNIVERSAL / 28.965e-3
 AIR = {"O2": 0.2095, "N2": 0.7809, "AR": 0.0096}
 _T_LO, _T_HI = 200.0, 5000.0
 _T_REF = 298.15
+
+
+@dataclass(frozen=True)
+class GasTables:
+    """The caloric properties a single-zone cycle needs, as tables on one uniform grid.
+
+    Piecewise linear in ``T`` between the nodes ``T_j = lo + j / inv_step`` and constant
+    beyond the ends (as :func:`numpy.interp`); the value at ``T`` is
+    ``values[:, j] + f slopes[:, j]``, ``j, f`` from :func:`table_index`.
+
+    Attributes
+    ----------
+    lo : float
+        Temperature of the first node [K].
+    inv_step : float
+        Nodes per kelvin [1/K].
+    values : ndarray (3, J)
+        ``c_v`` of the unburnt charge and of the burnt gas [J/(kg K)] and ``u_b - u_u``
+        [J/kg] at the nodes.
+    slopes : ndarray (3, J)
+        Their differences to the next node (0 at the last).
+    r_unburnt, r_burnt : float
+        Gas constants [J/(kg K)].
+    """
+
+    lo: float
+    inv_step: float
+    values: np.ndarray
+    slopes: np.ndarray
+    r_unburnt: float
+    r_burnt: float
+
+    @classmethod
+    def of(cls, lo, inv_step, cv_unburnt, cv_burnt, du, r_unburnt, r_burnt) -> GasTables:
+        """Tables from the node values (the slopes follow)."""
+        values = np.ascontiguousarray(np.stack([cv_unburnt, cv_burnt, du]), dtype=float)
+        slopes = np.zeros_like(values)
+        slopes[:, :-1] = np.diff(values, axis=1)
+        return cls(float(lo), float(inv_step), values, slopes, float(r_unburnt), float(r_burnt))
+
+    def lookup(self, t):
+        """``(c_v unburnt, c_v burnt, u_b - u_u)`` at temperatures ``t`` (arrays)."""
+        j, f = table_index(self.lo, self.inv_step, self.values.shape[1], t)
+        v, d = self.values, self.slopes
+        return tuple(v[k].take(j) + f * d[k].take(j) for k in range(3))
+
+
+def table_index(lo, inv_step, nodes, t):
+    """Node ``j`` (``0 <= j <= nodes - 2``) and fraction ``f`` (in [0, 1]) of ``t`` (arrays).
+
+    ``s = (t - lo) inv_step`` clipped to ``[0, nodes - 1]``, ``j = min(floor(s), nodes - 2)``,
+    ``f = s - j``; a NaN temperature gives ``j = 0`` and ``f = NaN``.
+    """
+    s = np.minimum(np.maximum((np.asarray(t, dtype=float) - lo) * inv_step, 0.0), nodes - 1.0)
+    with np.errstate(invalid="ignore"):
+        j = s.astype(np.intp)
+    j = np.minimum(np.maximum(j, 0), nodes - 2)
+    return j, s - j
 
 
 def cantera_available() -> bool:
@@ -101,6 +165,11 @@ class ConstantGas:
     def temperature_after(self, energy, x):
         """The temperature whose energy is ``energy`` at burnt fraction ``x`` [K]."""
         return _T_REF + np.asarray(energy, dtype=float) * (self.gamma - 1.0) / self.r
+
+    def tables(self) -> GasTables:
+        """:class:`GasTables` of the gas: constant ``c_v``, no energy of reaction."""
+        cv = np.full(2, self.r / (self.gamma - 1.0))
+        return GasTables.of(0.0, 1.0, cv, cv, np.zeros(2), self.r, self.r)
 
 
 def burnt_composition(equivalence_ratio: float, hc_ratio: float) -> dict:
@@ -167,6 +236,7 @@ class NasaGas:
         self._b = _tables(tuple(sorted(burnt.items())))
         self._a = _tables(tuple(sorted(AIR.items())))
         self.residual_fraction = float(residual_fraction)
+        self._mixture = None
         self.label = "NASA polynomials (Cantera, GRI-Mech 3.0 data)"
 
     def _unburnt(self, table_index, t):
@@ -190,6 +260,18 @@ class NasaGas:
 
     def burnt_minus_unburnt(self, t):
         return np.interp(t, self._b[0], self._b[3]) - self._unburnt(3, t)
+
+    def tables(self) -> GasTables:
+        """:class:`GasTables` of the gas on its 1 K grid (computed once per composition)."""
+        if self._mixture is None:
+            a, b, xr = self._a, self._b, self.residual_fraction
+            t = a[0]
+            cv_u = (1.0 - xr) * a[2] + xr * b[2]
+            u_u = (1.0 - xr) * a[3] + xr * b[3]
+            r_u = (1.0 - xr) * a[1] + xr * b[1]
+            self._mixture = GasTables.of(t[0], 1.0 / (t[1] - t[0]), cv_u, b[2], b[3] - u_u, r_u,
+                                         b[1])  # fmt: skip
+        return self._mixture
 
     def temperature_after(self, energy, x):
         """Inverse of :meth:`energy` in ``T`` (monotone), on the 1 K grid."""

@@ -29,15 +29,24 @@ their vectorised ``violation`` functions.
 
 from __future__ import annotations
 
+import contextlib
+
 import numpy as np
 
-from rotorkin.analysis import combustion as cb
 from rotorkin.analysis import engine_cycle as ec
 from rotorkin.analysis.timing import shaft_speed
-from rotorkin.core.batch import Designs, flag, full, run_blocks, sample_grid
+from rotorkin.core.batch import (
+    Designs,
+    block_progress,
+    flag,
+    full,
+    run_blocks,
+    sample_grid,
+)
 from rotorkin.drives.wobble_cam import chambers as wch
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam.fast import rotor_kinematics
+from rotorkin.drives.wobble_cam.sweep_cycle import fuel_air_cycle
 from rotorkin.machines import fuel_air as fa
 from rotorkin.machines import twin_rotor as tr
 
@@ -304,18 +313,22 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
     spin_a, spin_b = p.cfg["drive"].get("spin_a") or [], p.cfg["drive"].get("spin_b") or []
     if spin_a or spin_b:
         sampled |= {"rotor_speed_ratio_min", "rotor_speed_ratio_max"}
-    if names & set(SAMPLED_METRICS):  # every curve; the peaks come out of the same pass
-        val.update(_sampled_full(p, tilt, alpha, spin, n_f, beta, samples, threads))
-    elif names & sampled:
-        val.update(_sampled(p, tilt, alpha, spin, samples, threads))
+    cycle = bool(names & set(_MACHINE_METRICS)) and _fuel_air(p.cfg)
+    # progress: the fuel-air cycle's blocks when it runs (most of the time), else these
+    with block_progress(None) if cycle else contextlib.nullcontext():
+        if names & set(SAMPLED_METRICS):  # every curve; the peaks come out of the same pass
+            val.update(_sampled_full(p, tilt, alpha, spin, n_f, beta, samples, threads))
+        elif names & sampled:
+            val.update(_sampled(p, tilt, alpha, spin, samples, threads))
     if names & set(_MACHINE_METRICS):
-        val.update(_machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi))
+        val.update(_machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi,
+                            threads))  # fmt: skip
     for name in names:
         out[name] = full(val[name], n)
     return out
 
 
-def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> dict:
+def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi, threads=None) -> dict:
     """Volumes and the ideal cycle (:mod:`rotorkin.machines.twin_rotor`, closed forms)."""
     k = _section(p)
     vc = p.float("machine.clearance_volume")
@@ -376,70 +389,8 @@ def _machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi) -> di
         "indicated_power_kW": work * omega_mean / (2.0 * np.pi) / 1e3,
     }
     if _fuel_air(p.cfg):  # the cycle's keys from the integrated fuel-air cycle instead
-        out.update(_fuel_air_cycle(p, n_f, per_rev, kind_a, beta, k, vc, (va_min, va_max),
-                                   (vb_min, vb_max), disp, omega_mean))  # fmt: skip
-    return out
-
-
-def _fuel_air_cycle(p, n_f, per_rev, kind_a, beta, kvol, vc, vol_a, vol_b, disp, omega) -> dict:
-    """The fuel-air cycle of every design: its two closed parts (kinds A and B) integrated.
-
-    With the linear spin law the turning points are equally spaced, ``pi / (2|n|)``
-    apart: chamber 1 (kind A) compresses from ``theta = 0`` on, chamber 2 (kind B) one
-    stroke later; every chamber of a kind runs that part (the study's
-    :func:`rotorkin.machines.fuel_air.charge_cycle`, which finds the parts of any law).
-    """
-    loads = fa.loads_of(p.cfg.get("loads") or {})
-    n = p.n
-    tilt, alpha = full(p.float("drive.plate_tilt"), n), full(p.float("drive.roller_axis_angle"), n)
-    spin = full(p.float("drive.spin_ratio"), n)
-    beta, kvol, vc, n_f = full(beta, n), full(kvol, n), full(vc, n), full(n_f, n)
-    per_rev, disp = full(per_rev, n), full(disp, n)
-    steps = fa.steps_per_stroke(loads)
-    half = np.linspace(-np.pi, np.pi, 4 * steps + 1)
-    stroke = np.pi / (2.0 * np.abs(spin))  # shaft angle per stroke
-    volume, dvolume = np.empty((n, 2, half.size)), np.empty((n, 2, half.size))
-    for n_spin, pistons in np.unique(np.stack([spin, n_f], axis=-1), axis=0):
-        rows = np.flatnonzero((spin == n_spin) & (n_f == pistons))
-        for part in (0, 1):  # kind A from theta = 0, kind B one stroke later
-            theta = ((half + np.pi) / np.pi + part) * stroke[rows, None]
-            rot, ch = rotor_kinematics(tilt[rows, None], alpha[rows, None], float(n_spin), theta,
-                                       chamber=(beta[rows, None], float(pistons)))  # fmt: skip
-            sign = 1.0 if part == 0 else -1.0  # delta_A = s - lo_a, delta_B = hi_b - s
-            volume[rows, part] = kvol[rows, None] * ch[part] + vc[rows, None]
-            dvolume[rows, part] = (sign * kvol[rows, None] * (rot[1, 1] - rot[1, 0])
-                                   * (stroke[rows, None] / np.pi))  # fmt: skip
-    gas, charge = loads.gas(), loads.charge()
-    v_max, v_min = volume[..., 0], volume[..., 2 * steps]
-    mass = cb.trapped_mass(charge, v_max, gas.gas_constant(0.0))
-    heat = cb.heat_of_charge(charge, mass)
-    wall = None
-    if loads.heat_transfer == "woschni":
-        keys = ("inner_radius", "outer_radius", "axial_width", "mean_radius", "section_diameter")
-        sizes = [full(p.float(f"machine.{k}"), n)[:, None] for k in keys]
-        section = np.broadcast_to(np.asarray(p["machine.section"]), (n,))[:, None]
-        rate = (v_max - v_min) / kvol[:, None] * omega / stroke[:, None]
-        wall = fa.walls_of(section, *sizes, vc[:, None], kvol[:, None], volume,
-                           np.broadcast_to((stroke / np.pi / omega)[:, None, None], volume.shape),
-                           rate, loads.wall_temperature)  # fmt: skip
-    with np.errstate(all="ignore"):
-        res = cb.closed_cycle(half, volume, dvolume, mass=mass, heat=heat, gas=gas,
-                              temperature=loads.intake_temperature, burn=loads.burn(),
-                              walls=wall)  # fmt: skip
-    res = {**res, "fuel": cb.fuel_energy(charge, mass), "mass": mass}
-    weight = np.broadcast_to((n_f * per_rev)[:, None], (n, 2))  # cycles per turn of each kind
-    out = fa.summarize(loads, gas.label, res, v_max, v_min, weight, 1.0, disp)
-    eps = np.where(kind_a, vol_a[1] / vol_a[0], vol_b[1] / vol_b[0])
-    pumping = (loads.intake_pressure - loads.ambient_pressure) * (v_max - v_min)
-    work = res["work"] + pumping
-    out.update({
-        "indicated_work_per_cycle_a_J": work[:, 0],
-        "indicated_work_per_cycle_b_J": work[:, 1],
-        "otto_efficiency": 1.0 - eps**-0.4,
-        "mean_torque_Nm": out["indicated_work_J"] / (2.0 * np.pi),
-        "indicated_power_kW": out["indicated_work_J"] * omega / (2.0 * np.pi) / 1e3,
-    })  # fmt: skip
-    del out["gas_properties"]
+        out.update(fuel_air_cycle(p, n_f, per_rev, kind_a, beta, k, vc, (va_min, va_max),
+                                   (vb_min, vb_max), disp, omega_mean, threads))  # fmt: skip
     return out
 
 
