@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.io.config import validate_config
-from rotorkin.render.figures import Recipe
+from rotorkin.render.figures import Recipe, save_in
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save as _save
 
@@ -66,7 +66,13 @@ def fig_overview(ds, metrics, path: Path) -> Path | None:
     x = ds[dims[0]]
     ncol = min(3, len(curves))
     nrow = -(-len(curves) // ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol, 3.6 * nrow + 0.8), squeeze=False)
+    held = ", ".join(f"{d} = {_fmt(ds[d].values[0])}" for d in dims[2:])
+    width, height, top = 4.6 * ncol, 3.6 * nrow + 0.8, 0.95 if held else 0.7
+    # fixed margins [in] instead of tight_layout, which draws every tick once more
+    fig, axes = plt.subplots(nrow, ncol, figsize=(width, height), squeeze=False,
+                             gridspec_kw={"left": 0.95 / width, "right": 1 - 0.2 / width,
+                                          "bottom": 0.55 / height, "top": 1 - top / height,
+                                          "wspace": 1.05 / 3.45, "hspace": 0.75 / 2.6})  # fmt: skip
     second = dims[1] if len(dims) > 1 else None
     values2 = ds[second].values if second else None
     lines = range(len(values2)) if second else [None]
@@ -87,11 +93,11 @@ def fig_overview(ds, metrics, path: Path) -> Path | None:
         ax.set_visible(False)
     if second:
         axes.ravel()[0].legend(fontsize=7)
-    held = ", ".join(f"{d} = {_fmt(ds[d].values[0])}" for d in dims[2:])
     fig.suptitle(f"{ds.attrs.get('title', 'sweep')}: {ds.attrs['designs']} designs, "
                  f"{ds.attrs['inadmissible_designs']} inadmissible (gaps)"
-                 + (f"\nheld: {held}" if held else ""), fontsize=10)  # fmt: skip
-    return _save(fig, path)
+                 + (f"\nheld: {held}" if held else ""), fontsize=10, y=1 - 0.1 / height,
+                 va="top")  # fmt: skip
+    return save_in(fig, Path(path).parent, Path(path).name)
 
 
 def _fmt(v) -> str:

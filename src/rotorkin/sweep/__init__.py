@@ -337,6 +337,7 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
                     res = compute_chunk(spec, start, stop, threads)
                 take(index, res)
     if chunks:
+        _release_free_memory()  # the chunks' freed work arrays, before the result is assembled
         flat = _assemble(spec, chunks)
     flat.pop("count", None)
     result = to_result(spec, flat)
@@ -345,6 +346,23 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
         if not keep_chunks:
             chunks.remove()
     return result
+
+
+def _release_free_memory() -> None:
+    """Return the memory freed by the chunks' computation to the system (glibc only).
+
+    glibc keeps freed blocks for reuse (its threshold for giving large arrays back
+    rises as they are freed), so without this the kernels' work arrays would stay
+    in the process beside the assembled result.
+    """
+    if not sys.platform.startswith("linux"):
+        return
+    try:
+        import ctypes
+
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except (OSError, AttributeError):  # another C library: nothing to do
+        pass
 
 
 def _empty(spec: SweepSpec) -> dict:

@@ -154,7 +154,7 @@ class ChunkStore:
         return final
 
     def read(self, index: int) -> dict:
-        """A committed chunk back as a result dict (copies; the file is closed)."""
+        """A committed chunk back as a result dict (in memory, big-endian; the file is closed)."""
         from scipy.io import netcdf_file
 
         with netcdf_file(self.path(index), "r", mmap=False) as f:
@@ -167,12 +167,12 @@ class ChunkStore:
                 "violations": np.array(var["violations"][:], dtype=np.int16)
                 if "violations" in var
                 else np.zeros(int(f.stop) - int(f.start), dtype=np.int16),
-                "metrics": {k[2:]: np.array(v[:]) for k, v in var.items() if k.startswith("m:")},
+                # read into memory (mmap=False) once: views of it, no second copy
+                "metrics": {k[2:]: v[:] for k, v in var.items() if k.startswith("m:")},
             }
             if "angle" in var:
                 res["angle"] = np.array(var["angle"][:])
-                res["curves"] = {k[2:]: np.array(v[:]) for k, v in var.items()
-                                 if k.startswith("c:")}  # fmt: skip
+                res["curves"] = {k[2:]: v[:] for k, v in var.items() if k.startswith("c:")}
         return res
 
     def remove(self) -> None:
