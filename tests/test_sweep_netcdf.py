@@ -235,3 +235,20 @@ def test_the_write_streams_without_a_copy(tmp_path):
         assert float(f.variables["m2"][n - 1]) == 2.0
         assert int(f.variables["design"][n - 1]) == n - 1
         del f
+
+
+def test_an_angle_per_design_reads_back(tmp_path):
+    """A swept gear ratio changes the period: the angle coordinate is (designs..., point)."""
+    _, raw, _ = load_config(None, "guide-bar-pump", ["run.points=37"])
+    spec = build_spec(raw, {"drive.input_gear_ratio": "1,2", "drive.lambda": "0.3,0.5,0.7"},
+                      keep_curves=True, samples=181)  # fmt: skip
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SweepFallbackWarning)
+        result = compute(spec, store=tmp_path, progress=False)
+    angle = result["theta_deg"]
+    assert angle.dims == ("drive.input_gear_ratio", "drive.lambda", "point")
+    # one input turn per output period: the angle's last point grows with the gear ratio
+    assert angle.values[1, 0, -1] > angle.values[0, 0, -1]
+    _scipy_equal(tmp_path / "sweep.nc", result)
+    with xr.open_dataset(tmp_path / "sweep.nc") as back:
+        assert back.load().identical(result.to_dataset())
