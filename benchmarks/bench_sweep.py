@@ -256,7 +256,11 @@ def cli(designs: int, repeat: int = 3) -> dict:
           f"{cost['interpreter_start_s']:.2f}, imports {cost['imports_s']:.2f}, spec checks "
           f"{cost['spec_checks_s']:.2f}, figure {cost['overview_figure_s']:.2f}, netCDF "
           f"{cost['write_netcdf_s']:.3f}, other {cost['other_s']:.2f})", flush=True)  # fmt: skip
+    import importlib.util
+
     return {"memory": memory, "fixed_cost": cost,
+            # False: measured on the core install (pip install ., no xarray or pandas)
+            "xarray_installed": importlib.util.find_spec("xarray") is not None,
             "verdict": {"rss_within_1_15_of_result": memory["rss_over_result"] <= 1.15,
                         "fixed_cost_under_0_5_s": cost["fixed_s"] <= 0.5}}  # fmt: skip
 
