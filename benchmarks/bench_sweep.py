@@ -36,6 +36,25 @@ columns, forces, pairs, so even this flatters the sweep a little). The speed-up
 against the sweep at ``--angles`` samples (``speedup_unequal_samples``) compares
 360 samples with 20 001 and is kept only to show the difference.
 
+The command line (``--cli``, also part of a full run): ``rotorkin sweep`` as a user
+runs it, each in a process of its own.
+
+* Peak RSS against the result: the default example with ``loads.model = ideal``
+  over compression ratio x heat per cycle x polytropic exponent (``--cli-designs``,
+  default 1e6 designs, 360 angles), which writes ``sweep.nc``, the overview figure
+  and README; the same command over 2 x 2 x 2 designs is the baseline (interpreter,
+  imports, kernels compiled, figure). ``rss_over_result = (peak - baseline peak) /
+  result bytes``, the result's bytes being those of its arrays (every variable of
+  ``sweep.nc``, read from its header). Those keys leave the drive's geometry alone:
+  a grid over plate tilt or roller axis angle also runs the drive's checks once per
+  geometry (a few ms each, an hour at 1e6 geometries). Target: at most 1.15.
+* Fixed cost of a 1e3-design sweep (the default example, plate tilt x roller axis
+  angle x compression ratio, 10 values each): the process's wall time minus the
+  engine's computation (the time inside ``compute_chunk``): interpreter start,
+  imports, config and units, the spec's checks with one design through the scalar
+  study, the overview figure, ``sweep.nc`` and README. Its parts are timed apart.
+  Target: at most 0.5 s.
+
 Targets: at most 60 s and 1.5 GiB for 1e6 designs x 360
 angles on a 2-core machine, and a compute time per design constant within
 15 % from 1e4 to 1e6 designs. The result file records the load average: on a
@@ -113,6 +132,137 @@ def child(designs: int, angles: int, threads) -> dict:
         "checksum_accel_peaks": float(np.nansum(ds["rotor_accel_peak_per_rad"].values)),
         "checksum_sampled_slider_min": float(np.nansum(ds["sampled_slider_angle_min_deg"].values)),
     }
+
+
+#: The CLI's memory grid (keys that leave the geometry alone) and its baseline.
+CLI_SETS = ("loads.model=ideal",)
+#: The fixed-cost sweep: 1e3 designs of the default example.
+CLI_FIXED_VARY = ("drive.plate_tilt=30deg:50deg:10", "drive.roller_axis_angle=80deg:100deg:10",
+                  "machine.compression_ratio=8:16:10")  # fmt: skip
+
+#: Runs ``rotorkin sweep`` in this child, timing the parts; prints one JSON line.
+_CLI_CHILD = """
+import json, os, resource, sys, time
+t0 = time.perf_counter()
+os.environ.setdefault("MPLBACKEND", "Agg")
+parts = {}
+
+def timed(owner, name, label):
+    fn = getattr(owner, name)
+
+    def wrapper(*args, **kwargs):
+        t = time.perf_counter()
+        try:
+            return fn(*args, **kwargs)
+        finally:
+            parts[label] = parts.get(label, 0.0) + time.perf_counter() - t
+
+    setattr(owner, name, wrapper)
+
+from rotorkin.cli import main
+import rotorkin.cli.sweep
+import rotorkin.report.figures_sweep as figures
+import rotorkin.sweep as sweep
+import rotorkin.sweep.engine as engine
+from rotorkin.sweep.result import SweepResult
+
+parts["imports"] = time.perf_counter() - t0
+timed(sweep, "compute_chunk", "compute")
+timed(engine, "check_spec_values", "spec_checks")
+timed(sweep, "check_spec_values", "spec_checks")
+timed(figures, "fig_overview", "overview_figure")
+timed(SweepResult, "to_netcdf", "write_netcdf")
+code = main(sys.argv[1:])
+parts["in_process_s"] = time.perf_counter() - t0
+parts["peak_rss_MiB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+print(json.dumps({"code": code, **parts}))
+"""
+
+
+def _cli(args: list[str], folder: Path) -> dict:
+    """``rotorkin sweep ARGS --out folder -q`` in a fresh process: its timed parts, wall, RSS."""
+    t0 = time.perf_counter()
+    proc = subprocess.run([sys.executable, "-c", _CLI_CHILD, "sweep", *args, "-q", "--out",
+                           str(folder)], capture_output=True, text=True)  # fmt: skip
+    wall = time.perf_counter() - t0
+    if proc.returncode:
+        raise RuntimeError(proc.stderr)
+    doc = json.loads(proc.stdout.strip().splitlines()[-1])
+    if doc["code"]:
+        raise RuntimeError(proc.stderr)
+    doc["wall_s"] = wall
+    return doc
+
+
+def _result_bytes(path: Path) -> int:
+    """Bytes of the arrays of a result: every variable of its netCDF file (header only)."""
+    from scipy.io import netcdf_file
+
+    size = {"d": 8, "f": 4, "i": 4, "h": 2, "b": 1, "c": 1}
+    with netcdf_file(path, "r", mmap=True) as f:
+        return sum(int(np.prod(v.shape, dtype=np.int64)) * size[v.typecode()]
+                   for v in f.variables.values())  # fmt: skip
+
+
+def cli(designs: int, repeat: int = 3) -> dict:
+    """The command line: peak RSS against the result at ``designs``; fixed cost of 1e3."""
+    import tempfile
+
+    n = max(2, round(designs ** (1.0 / 3.0)))
+    grid = lambda k: [*(f"--set={s}" for s in CLI_SETS), "--angles", "360",  # noqa: E731
+                      "--vary", f"machine.compression_ratio=8:16:{k}",
+                      "--vary", f"loads.heat_per_cycle=500J:1500J:{k}",
+                      "--vary", f"loads.polytropic_exponent=1.2:1.4:{k}"]  # fmt: skip
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        small = _cli(grid(2), tmp / "small")
+        big = _cli(grid(n), tmp / "big")
+        result = _result_bytes(tmp / "big" / "sweep.nc")
+        fixed_args = [a for v in CLI_FIXED_VARY for a in ("--vary", v)]
+        runs = [_cli(fixed_args, tmp / f"fixed{i}") for i in range(max(1, repeat))]
+    fixed = min(runs, key=lambda r: r["wall_s"] - r["compute"])
+    memory = {
+        "designs": n**3,
+        "command": "rotorkin sweep " + " ".join(grid(n)),
+        "result_bytes": result,
+        "result_MiB": result / 2**20,
+        "peak_rss_MiB": big["peak_rss_MiB"],
+        "baseline_peak_rss_MiB": small["peak_rss_MiB"],
+        "rss_over_result": (big["peak_rss_MiB"] - small["peak_rss_MiB"]) * 2**20 / result,
+        "wall_s": big["wall_s"],
+    }
+    cost = {
+        "designs": 1000,
+        "command": "rotorkin sweep " + " ".join(fixed_args),
+        "wall_s": fixed["wall_s"],
+        "compute_s": fixed["compute"],
+        "fixed_s": fixed["wall_s"] - fixed["compute"],
+        "interpreter_start_s": fixed["wall_s"] - fixed["in_process_s"],
+        "imports_s": fixed["imports"],
+        "spec_checks_s": fixed.get("spec_checks", 0.0),
+        "overview_figure_s": fixed.get("overview_figure", 0.0),
+        "write_netcdf_s": fixed.get("write_netcdf", 0.0),
+        "rounds": len(runs),
+    }
+    cost["other_s"] = cost["fixed_s"] - sum(cost[k] for k in (
+        "interpreter_start_s", "imports_s", "spec_checks_s", "overview_figure_s",
+        "write_netcdf_s"))  # fmt: skip
+    print(f"rotorkin sweep, {memory['designs']} designs: peak RSS {memory['peak_rss_MiB']:.0f} "
+          f"MiB, baseline {memory['baseline_peak_rss_MiB']:.0f} MiB, result "
+          f"{memory['result_MiB']:.0f} MiB: {memory['rss_over_result']:.3f} x the result "
+          f"above the baseline")  # fmt: skip
+    print(f"rotorkin sweep, 1000 designs: wall {cost['wall_s']:.2f} s, compute "
+          f"{cost['compute_s']:.2f} s, fixed {cost['fixed_s']:.2f} s (start "
+          f"{cost['interpreter_start_s']:.2f}, imports {cost['imports_s']:.2f}, spec checks "
+          f"{cost['spec_checks_s']:.2f}, figure {cost['overview_figure_s']:.2f}, netCDF "
+          f"{cost['write_netcdf_s']:.3f}, other {cost['other_s']:.2f})", flush=True)  # fmt: skip
+    import importlib.util
+
+    return {"memory": memory, "fixed_cost": cost,
+            # False: measured on the core install (pip install ., no xarray or pandas)
+            "xarray_installed": importlib.util.find_spec("xarray") is not None,
+            "verdict": {"rss_within_1_15_of_result": memory["rss_over_result"] <= 1.15,
+                        "fixed_cost_under_0_5_s": cost["fixed_s"] <= 0.5}}  # fmt: skip
 
 
 def _one_by_one(raw: dict, angles: int, count: int):
@@ -195,10 +345,28 @@ def main() -> None:
     ap.add_argument("--like-designs", type=int, default=1000,
                     help="designs of the like-for-like sweep at 20 001 samples")  # fmt: skip
     ap.add_argument("--out", default=str(Path(__file__).parent / "results" / "sweep.json"))
+    ap.add_argument(
+        "--cli",
+        action="store_true",
+        help="only the command line's memory and fixed cost, merged into --out",
+    )
+    ap.add_argument("--cli-designs", default="1e6",
+                    help="designs of the command line's memory run")  # fmt: skip
     ap.add_argument("--child", type=int, default=None, help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.child is not None:
         print(json.dumps(child(args.child, args.angles, args.threads)))
+        return
+    if args.cli:
+        out = Path(args.out)
+        doc = json.loads(out.read_text()) if out.is_file() else {"benchmark": "sweep"}
+        command = "python benchmarks/bench_sweep.py " + " ".join(sys.argv[1:])
+        before = load()
+        found = cli(int(float(args.cli_designs)), args.repeat)
+        doc["cli"] = {"command": command, "machine": machine(), "load_before": before,
+                      **found, "load_after": load()}  # fmt: skip
+        write_json(args.out, doc)
+        print(f"wrote {args.out}")
         return
     sizes = [int(float(s)) for s in args.sizes.split(",")]
     load_before = load()
@@ -268,9 +436,11 @@ def main() -> None:
           for r in rows))  # fmt: skip
     print("verdict:", json.dumps(verdict), "load before/after:", load_before, load())
     cmdline = "python benchmarks/bench_sweep.py " + " ".join(sys.argv[1:])
+    cli_doc = {"load_before": load(), **cli(int(float(args.cli_designs)), args.repeat)}
     write_json(args.out, {"benchmark": "sweep", "command": cmdline.strip(), "machine": machine(),
                           "load_before": load_before, "load_after": load(), "rows": rows,
-                          "like_for_like": like, "verdict": verdict})  # fmt: skip
+                          "like_for_like": like, "verdict": verdict,
+                          "cli": {**cli_doc, "load_after": load()}})  # fmt: skip
     print(f"wrote {args.out}")
 
 

@@ -32,6 +32,7 @@ import numpy as np
 
 from rotorkin.core.batch import DEFAULT_SAMPLES
 from rotorkin.core.errors import ConfigError, ParameterError, RotorkinError, shown
+from rotorkin.core.extras import xarray_module
 from rotorkin.core.units import parse_quantity
 from rotorkin.drives import evaluate, spec_of
 from rotorkin.io.config import validate_config
@@ -43,9 +44,11 @@ from rotorkin.sweep.engine import (
     reason_keys,
     warn_fallback,
 )
+from rotorkin.sweep.result import SweepResult, Variable
 from rotorkin.sweep.spec import DISPLAY_UNITS, Field, _check_key, parse_item
 
-__all__ = ["Tolerance", "parse_tol", "draw", "run_tolerance", "summarize", "PERCENTILES"]
+__all__ = ["Tolerance", "parse_tol", "draw", "run_tolerance", "tolerance_result", "summarize",
+           "PERCENTILES"]  # fmt: skip
 
 #: Percentiles reported for every metric.
 PERCENTILES = (1, 5, 50, 95, 99)
@@ -130,6 +133,20 @@ def run_tolerance(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int 
                   metrics=None, angles=None, threads=None):  # fmt: skip
     """Monte-Carlo tolerance analysis; returns an :class:`xarray.Dataset` over ``sample``.
 
+    :func:`tolerance_result` as a Dataset (the ``xarray`` extra; without it a
+    ``ModuleNotFoundError`` naming ``pip install "rotorkin[xarray]"`` before any work).
+    """
+    what = "rotorkin.tolerance.run_tolerance"
+    xarray_module(what)
+    return tolerance_result(base_cfg_raw, tols, samples=samples, seed=seed, metrics=metrics,
+                            angles=angles, threads=threads).to_dataset(what)  # fmt: skip
+
+
+def tolerance_result(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int = 0,
+                     metrics=None, angles=None, threads=None) -> SweepResult:  # fmt: skip
+    """Monte-Carlo tolerance analysis; a :class:`~rotorkin.sweep.result.SweepResult` over
+    ``sample`` (numpy arrays, no xarray needed).
+
     Parameters
     ----------
     base_cfg_raw : dict
@@ -147,12 +164,10 @@ def run_tolerance(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int 
 
     Returns
     -------
-    xarray.Dataset
+    SweepResult
         Per sample: the toleranced keys (display units), every metric, ``reason``;
         attributes ``nominal:<metric>``, ``seed``, ``tolerances``.
     """
-    import xarray as xr
-
     cfg = validate_config(base_cfg_raw)
     tols = [t if isinstance(t, Tolerance) else parse_tol(t, base_cfg_raw) for t in tols]
     if not tols:
@@ -206,16 +221,16 @@ def run_tolerance(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int 
     data = {}
     for t in tols:
         unit, factor = DISPLAY_UNITS.get(t.field.kind, ("1", 1.0))
-        data[t.key] = xr.Variable("sample", table[t.key] * factor,
-                                  attrs={"units": unit, "tolerance": t.describe()})  # fmt: skip
+        data[t.key] = Variable("sample", table[t.key] * factor,
+                               {"units": unit, "tolerance": t.describe()})  # fmt: skip
     for m in names:
-        data[m] = xr.Variable("sample", values[m], attrs={
+        data[m] = Variable("sample", values[m], {
             "units": metric_units(m), "nominal": float(nominal_run["metrics"][m][0])})  # fmt: skip
     codes = reason_keys(cfg["drive"]["type"])
-    data["reason"] = xr.Variable(
+    data["reason"] = Variable(
         "sample",
         reason,
-        attrs={
+        {
             "flag_values": np.arange(len(codes), dtype=np.int16),
             "flag_meanings": " ".join(codes),
             "long_name": "0 admissible, else the config key whose limit the sample violates",
@@ -223,7 +238,7 @@ def run_tolerance(base_cfg_raw: dict, tols, *, samples: int = 10_000, seed: int 
     )
     held_note = ("piston width held at nominal" if "piston_width" in extra
                  else "vane angle held at nominal gamma_0" if held != cfg else "")  # fmt: skip
-    return xr.Dataset(data, coords={"sample": np.arange(n, dtype=np.int32)}, attrs={
+    return SweepResult(data, {"sample": Variable("sample", np.arange(n, dtype=np.int32))}, {
         "drive_type": cfg["drive"]["type"],
         "seed": int(seed),
         "samples": n,

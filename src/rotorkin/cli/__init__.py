@@ -65,6 +65,8 @@ EXTRAS = {
     "cantera": "thermo",
     "pymoo": "optimize",
     "numba": "fast",
+    "xarray": "xarray",
+    "pandas": "xarray",
 }
 
 

@@ -36,11 +36,11 @@ from rotorkin.drives import REGISTRY, spec_of
 from rotorkin.io.config import apply_sets, load_config
 from rotorkin.io.output import check_out, staged_output
 from rotorkin.report import figures_sweep as fs
-from rotorkin.sweep import build_spec, execute
+from rotorkin.sweep import build_spec, compute
 from rotorkin.sweep.checks import skipped as skipped_checks
 from rotorkin.sweep.engine import SweepFallbackWarning, coverage
 from rotorkin.sweep.store import write_dataset
-from rotorkin.tolerance import run_tolerance, summarize
+from rotorkin.tolerance import summarize, tolerance_result
 
 __all__ = ["register"]
 
@@ -191,7 +191,7 @@ def register(app) -> None:
         with _client(workers, scheduler) as client, staged_output(outdir, "sweep") as (stage, _):
             for recipe, spec in specs:
                 if recipe is None:
-                    main_ds = execute(
+                    main_ds = compute(
                         spec,
                         store=outdir,
                         client=client,
@@ -209,7 +209,7 @@ def register(app) -> None:
                     )
                     written.append("README.txt")
                 else:
-                    ds = execute(spec, client=client, progress=not quiet)
+                    ds = compute(spec, client=client, progress=not quiet)
                     write_dataset(ds, stage / f"paper_{recipe.key}.nc")
                     written.append(f"paper_{recipe.key}.nc")
                     written += [p.name for p in fs.plot_recipe(recipe, ds, stage)]
@@ -256,8 +256,8 @@ def register(app) -> None:
         with stages("tolerance") as step, warnings.catch_warnings(record=True) as caught:
             step(f"evaluating {samples} samples")
             warnings.simplefilter("always", SweepFallbackWarning)
-            ds = run_tolerance(raw, tol or [], samples=samples, seed=seed, metrics=metrics,
-                               angles=angles)  # fmt: skip
+            ds = tolerance_result(raw, tol or [], samples=samples, seed=seed, metrics=metrics,
+                                  angles=angles)  # fmt: skip
         for w in caught:
             _note(str(w.message), quiet)
         stats = summarize(ds)

@@ -53,6 +53,7 @@ from rotorkin.design.problem import (
     evaluate_population,
     objectives_and_constraints,
 )
+from rotorkin.sweep.result import SweepResult, Variable
 from rotorkin.sweep.store import open_folder
 
 __all__ = [
@@ -193,13 +194,16 @@ class OptimizeResult:
         return _with_values(self.spec.base_raw, infos, self.X[index])
 
     def to_dataset(self):
-        """The front as an :class:`xarray.Dataset` over dimension ``design``."""
-        import xarray as xr
+        """The front as an :class:`xarray.Dataset` over dimension ``design`` (the ``xarray``
+        extra; :meth:`to_result` holds the same variables as numpy arrays)."""
+        return self.to_result().to_dataset("OptimizeResult.to_dataset")
 
+    def to_result(self) -> SweepResult:
+        """The front as a :class:`~rotorkin.sweep.result.SweepResult` over dimension ``design``."""
         spec = self.spec
         data = {}
         for j, v in enumerate(spec.variables):
-            data[v.key] = xr.Variable("design", self.display(j), attrs={
+            data[v.key] = Variable("design", self.display(j), {
                 "units": v.info.unit or "1", "long_name": f"config key {v.key}",
                 "searched": f"{v.info.show(v.low)} ... {v.info.show(v.high)}"})  # fmt: skip
         roles = {o.metric: f"objective: {o.sense}" for o in spec.objectives}
@@ -207,9 +211,9 @@ class OptimizeResult:
             roles[c.metric] = (roles.get(c.metric, "") + f"; constraint: {c.metric} {c.op} "
                                f"{c.value:.12g}").lstrip("; ")  # fmt: skip
         for i, m in enumerate(spec.metrics):
-            data[m] = xr.Variable("design", self.values[:, i],
-                                  attrs={"units": metric_units(m), "role": roles[m]})  # fmt: skip
-        data["violations"] = xr.Variable("design", self.violations.astype(np.int16), attrs={
+            data[m] = Variable("design", self.values[:, i],
+                               {"units": metric_units(m), "role": roles[m]})  # fmt: skip
+        data["violations"] = Variable("design", self.violations.astype(np.int16), {
             "long_name": "plausibility limits the design passes (bit mask; 0 none)"})  # fmt: skip
         attrs = {
             "title": f"rotorkin optimize of {spec.name}: Pareto set",
@@ -224,7 +228,7 @@ class OptimizeResult:
             "constraints": " ".join(c.text for c in spec.constraints),
             "spec": json.dumps(spec.manifest(), sort_keys=True),
         }
-        return xr.Dataset(data, coords={"design": np.arange(self.size)}, attrs=attrs)
+        return SweepResult(data, {"design": Variable("design", np.arange(self.size))}, attrs)
 
     def csv_text(self) -> str:
         """The front as CSV: index, the keys (unit in brackets), objectives, constraints."""
@@ -366,7 +370,7 @@ def write_front(result: OptimizeResult, folder) -> list[str]:
     from rotorkin.sweep.store import write_dataset
 
     folder = Path(folder)
-    ds = result.to_dataset()
+    ds = result.to_result()
     write_dataset(ds, folder / "pareto.nc")
     (folder / "pareto.csv").write_text(result.csv_text())
     plot_front(result, folder / "pareto.png")

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.io.config import validate_config
-from rotorkin.render.figures import Recipe
+from rotorkin.render.figures import Recipe, save_in
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save as _save
 
@@ -46,45 +46,58 @@ def fig_overview(ds, metrics, path: Path) -> Path | None:
     """Up to six metrics against the first swept key, one line per value of the second.
 
     Further swept keys are held at their first value. None when the first key is
-    not numeric or there is nothing to draw.
+    not numeric or there is nothing to draw. ``ds`` is a sweep's
+    :class:`~rotorkin.sweep.result.SweepResult` or :class:`xarray.Dataset` (only
+    ``ds[name].values``, ``.dims`` and ``.attrs`` are read).
     """
-    dims = [d for d in ds["reason"].dims]
-    if not dims or ds[dims[0]].dtype == object:
+    dims = list(ds["reason"].dims)
+    if not dims or ds[dims[0]].values.dtype == object:
         return None
-    names = [m for m in metrics if m in ds and np.any(np.isfinite(ds[m].values))][:6]
-    if not names:
+    held_at = (slice(None),) * min(2, len(dims)) + (0,) * (len(dims) - 2)
+    curves = {}
+    for m in metrics:
+        if m in ds and len(curves) < 6:
+            y = np.asarray(ds[m].values)[held_at]  # a view: the first two dims, others held
+            if np.any(np.isfinite(y)):
+                curves[m] = y
+    if not curves:
         return None
     plt = _plt()
-    sub = ds.isel({d: 0 for d in dims[2:]})
-    x = sub[dims[0]]
-    ncol = min(3, len(names))
-    nrow = -(-len(names) // ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol, 3.6 * nrow + 0.8), squeeze=False)
+    x = ds[dims[0]]
+    ncol = min(3, len(curves))
+    nrow = -(-len(curves) // ncol)
+    held = ", ".join(f"{d} = {_fmt(ds[d].values[0])}" for d in dims[2:])
+    width, height, top = 4.6 * ncol, 3.6 * nrow + 0.8, 0.95 if held else 0.7
+    # fixed margins [in] instead of tight_layout, which draws every tick once more
+    fig, axes = plt.subplots(nrow, ncol, figsize=(width, height), squeeze=False,
+                             gridspec_kw={"left": 0.95 / width, "right": 1 - 0.2 / width,
+                                          "bottom": 0.55 / height, "top": 1 - top / height,
+                                          "wspace": 1.05 / 3.45, "hspace": 0.75 / 2.6})  # fmt: skip
     second = dims[1] if len(dims) > 1 else None
-    lines = range(sub.sizes[second]) if second else [None]
+    values2 = ds[second].values if second else None
+    lines = range(len(values2)) if second else [None]
     if second and len(lines) > 8:
-        lines = np.unique(np.linspace(0, sub.sizes[second] - 1, 8).round().astype(int))
-    for ax, m in zip(axes.ravel(), names, strict=False):
+        lines = np.unique(np.linspace(0, len(values2) - 1, 8).round().astype(int))
+    unit2 = ds[second].attrs.get("units", "1") if second else "1"
+    for ax, (m, y) in zip(axes.ravel(), curves.items(), strict=False):
         for k, j in enumerate(lines):
-            y = sub[m] if j is None else sub[m].isel({second: int(j)})
             lab = None
             if j is not None:
-                unit = sub[second].attrs.get("units", "1")
-                lab = (f"{second.split('.')[-1]} = {_fmt(sub[second][int(j)])}"
-                       + ("" if unit == "1" else f" {unit}"))  # fmt: skip
-            ax.plot(x.values, y.values, color=f"C{k}", label=lab)
+                lab = (f"{second.split('.')[-1]} = {_fmt(values2[int(j)])}"
+                       + ("" if unit2 == "1" else f" {unit2}"))  # fmt: skip
+            ax.plot(x.values, y if j is None else y[:, int(j)], color=f"C{k}", label=lab)
         ax.set_xlabel(f"{dims[0]} [{x.attrs.get('units', '')}]")
         ax.set_ylabel(f"{m} [{ds[m].attrs.get('units', '1')}]", fontsize=8)
         ax.grid(True, alpha=0.4)
-    for ax in axes.ravel()[len(names) :]:
+    for ax in axes.ravel()[len(curves) :]:
         ax.set_visible(False)
     if second:
         axes.ravel()[0].legend(fontsize=7)
-    held = ", ".join(f"{d} = {_fmt(ds[d][0])}" for d in dims[2:])
     fig.suptitle(f"{ds.attrs.get('title', 'sweep')}: {ds.attrs['designs']} designs, "
                  f"{ds.attrs['inadmissible_designs']} inadmissible (gaps)"
-                 + (f"\nheld: {held}" if held else ""), fontsize=10)  # fmt: skip
-    return _save(fig, path)
+                 + (f"\nheld: {held}" if held else ""), fontsize=10, y=1 - 0.1 / height,
+                 va="top")  # fmt: skip
+    return save_in(fig, Path(path).parent, Path(path).name)
 
 
 def _fmt(v) -> str:

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorkin.core.extras import xarray_module
 from rotorkin.core.motion import Motion
 from rotorkin.core.units import metric_units
 
@@ -114,7 +115,9 @@ class StudyResult:
         )
 
     def to_dataframe(self):
-        """The per-angle columns as a :class:`pandas.DataFrame` (``motion.csv``)."""
+        """The per-angle columns as a :class:`pandas.DataFrame` (``motion.csv``; pandas comes
+        with the ``xarray`` extra)."""
+        xarray_module("Study.to_dataframe")
         import pandas as pd
 
         return pd.DataFrame({k: np.asarray(v) for k, v in self.columns.items()})
@@ -124,9 +127,9 @@ class StudyResult:
 
         The first column (the input angle) is the coordinate ``angle``; every other
         column a variable with its unit and description as attributes; the summary's
-        numbers are attributes of the dataset.
+        numbers are attributes of the dataset. Needs the ``xarray`` extra.
         """
-        import xarray as xr
+        xr = xarray_module("Study.to_xarray")
 
         names = list(self.columns)
         first = names[0]

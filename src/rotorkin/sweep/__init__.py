@@ -13,6 +13,11 @@ and, for the sampled peaks, a design x shaft-angle array in blocks, with no
 Python loop over designs. Chunks of designs keep the memory bounded, can be
 committed to disk as they finish (``store=``; resumable after a kill) and can
 run on dask.distributed (``client=``). See ``docs/sweeps.md``.
+
+:func:`run_sweep` and :func:`execute` return an :class:`xarray.Dataset` (the
+``xarray`` extra); :func:`compute` returns the same variables as a
+:class:`SweepResult` of numpy arrays and writes ``sweep.nc`` without xarray
+(the command line, on the core install).
 """
 
 from __future__ import annotations
@@ -27,6 +32,7 @@ import numpy as np
 
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, block_progress
 from rotorkin.core.errors import ConfigError, ParameterError, shown
+from rotorkin.core.extras import xarray_module
 from rotorkin.drives import evaluate, spec_of
 from rotorkin.io.config import validate_config
 from rotorkin.sweep.checks import check_metrics
@@ -40,16 +46,19 @@ from rotorkin.sweep.engine import (
     evaluate_designs,
     kernel_of,
     reason_keys,
-    to_dataset,
+    to_result,
     warn_fallback,
 )
+from rotorkin.sweep.result import SweepResult
 from rotorkin.sweep.spec import Vary, parse_vary
-from rotorkin.sweep.store import ChunkStore, write_dataset
+from rotorkin.sweep.store import ChunkStore
 
 __all__ = [
     "run_sweep",
     "build_spec",
     "execute",
+    "compute",
+    "SweepResult",
     "parse_vary",
     "resolve_metrics",
     "evaluate_designs",
@@ -263,6 +272,7 @@ def run_sweep(base_cfg_raw: dict, vary, *, keep_curves: bool = False, chunk_size
         (0 admissible, else the index of the violated key in its
         ``flag_meanings``; metrics NaN); with curves, a ``point`` dimension.
     """
+    xarray_module("rotorkin.sweep.run_sweep")
     spec = build_spec(base_cfg_raw, vary, keep_curves=keep_curves, chunk_size=chunk_size,
                       metrics=metrics, samples=samples, memory_budget=memory_budget,
                       name=name)  # fmt: skip
@@ -275,7 +285,25 @@ def run_sweep(base_cfg_raw: dict, vary, *, keep_curves: bool = False, chunk_size
 
 def execute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=None,
             keep_chunks=False, on_status=None):  # fmt: skip
-    """Run a validated spec (locally or on ``client``), optionally through a chunk store."""
+    """Run a validated spec (locally or on ``client``); an :class:`xarray.Dataset`.
+
+    As :func:`compute`, whose :class:`SweepResult` it turns into a Dataset (the
+    ``xarray`` extra: without it, ``ModuleNotFoundError`` naming
+    ``pip install "rotorkin[xarray]"`` before any work).
+    """
+    xarray_module("rotorkin.sweep.execute")
+    return compute(spec, store=store, client=client, progress=progress, threads=threads,
+                   keep_chunks=keep_chunks, on_status=on_status).to_dataset()  # fmt: skip
+
+
+def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=None,
+            keep_chunks=False, on_status=None) -> SweepResult:  # fmt: skip
+    """Run a validated spec (locally or on ``client``), optionally through a chunk store.
+
+    Returns the :class:`SweepResult` (numpy arrays; no xarray needed). With
+    ``store``, the chunks are committed to ``store/.chunks`` as they finish and the
+    result is written to ``store/sweep.nc`` (streamed, atomically).
+    """
     from pathlib import Path
 
     chunks = ChunkStore.of_spec(Path(store) / ".chunks", spec.manifest()) if store else None
@@ -309,13 +337,32 @@ def execute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
                     res = compute_chunk(spec, start, stop, threads)
                 take(index, res)
     if chunks:
+        _release_free_memory()  # the chunks' freed work arrays, before the result is assembled
         flat = _assemble(spec, chunks)
-    ds = to_dataset(spec, flat)
+    flat.pop("count", None)
+    result = to_result(spec, flat)
     if chunks:
-        write_dataset(ds, Path(store) / "sweep.nc")
+        result.to_netcdf(Path(store) / "sweep.nc")
         if not keep_chunks:
             chunks.remove()
-    return ds
+    return result
+
+
+def _release_free_memory() -> None:
+    """Return the memory freed by the chunks' computation to the system (glibc only).
+
+    glibc keeps freed blocks for reuse (its threshold for giving large arrays back
+    rises as they are freed), so without this the kernels' work arrays would stay
+    in the process beside the assembled result.
+    """
+    if not sys.platform.startswith("linux"):
+        return
+    try:
+        import ctypes
+
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except (OSError, AttributeError):  # another C library: nothing to do
+        pass
 
 
 def _empty(spec: SweepSpec) -> dict:

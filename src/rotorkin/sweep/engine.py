@@ -1,10 +1,12 @@
-"""Evaluating batches of designs: the kernels, the scalar fallback, chunks, the result Dataset.
+"""Evaluating batches of designs: the kernels, the scalar fallback, chunks, the result.
 
 A sweep is a grid of designs (the outer product of the swept values, flattened
 in C order: the last ``--vary`` key varies fastest). It is cut into chunks of
 consecutive designs; :func:`compute_chunk` evaluates one chunk (the unit of
 work of the local loop, of a dask task and of a committed file), and
-:func:`to_dataset` shapes the flat results into an :class:`xarray.Dataset`.
+:func:`to_result` shapes the flat results into a :class:`~rotorkin.sweep.result.SweepResult`
+(the variables of the sweep's Dataset as numpy arrays) and :func:`to_dataset` into an
+:class:`xarray.Dataset`.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from rotorkin.core.units import metric_units
 from rotorkin.io.config import glossary
 from rotorkin.studies import limits
 from rotorkin.sweep import checks as sweep_checks
+from rotorkin.sweep.result import SweepResult, Variable
 from rotorkin.sweep.spec import display
 
 __all__ = [
@@ -32,6 +35,7 @@ __all__ = [
     "evaluate_designs",
     "compute_chunk",
     "chunk_bounds",
+    "to_result",
     "to_dataset",
     "metric_units",
 ]
@@ -322,8 +326,8 @@ def compute_chunk(spec: SweepSpec, start: int, stop: int, threads=None) -> dict:
 # --------------------------------------------------------------------------------------------
 # the result
 # --------------------------------------------------------------------------------------------
-def to_dataset(spec: SweepSpec, flat: dict):
-    """Shape flat results (every design in order) into an :class:`xarray.Dataset`.
+def to_result(spec: SweepSpec, flat: dict) -> SweepResult:
+    """Shape flat results (every design in order) into a :class:`SweepResult` (views, no copy).
 
     Parameters
     ----------
@@ -331,15 +335,19 @@ def to_dataset(spec: SweepSpec, flat: dict):
     flat : dict
         ``"metrics"`` name -> (size,), ``"reason"`` (size,), and with curves
         ``"curves"`` name -> (size, points) and ``"angle"`` (points,) or (size, points).
-    """
-    import xarray as xr
 
+    Returns
+    -------
+    SweepResult
+        The variables, coordinates and attributes of the sweep's Dataset
+        (:func:`to_dataset`).
+    """
     kern = kernel_of(spec.drive_type, spec.base_cfg)
     dims = tuple(v.key for v in spec.varies)
     shape = spec.shape
     coords = {}
     for v in spec.varies:
-        coords[v.key] = xr.Variable(v.key, v.display_values(), attrs={
+        coords[v.key] = Variable(v.key, v.display_values(), {
             "units": v.field.unit or "1", "long_name": f"config key {v.key}",
             "spec": v.text})  # fmt: skip
     data = {}
@@ -348,9 +356,10 @@ def to_dataset(spec: SweepSpec, flat: dict):
         if sweep_checks.is_check(m):
             attrs["long_name"] = ("margin of a design check of rotorkin run: positive where the "
                                   "design passes, negative where it fails")  # fmt: skip
-        data[m] = xr.Variable(dims, flat["metrics"][m].reshape(shape), attrs=attrs)
+        data[m] = Variable(dims, flat["metrics"][m].reshape(shape), attrs)
     reasons = reason_keys(spec.drive_type)
-    data["reason"] = xr.Variable(dims, flat["reason"].reshape(shape).astype(np.int16), attrs={
+    reason = np.asarray(flat["reason"]).astype(np.int16, copy=False)
+    data["reason"] = Variable(dims, reason.reshape(shape), {
         "long_name": "why a design is inadmissible: 0 ok, else the config key whose admissible "
                      "range it violates (flag_meanings); its metrics are NaN",
         "flag_values": np.arange(len(reasons), dtype=np.int16),
@@ -358,7 +367,8 @@ def to_dataset(spec: SweepSpec, flat: dict):
     violations = flat.get("violations")
     if violations is None:
         violations = np.zeros(spec.size, dtype=np.int16)
-    data["violations"] = xr.Variable(dims, violations.reshape(shape).astype(np.int16), attrs={
+    violations = np.asarray(violations).astype(np.int16, copy=False)
+    data["violations"] = Variable(dims, violations.reshape(shape), {
         "long_name": "plausibility limits the design passes: a bit mask, 0 none (flag_masks, "
                      "flag_meanings: the config keys of the limits)",
         "flag_masks": np.array(list(limits.BITS.values()), dtype=np.int16),
@@ -370,20 +380,15 @@ def to_dataset(spec: SweepSpec, flat: dict):
     if spec.keep_curves:
         angle_name, angle_doc = kern.ANGLE
         angle = np.degrees(np.asarray(flat["angle"], dtype=float))
-        if angle.ndim == 1:
-            coords[angle_name] = xr.Variable(
-                "point", angle, attrs={"units": "deg", "long_name": angle_doc}
-            )
+        if angle.ndim > 1:
+            angle_dims, angle = (*dims, "point"), angle.reshape(*shape, -1)
         else:
-            coords[angle_name] = xr.Variable(
-                (*dims, "point"),
-                angle.reshape(*shape, -1),
-                attrs={"units": "deg", "long_name": angle_doc},
-            )
+            angle_dims = ("point",)
+        coords[angle_name] = Variable(angle_dims, angle, {"units": "deg", "long_name": angle_doc})
         for c, values in flat["curves"].items():
-            data[c] = xr.Variable((*dims, "point"), values.reshape(*shape, -1),
-                                  attrs={"units": metric_units(c)})  # fmt: skip
-    inadmissible = int(np.count_nonzero(flat["reason"]))
+            data[c] = Variable((*dims, "point"), values.reshape(*shape, -1),
+                               {"units": metric_units(c)})  # fmt: skip
+    inadmissible = int(np.count_nonzero(reason))
     attrs = {
         "title": f"rotorkin sweep of {spec.name}",
         "drive_type": spec.drive_type,
@@ -398,7 +403,13 @@ def to_dataset(spec: SweepSpec, flat: dict):
                        "summary keys of rotorkin run (unit = suffix); integers and booleans "
                        "stored as float64 (1 = true); NaN where reason != 0",
     }  # fmt: skip
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    return SweepResult(data, coords, attrs)
+
+
+def to_dataset(spec: SweepSpec, flat: dict):
+    """Shape flat results into an :class:`xarray.Dataset` (:func:`to_result`; the ``xarray``
+    extra)."""
+    return to_result(spec, flat).to_dataset()
 
 
 #: Designs per block of the admissibility scan of :func:`check_spec_values`.

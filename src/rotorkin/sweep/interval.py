@@ -134,13 +134,13 @@ def _scan(raw: dict, key: str, values: np.ndarray, judge: _Judge) -> np.ndarray:
     """
     if judge.with_limits:
         return np.array([judge.reason(float(v)) == "" for v in values])
-    from rotorkin.sweep import build_spec, execute, resolve_metrics
+    from rotorkin.sweep import build_spec, compute, resolve_metrics
 
     metrics = list(resolve_metrics(validate_config(raw))[:1])
     texts = [_text(judge.field, v) for v in values]
     # no refusal of values past the key's own limit: they are what the scan looks for
     spec = build_spec(raw, {key: texts}, metrics=metrics, check=False, design_checks=False)
-    ok = np.asarray(execute(spec, progress=False)["reason"].values == 0).reshape(-1)
+    ok = np.asarray(compute(spec, progress=False)["reason"].values == 0).reshape(-1)
     for i in np.flatnonzero(ok):
         ok[i] = judge.reason(values[i], full=False) == ""
     return ok

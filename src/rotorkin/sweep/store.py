@@ -15,8 +15,9 @@ folder (other keys, values, metrics, samples or chunk size) has its own chunk
 folder: it neither reuses nor deletes another spec's chunks.
 The chunk files go once ``sweep.nc`` is written.
 
-Files are netCDF-3 (64-bit offsets) written with :mod:`scipy.io` (no netCDF4 or
-zarr library is needed), read back by :mod:`xarray` or any netCDF reader.
+Files are netCDF-3 (64-bit offsets): the chunks written with :mod:`scipy.io`, the
+result streamed by :mod:`rotorkin.sweep.netcdf` (no netCDF4, zarr or xarray library
+is needed), read back by :mod:`xarray` or any netCDF reader.
 """
 
 from __future__ import annotations
@@ -153,7 +154,7 @@ class ChunkStore:
         return final
 
     def read(self, index: int) -> dict:
-        """A committed chunk back as a result dict (copies; the file is closed)."""
+        """A committed chunk back as a result dict (in memory, big-endian; the file is closed)."""
         from scipy.io import netcdf_file
 
         with netcdf_file(self.path(index), "r", mmap=False) as f:
@@ -166,12 +167,12 @@ class ChunkStore:
                 "violations": np.array(var["violations"][:], dtype=np.int16)
                 if "violations" in var
                 else np.zeros(int(f.stop) - int(f.start), dtype=np.int16),
-                "metrics": {k[2:]: np.array(v[:]) for k, v in var.items() if k.startswith("m:")},
+                # read into memory (mmap=False) once: views of it, no second copy
+                "metrics": {k[2:]: v[:] for k, v in var.items() if k.startswith("m:")},
             }
             if "angle" in var:
                 res["angle"] = np.array(var["angle"][:])
-                res["curves"] = {k[2:]: np.array(v[:]) for k, v in var.items()
-                                 if k.startswith("c:")}  # fmt: skip
+                res["curves"] = {k[2:]: v[:] for k, v in var.items() if k.startswith("c:")}
         return res
 
     def remove(self) -> None:
@@ -182,12 +183,11 @@ class ChunkStore:
 
 
 def write_dataset(ds, path) -> Path:
-    """Write an :class:`xarray.Dataset` as netCDF-3 (scipy engine), atomically."""
-    path = Path(path)
-    tmp = _tmp(path)
-    try:
-        ds.to_netcdf(tmp, engine="scipy", format="NETCDF3_64BIT")
-        os.replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
-    return path
+    """Write a :class:`~rotorkin.sweep.result.SweepResult` or an :class:`xarray.Dataset` as
+    netCDF-3 (64-bit offsets), streamed in blocks and atomically
+    (:func:`rotorkin.sweep.netcdf.write_netcdf3`)."""
+    from rotorkin.sweep.netcdf import write_netcdf3
+
+    coords = tuple(ds.coords)
+    variables = {k: ds.variables[k] for k in (*ds.data_vars, *coords)}
+    return write_netcdf3(path, variables, ds.attrs, coords)
