@@ -152,19 +152,23 @@ class _Channels:
     def inside(self, points):
         """Whether each point (n, 3) [m] lies strictly inside some channel (bool, (n,)).
 
-        The closest axis sample stands within ``r (pad/2)^2`` of the closest axis (0.02 um
-        in the example): the test is exact to that.
+        A point is inside when its distance from the nearest axis sample (the smallest
+        angle: the nearest on the unit sphere) is below the half-width. The closest axis
+        sample stands within ``r (pad/2)^2`` of the closest axis (0.02 um in the example):
+        the test is exact to that.
         """
         rad = np.linalg.norm(points, axis=1)
         reach = 2.0 * np.sin(0.5 * np.arcsin(np.minimum(self.h / rad, 1.0))) + self.pad
-        idx, cand = _flatten(self.tree.query_ball_point(points / rad[:, None], reach))
+        chord, near = self.tree.query(points / rad[:, None], k=1,
+                                      distance_upper_bound=float(np.max(reach, initial=0.0)))
         out = np.zeros(len(points), dtype=bool)
+        idx = np.flatnonzero(chord <= reach)
         if not len(idx):
             return out
-        p, e = points[idx], self.axes[cand]
+        p, e = points[idx], self.axes[near[idx]]
         along = np.einsum("ij,ij->i", p, e)
         dist = np.sqrt(np.maximum(np.einsum("ij,ij->i", p, p) - along * along, 0.0))
-        np.logical_or.at(out, idx, (along > 0.0) & (dist < self.h - self.eps))
+        out[idx] = (along > 0.0) & (dist < self.h - self.eps)
         return out
 
 
