@@ -159,8 +159,9 @@ class _Channels:
         """
         rad = np.linalg.norm(points, axis=1)
         reach = 2.0 * np.sin(0.5 * np.arcsin(np.minimum(self.h / rad, 1.0))) + self.pad
-        chord, near = self.tree.query(points / rad[:, None], k=1,
-                                      distance_upper_bound=float(np.max(reach, initial=0.0)))
+        chord, near = self.tree.query(
+            points / rad[:, None], k=1, distance_upper_bound=float(np.max(reach, initial=0.0))
+        )
         out = np.zeros(len(points), dtype=bool)
         idx = np.flatnonzero(chord <= reach)
         if not len(idx):
