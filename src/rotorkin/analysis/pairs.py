@@ -160,9 +160,7 @@ def summary(pairs, theta, work_per_turn, model: ContactModel, omega, batch: bool
     if stressed:
         curves = np.stack(np.broadcast_arrays(*(s for _, s in stressed)))
         if batch:
-            with np.errstate(invalid="ignore"):
-                peaks = np.max(np.where(np.isnan(curves), -np.inf, curves), axis=-1)
-            peaks[np.isneginf(peaks)] = np.nan  # no stress at any angle
+            peaks = np.fmax.reduce(curves, axis=-1)  # NaN only where every angle is NaN
         else:
             peaks = np.array([np.nanmax(s) for _, s in stressed])
         k = np.argmax(peaks, axis=0)
@@ -171,7 +169,7 @@ def summary(pairs, theta, work_per_turn, model: ContactModel, omega, batch: bool
         out["peak_contact_stress_MPa"] = top / 1e6
         out["peak_contact_stress_pair"] = np.asarray([p.name for p, _ in stressed])[k]
         if batch:
-            at = np.argmax(np.where(np.isnan(s), -np.inf, s), axis=-1)
+            at = np.argmax(s == top[..., None], axis=-1)  # the first angle of the peak
             out["peak_contact_stress_at_deg"] = np.where(np.isnan(top), np.nan,
                                                          np.degrees(theta[at]))  # fmt: skip
         else:

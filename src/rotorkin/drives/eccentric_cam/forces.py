@@ -154,37 +154,34 @@ def contact_state(params: ec.EccentricCam, beta, machine_force, masses, omega,
     qdd = d2q * np.asarray(omega) ** 2 + dq * np.asarray(omega_dot)
     D = m * qdd - np.asarray(machine_force, dtype=float)
     R, e = np.asarray(params.disc_radius, dtype=float), np.asarray(params.eccentricity, dtype=float)
-    eu = np.stack([e * np.cos(beta), e * np.sin(beta)])
-    centre = np.stack([eu, -eu])  # (2 pistons, xy, n)
-    if params.follower == "flat":
-        n = np.zeros_like(centre)
-        n[:, 0] = 1.0
+    ec_, es_ = e * np.cos(beta), e * np.sin(beta)
+    cx, cy = np.stack([ec_, -ec_]), np.stack([es_, -es_])  # disc centres (2 pistons, ...)
+    flat = params.follower == "flat"
+    if flat:
+        nx, ny = np.ones(cx.shape), np.zeros(cx.shape)
     else:
         rc = np.asarray(params.contact_radius, dtype=float)
-        follower = np.stack([rc + q, np.zeros_like(q)], axis=1)
-        n = (follower - centre) / rc
-    C = centre + R * n
-    N = D / n[:, 0]
-    t = np.stack([-n[:, 1], n[:, 0]], axis=1)
-    v_rel = np.stack([-C[:, 1] - dq, C[:, 0]], axis=1)  # disc surface relative to the piston
-    slip = np.abs(np.sum(v_rel * t, axis=1))
-    flat = params.follower == "flat"
+        nx, ny = (rc + q - cx) / rc, (0.0 - cy) / rc
+    Cx, Cy = cx + R * nx, cy + R * ny
+    N = D / nx
+    # the disc's surface relative to the piston, (-C_y - q', C_x), along the tangent (-n_y, n_x)
+    slip = np.abs((-Cy - dq) * -ny + Cx * nx)
     roller = params.follower == "roller"
     spin = slip / np.asarray(params.roller_radius, dtype=float) if roller else 0.0 * slip
-    force_on_disc = -N[:, None] * n
-    torque = np.sum(C[:, 0] * force_on_disc[:, 1] - C[:, 1] * force_on_disc[:, 0], axis=0)
+    fx, fy = -N * nx, -N * ny  # the follower on the disc
+    torque = np.sum(Cx * fy - Cy * fx, axis=0)
     return ContactState(
         drive=D,
         normal=N,
-        n=n,
-        point=C,
-        side_thrust=N * n[:, 1],
-        tilting_moment=-C[:, 1] * N * n[:, 0] if flat else np.zeros_like(N),
+        n=np.stack([nx, ny], axis=1),
+        point=np.stack([Cx, Cy], axis=1),
+        side_thrust=N * ny,
+        tilting_moment=-Cy * N * nx if flat else np.zeros_like(N),
         slip=slip,
         guide_slip=np.abs(dq),
         spin=spin,
         shaft_torque=torque,
-        shaft_load=np.sum(force_on_disc, axis=0),
+        shaft_load=np.stack([fx[0] + fx[1], fy[0] + fy[1]]),
     )
 
 

@@ -112,12 +112,14 @@ def shaft_speeds(beta, speed, period: float):
     Returns
     -------
     (omega, omega_dot, omega_ddot) : tuple of ndarray, shape (n,) or (d, n)
+        For constant speeds of designs, ``omega_dot`` and ``omega_ddot`` are 0-d zeros
+        (they broadcast).
     """
     if np.ndim(speed) < 2:
         return shaft_speed(beta, speed, period)
     omega = np.broadcast_to(np.asarray(speed, dtype=float), np.broadcast_shapes(
         np.shape(speed), np.shape(beta)))  # fmt: skip
-    zero = np.zeros(omega.shape)
+    zero = np.zeros(())
     return omega, zero, zero
 
 
