@@ -18,11 +18,8 @@ from rotorkin.core.errors import ParameterError
 from rotorkin.drives import evaluate
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.drives.eccentric_cam import sweep as kernel
-from rotorkin.drives.eccentric_cam.reactor import (
-    forces_summary,
-    opposed_piston,
-    reactor_summary,
-)
+from rotorkin.drives.eccentric_cam.forces import forces_summary
+from rotorkin.drives.eccentric_cam.reactor import opposed_piston, reactor_summary
 from rotorkin.io.config import load_config, validate_config
 from rotorkin.sweep.engine import coverage, evaluate_designs, reason_keys
 

@@ -71,10 +71,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rotorkin.analysis import pairs as pairs_mod
 from rotorkin.analysis.pairs import Pair
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.drives.eccentric_cam.reactor import reactor_state
 
-__all__ = ["ContactState", "contact_state", "pairs", "own_summary", "work_through_drive", "SIDES"]
+__all__ = ["ContactState", "contact_state", "pairs", "own_summary", "work_through_drive",
+           "forces_summary", "SIDES"]  # fmt: skip
 
 #: The two pistons, in the drive's order of members.
 SIDES = ("left", "right")
@@ -275,3 +278,39 @@ def work_through_drive(state: ContactState, beta):
     ``oint max(-T_contact, 0) dbeta``. A float, or an array (d,) for designs (d, n).
     """
     return np.trapezoid(np.maximum(-state.shaft_torque, 0.0), beta, axis=-1)[()]
+
+
+def forces_summary(params: ec.EccentricCam, reactor, inertia, speed, beta,
+                   model: pairs_mod.ContactModel, bearing_radius, tip_radius,
+                   state: dict | None = None) -> dict:  # fmt: skip
+    """Contact, bearing, friction, efficiency and the drive's own force keys of the summary.
+
+    Parameters
+    ----------
+    params, reactor, inertia, speed
+        As :func:`~rotorkin.drives.eccentric_cam.reactor.reactor_state`; designs as
+        columns (d, 1) share one follower.
+    beta : ndarray, shape (n,)
+        Shaft angles over one turn, ends included [rad].
+    model : ContactModel
+        The ``[contact]`` section (floats, or columns (d, 1) for designs).
+    bearing_radius, tip_radius : float or ndarray, shape (d, 1)
+        ``contact.bearing_radius``, ``drive.tip_radius`` [m] (:func:`pairs`).
+    state : dict, optional
+        :func:`~rotorkin.drives.eccentric_cam.reactor.reactor_state` at ``beta`` if
+        already at hand.
+
+    Returns
+    -------
+    dict
+        Floats (one design) or arrays (d,) (designs).
+    """
+    st = reactor_state(params, reactor, inertia, speed, beta) if state is None else state
+    contact = contact_state(params, beta, st["F"], inertia[1], st["omega"], st["omega_dot"])
+    prs = pairs(params, contact, bearing_radius, tip_radius)
+    work = work_through_drive(contact, beta)
+    batch = np.ndim(work) > 0
+    out = pairs_mod.summary(prs, beta, -work, model, st["omega"], batch=batch)
+    out["work_through_drive_J"] = work if batch else float(work)
+    out.update(own_summary(contact))
+    return out

@@ -12,15 +12,12 @@ from __future__ import annotations
 import numpy as np
 
 from rotorkin.analysis import flywheel as fw
-from rotorkin.analysis import pairs as pairs_mod
 from rotorkin.analysis import torque as tq
 from rotorkin.analysis.timing import shaft_speed
-from rotorkin.drives.eccentric_cam import forces as fz
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.machines import opposed_piston as op
 
-__all__ = ["opposed_piston", "closed_forms", "reactor_state", "shaft_speeds", "reactor_summary",
-           "forces_summary"]  # fmt: skip
+__all__ = ["opposed_piston", "closed_forms", "reactor_state", "shaft_speeds", "reactor_summary"]
 
 
 def opposed_piston(params: ec.EccentricCam, **machine) -> op.OpposedPiston:
@@ -169,40 +166,6 @@ def reactor_summary(params: ec.EccentricCam, reactor: op.OpposedPiston, inertia,
         "flywheel_inertia_kgm2": fw.flywheel_inertia(delta_e, omega_mean, coefficient, j_mean),
     }
     return {k: np.broadcast_to(v, shape) if shape else np.asarray(v).item() for k, v in out.items()}
-
-
-def forces_summary(params: ec.EccentricCam, reactor: op.OpposedPiston, inertia, speed, beta,
-                   model: pairs_mod.ContactModel, bearing_radius, tip_radius,
-                   state: dict | None = None) -> dict:  # fmt: skip
-    """Contact, bearing, friction, efficiency and the drive's own force keys of the summary.
-
-    Parameters
-    ----------
-    params, reactor, inertia, speed
-        As :func:`reactor_state`; designs as columns (d, 1) share one follower.
-    beta : ndarray, shape (n,)
-        Shaft angles over one turn, ends included [rad].
-    model : ContactModel
-        The ``[contact]`` section (floats, or columns (d, 1) for designs).
-    bearing_radius, tip_radius : float or ndarray, shape (d, 1)
-        ``contact.bearing_radius``, ``drive.tip_radius`` [m] (:func:`forces.pairs`).
-    state : dict, optional
-        :func:`reactor_state` at ``beta`` if already at hand.
-
-    Returns
-    -------
-    dict
-        Floats (one design) or arrays (d,) (designs).
-    """
-    st = reactor_state(params, reactor, inertia, speed, beta) if state is None else state
-    contact = fz.contact_state(params, beta, st["F"], inertia[1], st["omega"], st["omega_dot"])
-    prs = fz.pairs(params, contact, bearing_radius, tip_radius)
-    work = fz.work_through_drive(contact, beta)
-    batch = np.ndim(work) > 0
-    out = pairs_mod.summary(prs, beta, -work, model, st["omega"], batch=batch)
-    out["work_through_drive_J"] = work if batch else float(work)
-    out.update(fz.own_summary(contact))
-    return out
 
 
 def closed_forms(params: ec.EccentricCam, reactor: op.OpposedPiston) -> dict:

@@ -28,9 +28,9 @@ from rotorkin.drives.eccentric_cam import figures as figures_eccentric_cam
 from rotorkin.drives.eccentric_cam import forces as fz
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.drives.eccentric_cam.curves import drive_curves
+from rotorkin.drives.eccentric_cam.forces import forces_summary
 from rotorkin.drives.eccentric_cam.reactor import (
     closed_forms,
-    forces_summary,
     opposed_piston,
     reactor_state,
     reactor_summary,

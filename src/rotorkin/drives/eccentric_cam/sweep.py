@@ -12,7 +12,7 @@ design x angle array).
 The torques, inertia and flywheel keys, the pistons' peaks in time, and the contact,
 bearing, friction and efficiency keys come from the study's own functions
 (:func:`~rotorkin.drives.eccentric_cam.reactor.reactor_summary`,
-:func:`~rotorkin.drives.eccentric_cam.reactor.forces_summary`) called with the designs
+:func:`~rotorkin.drives.eccentric_cam.forces.forces_summary`) called with the designs
 as columns ``(d, 1)`` against the ``samples`` shaft angles, in blocks of designs and
 once per follower (each follower has its own pairs).
 """
@@ -26,9 +26,9 @@ from rotorkin.analysis.timing import SPEED_MAX, SPEED_MIN
 from rotorkin.core.batch import flag, full, run_blocks, sample_grid
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.drives.eccentric_cam.curves import drive_curves
+from rotorkin.drives.eccentric_cam.forces import forces_summary
 from rotorkin.drives.eccentric_cam.reactor import (
     closed_forms,
-    forces_summary,
     opposed_piston,
     reactor_state,
     reactor_summary,
