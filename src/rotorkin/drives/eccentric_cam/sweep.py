@@ -14,7 +14,9 @@ bearing, friction and efficiency keys come from the study's own functions
 (:func:`~rotorkin.drives.eccentric_cam.reactor.reactor_summary`,
 :func:`~rotorkin.drives.eccentric_cam.forces.forces_summary`) called with the designs
 as columns ``(d, 1)`` against the ``samples`` shaft angles, in blocks of designs and
-once per follower (each follower has its own pairs).
+once per follower (each follower has its own pairs). With the default ``samples``
+(20 001, the study's grid) every key equals the study's, the angle of the peak contact
+stress included.
 """
 
 from __future__ import annotations
