@@ -128,7 +128,7 @@ class ContactState:
 
 
 def contact_state(params: ec.EccentricCam, beta, machine_force, masses, omega,
-                  omega_dot) -> ContactState:  # fmt: skip
+                  omega_dot, travels=None) -> ContactState:  # fmt: skip
     """Contact forces of both pistons at the shaft angles ``beta`` (vectorised).
 
     Parameters
@@ -144,6 +144,9 @@ def contact_state(params: ec.EccentricCam, beta, machine_force, masses, omega,
         Piston masses [kg].
     omega, omega_dot : ndarray, shape (n,) or (d, n), or float
         Shaft speed [rad/s] and acceleration [rad/s^2] at ``beta``.
+    travels : tuple of ndarray, optional
+        :func:`~rotorkin.drives.eccentric_cam.kinematics.piston_travels` at ``beta``, if
+        already at hand.
 
     Returns
     -------
@@ -151,7 +154,7 @@ def contact_state(params: ec.EccentricCam, beta, machine_force, masses, omega,
         Shapes as documented there, with the designs' axis ``d`` before the angles'.
     """
     beta = np.asarray(beta, dtype=float)
-    q, dq, d2q, _ = ec.piston_travels(params, beta)
+    q, dq, d2q, _ = ec.piston_travels(params, beta) if travels is None else travels
     m = np.asarray(masses, dtype=float)
     m = m.reshape(m.shape + (1,) * (q.ndim - m.ndim))
     qdd = d2q * np.asarray(omega) ** 2 + dq * np.asarray(omega_dot)
@@ -306,7 +309,9 @@ def forces_summary(params: ec.EccentricCam, reactor, inertia, speed, beta,
         Floats (one design) or arrays (d,) (designs).
     """
     st = reactor_state(params, reactor, inertia, speed, beta) if state is None else state
-    contact = contact_state(params, beta, st["F"], inertia[1], st["omega"], st["omega_dot"])
+    m = st["motion"]
+    contact = contact_state(params, beta, st["F"], inertia[1], st["omega"], st["omega_dot"],
+                            (m.q, m.dq, m.d2q, m.d3q))  # fmt: skip
     prs = pairs(params, contact, bearing_radius, tip_radius)
     work = work_through_drive(contact, beta)
     batch = np.ndim(work) > 0

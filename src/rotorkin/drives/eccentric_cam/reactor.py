@@ -68,7 +68,8 @@ def reactor_state(params: ec.EccentricCam, reactor: op.OpposedPiston, inertia, s
     dict of ndarray
         ``V``, ``dV``, ``p`` (1, n); ``F`` (2, n); ``shaft``, ``inertia``, ``net``,
         ``J_eq``, ``omega``, ``omega_dot``, ``omega_ddot`` (n,); for designs the axis
-        ``d`` before the angles'.
+        ``d`` before the angles'; ``motion``, the pistons'
+        :class:`~rotorkin.core.motion.Motion` at ``beta``.
     """
     m = ec.motion(params, beta)
     V, dV, _, _ = op.enclosed_volume(reactor, m)
@@ -90,6 +91,7 @@ def reactor_state(params: ec.EccentricCam, reactor: op.OpposedPiston, inertia, s
         "omega": omega,
         "omega_dot": omega_dot,
         "omega_ddot": omega_ddot,
+        "motion": m,
     }
 
 
@@ -138,7 +140,7 @@ def reactor_summary(params: ec.EccentricCam, reactor: op.OpposedPiston, inertia,
     period = ec.period(params)
     st = reactor_state(params, reactor, inertia, speed, beta) if state is None else state
     omega_mean = np.mean(st["omega"][..., :-1], axis=-1)
-    _, dq, d2q, _ = ec.piston_travels(params, beta)
+    dq, d2q = st["motion"].dq, st["motion"].d2q
     js, masses = inertia
     net_const = st["shaft"] - tq.inertia_torque(js, masses, dq, d2q, omega_mean[..., None], 0.0)
     delta_e = fw.energy_fluctuation(net_const, beta)

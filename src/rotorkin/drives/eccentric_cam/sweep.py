@@ -319,17 +319,17 @@ def _dynamic_follower(p, follower: str, names, samples, threads) -> dict:
         out.update(forces_summary(drive, reactor, inertia, w, beta, model,
                                   v["contact.bearing_radius"], v["drive.tip_radius"],
                                   state=st))  # fmt: skip
-        out.update(_time_peaks(drive, beta, st))
+        out.update(_time_peaks(st))
         return {name: np.broadcast_to(np.asarray(out.get(name, np.nan), dtype=float), (hi - lo,))
                 for name in names}  # fmt: skip
 
     return run_blocks(fn, n, samples, threads)
 
 
-def _time_peaks(drive, beta, st) -> dict:
+def _time_peaks(st) -> dict:
     """Peaks of the pistons' velocity, acceleration and jerk in time; the mean shaft speed
     (the study's :func:`~rotorkin.studies.helpers.time_domain`)."""
-    v, a, j = ec.motion(drive, beta).in_time(st["omega"], st["omega_dot"], st["omega_ddot"])
+    v, a, j = st["motion"].in_time(st["omega"], st["omega_dot"], st["omega_ddot"])
     out = {}
     for k, slug in enumerate(_SLUGS):
         for what, x, u in (("speed", v, "m_per_s"), ("accel", a, "m_per_s2"),
