@@ -88,27 +88,33 @@ TAU_DEPTH_RATIO = _PHI**-0.5
 
 @dataclass(frozen=True)
 class Material:
-    """An isotropic elastic material: Young's modulus [Pa] and Poisson's ratio [-]."""
+    """An isotropic elastic material: Young's modulus [Pa] and Poisson's ratio [-].
+
+    Each may be a float or, for many designs at once, a NumPy array (the two broadcast)."""
 
     youngs_modulus: float
     poisson_ratio: float
 
     def __post_init__(self):
         e = _scalar(self.youngs_modulus)
-        if e is None or not (math.isfinite(e) and e > 0.0):
+        if e is None or not np.all(np.isfinite(e) & (e > 0.0)):
             raise ParameterError(
                 "contact.youngs_modulus", _text(self.youngs_modulus), "a finite value > 0 Pa"
             )
         nu = _scalar(self.poisson_ratio)
-        if nu is None or not (0.0 <= nu < 0.5):
+        if nu is None or not np.all((nu >= 0.0) & (nu < 0.5)):
             raise ParameterError(
                 "contact.poisson_ratio", _text(self.poisson_ratio), "0 <= poisson_ratio < 0.5"
             )
 
 
 def _scalar(value):
+    """``value`` as a float, or a float array for a NumPy array of many designs; None if
+    it is no number."""
     if isinstance(value, (bool, str, bytes)):
         return None
+    if isinstance(value, np.ndarray) and value.ndim > 0 and value.dtype.kind in "iuf":
+        return value.astype(float)
     try:
         return float(value)
     except (TypeError, ValueError):

@@ -66,11 +66,11 @@ def flywheel_inertia(delta_energy, omega_mean, coefficient, inertia_present=0.0)
     ----------
     delta_energy : float or array_like
         ``Delta E`` over a period [J].
-    omega_mean : float
+    omega_mean : float or array_like
         Mean shaft speed [rad/s].
-    coefficient : float
+    coefficient : float or array_like
         Wanted ``C_s = (omega_max - omega_min)/omega_mean``, 0 < C_s < 1 [-].
-    inertia_present : float, optional
+    inertia_present : float or array_like, optional
         Inertia already on the shaft (mean of ``J_eq``) [kg*m^2].
 
     Returns
@@ -78,7 +78,10 @@ def flywheel_inertia(delta_energy, omega_mean, coefficient, inertia_present=0.0)
     ndarray
         Inertia to add [kg*m^2]; 0 when what is present already suffices.
     """
-    if not 0.0 < coefficient < 1.0:
-        raise ParameterError("machine.speed_fluctuation", coefficient, "0 < speed_fluctuation < 1")
+    c = np.asarray(coefficient, dtype=float)
+    bad = ~((c > 0.0) & (c < 1.0))
+    if np.any(bad):
+        shown = coefficient if c.ndim == 0 else c[bad].flat[0]
+        raise ParameterError("machine.speed_fluctuation", shown, "0 < speed_fluctuation < 1")
     need = np.asarray(delta_energy) / (coefficient * np.asarray(omega_mean) ** 2)
     return np.maximum(need - inertia_present, 0.0)

@@ -100,8 +100,10 @@ class ContactModel:
                    float(c.get("allowable_stress", 1.5e9)), friction,
                    float(c.get("efficiency_min", 0.9)))  # fmt: skip
 
-    def coefficient(self, kind: str) -> float:
-        return float((self.friction or {}).get(kind, 0.0))
+    def coefficient(self, kind: str):
+        """Friction coefficient of the pairs of ``kind``: a float, or an array of designs."""
+        c = (self.friction or {}).get(kind, 0.0)
+        return float(c) if np.ndim(c) == 0 else np.asarray(c, dtype=float)
 
 
 def stress(pair: Pair, model: ContactModel) -> np.ndarray | None:
@@ -122,7 +124,7 @@ def friction_torque(pairs, model: ContactModel) -> np.ndarray:
     return sum(model.coefficient(p.kind) * np.abs(p.force) * np.abs(p.slip) for p in pairs)
 
 
-def summary(pairs, theta, work_per_turn: float, model: ContactModel, omega) -> dict:
+def summary(pairs, theta, work_per_turn, model: ContactModel, omega, batch: bool = False) -> dict:
     """The contact, bearing, friction and efficiency keys of a study's summary.
 
     Parameters
@@ -131,49 +133,78 @@ def summary(pairs, theta, work_per_turn: float, model: ContactModel, omega) -> d
         Over ``theta``.
     theta : ndarray, shape (n,)
         Shaft angles of one turn (or of the drive's span), ends included [rad].
-    work_per_turn : float
+    work_per_turn : float or ndarray
         Work of the machine on the shaft per turn, friction aside [J] (+ engine).
     model : ContactModel
-    omega : ndarray, shape (n,)
+        Its values floats or, with ``batch``, arrays of shape ``(designs, 1)``.
+    omega : ndarray, shape (n,) or (..., n)
         Shaft speed at ``theta`` [rad/s].
+    batch : bool, optional
+        False (one design): floats, each peak over all the values of a pair. True
+        (many designs): forces, slips and ``omega`` of shape ``(..., n)``, every key an
+        array ``(...)`` of the designs, each peak over the last axis (the angles).
     """
     theta = np.asarray(theta, dtype=float)
     span = float(theta[-1] - theta[0])
+    axis = -1 if batch else None
     out = {}
     contacts = [p for p in pairs if p.kind != "bearing"]
     bearings = [p for p in pairs if p.kind == "bearing"]
     if contacts:
-        peak = [float(np.max(np.abs(p.force))) for p in contacts]
-        k = int(np.argmax(peak))
-        out["peak_contact_force_N"] = peak[k]
-        out["peak_contact_force_pair"] = contacts[k].name
+        peak = np.stack(np.broadcast_arrays(*(np.max(np.abs(p.force), axis=axis)
+                                              for p in contacts)))  # fmt: skip
+        k = np.argmax(peak, axis=0)
+        out["peak_contact_force_N"] = _pick(peak, k)
+        out["peak_contact_force_pair"] = np.asarray([p.name for p in contacts])[k]
     stressed = [(p, stress(p, model)) for p in contacts if p.geometry is not None]
     if stressed:
-        peaks = [float(np.nanmax(s)) for _, s in stressed]
-        k = int(np.argmax(peaks))
-        pair, s = stressed[k]
-        out["peak_contact_stress_MPa"] = peaks[k] / 1e6
-        out["peak_contact_stress_pair"] = pair.name
-        out["peak_contact_stress_at_deg"] = float(np.degrees(theta[int(np.nanargmax(s))]))
-        out["contact_safety_factor"] = (
-            model.allowable_stress / peaks[k] if peaks[k] > 0 else float("inf")
-        )
+        curves = np.stack(np.broadcast_arrays(*(s for _, s in stressed)))
+        if batch:
+            peaks = np.fmax.reduce(curves, axis=-1)  # NaN only where every angle is NaN
+        else:
+            peaks = np.array([np.nanmax(s) for _, s in stressed])
+        k = np.argmax(peaks, axis=0)
+        top = _pick(peaks, k)
+        s = _pick(curves, k)
+        out["peak_contact_stress_MPa"] = top / 1e6
+        out["peak_contact_stress_pair"] = np.asarray([p.name for p, _ in stressed])[k]
+        if batch:
+            at = np.argmax(s == top[..., None], axis=-1)  # the first angle of the peak
+            out["peak_contact_stress_at_deg"] = np.where(np.isnan(top), np.nan,
+                                                         np.degrees(theta[at]))  # fmt: skip
+        else:
+            out["peak_contact_stress_at_deg"] = np.degrees(theta[int(np.nanargmax(s))])
+        allowable = np.asarray(model.allowable_stress, dtype=float)
+        if batch and allowable.ndim:
+            allowable = allowable[..., 0]  # (designs, 1) against the angles
+        with np.errstate(divide="ignore", invalid="ignore"):
+            safety = np.where(top > 0, allowable / top, np.inf)
+        out["contact_safety_factor"] = np.where(np.isnan(top), np.nan, safety) if batch else safety
     if bearings:
-        out["peak_bearing_load_N"] = max(float(np.max(np.abs(p.force))) for p in bearings)
+        out["peak_bearing_load_N"] = np.max(np.stack(np.broadcast_arrays(
+            *(np.max(np.abs(p.force), axis=axis) for p in bearings))), axis=0)  # fmt: skip
     loss_torque = friction_torque(pairs, model) if pairs else np.zeros_like(theta)
-    loss_span = float(np.trapezoid(loss_torque, theta))
+    loss_span = np.trapezoid(loss_torque, theta, axis=-1)
     loss_turn = loss_span * 2.0 * np.pi / span
-    seconds = float(np.trapezoid(1.0 / np.asarray(omega, dtype=float), theta))
+    seconds = np.trapezoid(1.0 / np.asarray(omega, dtype=float), theta, axis=-1)
     out["friction_loss_J_per_rev"] = loss_turn
     out["friction_loss_W"] = loss_span / seconds
-    w = float(work_per_turn)
-    if w > 0.0:
-        out["mechanical_efficiency"] = (w - loss_turn) / w
-    elif w < 0.0:
-        out["mechanical_efficiency"] = -w / (-w + loss_turn)
-    else:
-        out["mechanical_efficiency"] = float("nan")
-    return out
+    w = np.asarray(work_per_turn, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out["mechanical_efficiency"] = np.where(
+            w > 0.0, (w - loss_turn) / w, np.where(w < 0.0, -w / (-w + loss_turn), np.nan)
+        )
+    if batch:
+        return out
+    return {k: v.item() if np.ndim(v) == 0 and hasattr(v, "item") else v for k, v in out.items()}
+
+
+def _pick(values, k):
+    """``values[k]`` along the first axis, per design: ``k`` indexes the leading axes of
+    the rest (one design: ``k`` a scalar)."""
+    k = np.asarray(k)
+    index = k.reshape((1,) + k.shape + (1,) * (values.ndim - 1 - k.ndim))
+    return np.take_along_axis(values, index, axis=0)[0]
 
 
 def columns(pairs, model: ContactModel, shaft_torque) -> tuple[dict, dict]:

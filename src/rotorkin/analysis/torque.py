@@ -86,10 +86,11 @@ def equivalent_inertia(inertia_shaft, inertia_members, dq):
 
     Parameters
     ----------
-    inertia_shaft : float
-        [kg*m^2].
-    inertia_members : sequence of float, length n_members
-        Moments of inertia [kg*m^2] (masses [kg] for pistons).
+    inertia_shaft : float or array_like
+        [kg*m^2]; an array broadcasts against ``dq[0]`` (e.g. (designs, 1)).
+    inertia_members : array_like, shape (n_members,) or (n_members, ...)
+        Moments of inertia [kg*m^2] (masses [kg] for pistons); trailing axes
+        broadcast against those of ``dq`` (e.g. (n_members, designs, 1)).
     dq : array_like, shape (n_members, ...)
         Kinematic coefficients.
 
@@ -98,7 +99,7 @@ def equivalent_inertia(inertia_shaft, inertia_members, dq):
     ndarray, shape (...)
         [kg*m^2].
     """
-    j = np.asarray(inertia_members, dtype=float).reshape((-1,) + (1,) * (np.ndim(dq) - 1))
+    j = _members(inertia_members, np.ndim(dq))
     return inertia_shaft + np.sum(j * np.asarray(dq) ** 2, axis=0)
 
 
@@ -111,10 +112,10 @@ def inertia_torque(inertia_shaft, inertia_members, dq, d2q, omega, omega_dot=0.0
 
     Parameters
     ----------
-    inertia_shaft : float
-        [kg*m^2].
-    inertia_members : sequence of float
-        [kg*m^2] (or [kg]).
+    inertia_shaft : float or array_like
+        [kg*m^2]; broadcasts as in :func:`equivalent_inertia`.
+    inertia_members : array_like, shape (n_members,) or (n_members, ...)
+        [kg*m^2] (or [kg]); broadcast as in :func:`equivalent_inertia`.
     dq, d2q : array_like, shape (n_members, ...)
         First and second kinematic coefficients.
     omega, omega_dot : float or array_like, shape (...)
@@ -126,10 +127,16 @@ def inertia_torque(inertia_shaft, inertia_members, dq, d2q, omega, omega_dot=0.0
         [N*m]: positive when the shaft gives energy to the members.
     """
     dq, d2q = np.asarray(dq), np.asarray(d2q)
-    j = np.asarray(inertia_members, dtype=float).reshape((-1,) + (1,) * (dq.ndim - 1))
+    j = _members(inertia_members, dq.ndim)
     w, wd = np.asarray(omega, dtype=float), np.asarray(omega_dot, dtype=float)
     members = np.sum(j * (dq * d2q * w**2 + dq**2 * wd), axis=0)
     return members + inertia_shaft * wd
+
+
+def _members(inertia_members, ndim: int) -> np.ndarray:
+    """The members' inertias with trailing unit axes to broadcast against ``ndim``-d ``dq``."""
+    j = np.asarray(inertia_members, dtype=float)
+    return j.reshape(j.shape + (1,) * (ndim - j.ndim))
 
 
 def kinetic_energy(inertia_shaft, inertia_members, dq, omega):

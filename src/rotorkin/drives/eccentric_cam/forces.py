@@ -71,10 +71,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rotorkin.analysis import pairs as pairs_mod
 from rotorkin.analysis.pairs import Pair
 from rotorkin.drives.eccentric_cam import kinematics as ec
+from rotorkin.drives.eccentric_cam.reactor import reactor_state
 
-__all__ = ["ContactState", "contact_state", "pairs", "own_summary", "SIDES"]
+__all__ = ["ContactState", "contact_state", "pairs", "own_summary", "work_through_drive",
+           "forces_summary", "SIDES"]  # fmt: skip
 
 #: The two pistons, in the drive's order of members.
 SIDES = ("left", "right")
@@ -125,58 +128,66 @@ class ContactState:
 
 
 def contact_state(params: ec.EccentricCam, beta, machine_force, masses, omega,
-                  omega_dot) -> ContactState:  # fmt: skip
+                  omega_dot, travels=None) -> ContactState:  # fmt: skip
     """Contact forces of both pistons at the shaft angles ``beta`` (vectorised).
 
     Parameters
     ----------
     params : EccentricCam
-        One design (floats).
+        One design (floats), or designs whose numeric fields are columns (d, 1); one
+        follower for all.
     beta : ndarray, shape (n,)
         Shaft angles [rad].
-    machine_force : ndarray, shape (2, n)
+    machine_force : ndarray, shape (2, n) or (2, d, n)
         ``M_i`` [N], the machine's force on each piston along ``+q_i``.
-    masses : (float, float)
+    masses : (float, float) or ndarray, shape (2, d, 1)
         Piston masses [kg].
-    omega, omega_dot : ndarray, shape (n,) or float
+    omega, omega_dot : ndarray, shape (n,) or (d, n), or float
         Shaft speed [rad/s] and acceleration [rad/s^2] at ``beta``.
+    travels : tuple of ndarray, optional
+        :func:`~rotorkin.drives.eccentric_cam.kinematics.piston_travels` at ``beta``, if
+        already at hand.
+
+    Returns
+    -------
+    ContactState
+        Shapes as documented there, with the designs' axis ``d`` before the angles'.
     """
     beta = np.asarray(beta, dtype=float)
-    q, dq, d2q, _ = ec.piston_travels(params, beta)
-    m = np.asarray(masses, dtype=float)[:, None]
+    q, dq, d2q, _ = ec.piston_travels(params, beta) if travels is None else travels
+    m = np.asarray(masses, dtype=float)
+    m = m.reshape(m.shape + (1,) * (q.ndim - m.ndim))
     qdd = d2q * np.asarray(omega) ** 2 + dq * np.asarray(omega_dot)
     D = m * qdd - np.asarray(machine_force, dtype=float)
-    R, e = float(params.disc_radius), float(params.eccentricity)
-    u = np.stack([np.cos(beta), np.sin(beta)])
-    centre = np.stack([e * u, -e * u])  # (2 pistons, xy, n)
-    if params.follower == "flat":
-        n = np.zeros_like(centre)
-        n[:, 0] = 1.0
-    else:
-        rc = float(params.contact_radius)
-        follower = np.stack([rc + q, np.zeros_like(q)], axis=1)
-        n = (follower - centre) / rc
-    C = centre + R * n
-    N = D / n[:, 0]
-    t = np.stack([-n[:, 1], n[:, 0]], axis=1)
-    v_rel = np.stack([-C[:, 1] - dq, C[:, 0]], axis=1)  # disc surface relative to the piston
-    slip = np.abs(np.sum(v_rel * t, axis=1))
+    R, e = np.asarray(params.disc_radius, dtype=float), np.asarray(params.eccentricity, dtype=float)
+    ec_, es_ = e * np.cos(beta), e * np.sin(beta)
+    cx, cy = np.stack([ec_, -ec_]), np.stack([es_, -es_])  # disc centres (2 pistons, ...)
     flat = params.follower == "flat"
-    spin = slip / float(params.roller_radius) if params.follower == "roller" else 0.0 * slip
-    force_on_disc = -N[:, None] * n
-    torque = np.sum(C[:, 0] * force_on_disc[:, 1] - C[:, 1] * force_on_disc[:, 0], axis=0)
+    if flat:
+        nx, ny = np.ones(cx.shape), np.zeros(cx.shape)
+    else:
+        rc = np.asarray(params.contact_radius, dtype=float)
+        nx, ny = (rc + q - cx) / rc, (0.0 - cy) / rc
+    Cx, Cy = cx + R * nx, cy + R * ny
+    N = D / nx
+    # the disc's surface relative to the piston, (-C_y - q', C_x), along the tangent (-n_y, n_x)
+    slip = np.abs((-Cy - dq) * -ny + Cx * nx)
+    roller = params.follower == "roller"
+    spin = slip / np.asarray(params.roller_radius, dtype=float) if roller else 0.0 * slip
+    fx, fy = -N * nx, -N * ny  # the follower on the disc
+    torque = np.sum(Cx * fy - Cy * fx, axis=0)
     return ContactState(
         drive=D,
         normal=N,
-        n=n,
-        point=C,
-        side_thrust=N * n[:, 1],
-        tilting_moment=-C[:, 1] * N * n[:, 0] if flat else np.zeros_like(N),
+        n=np.stack([nx, ny], axis=1),
+        point=np.stack([Cx, Cy], axis=1),
+        side_thrust=N * ny,
+        tilting_moment=-Cy * N * nx if flat else np.zeros_like(N),
         slip=slip,
         guide_slip=np.abs(dq),
         spin=spin,
         shaft_torque=torque,
-        shaft_load=np.sum(force_on_disc, axis=0),
+        shaft_load=np.stack([fx[0] + fx[1], fy[0] + fy[1]]),
     )
 
 
@@ -188,21 +199,28 @@ def pairs(params: ec.EccentricCam, state: ContactState, bearing_radius: float,
     Parameters
     ----------
     params : EccentricCam
+        One design, or designs as columns (d, 1) (:func:`contact_state`).
     state : ContactState
         From :func:`contact_state`.
-    bearing_radius : float
+    bearing_radius : float or ndarray, shape (d, 1)
         Journal radius of the roller pins and shaft bearings [m] (``contact.bearing_radius``).
-    tip_radius : float, optional
-        Knife edge's tip radius [m]; 0: no contact stress.
+    tip_radius : float or ndarray, shape (d, 1), optional
+        Knife edge's tip radius [m]; below 1 nm: no contact stress (NaN for such designs
+        of an array).
     """
-    R = float(params.disc_radius)
+    R = np.asarray(params.disc_radius, dtype=float)[()]
     follower = params.follower
     if follower == "flat":
         kind, geometry, what = "sliding", ("line", R, np.inf), "flat face"
     elif follower == "roller":
-        kind, geometry, what = "rolling", ("line", R, float(params.roller_radius)), "roller"
-    else:
+        roller = np.asarray(params.roller_radius, dtype=float)[()]
+        kind, geometry, what = "rolling", ("line", R, roller), "roller"
+    elif np.ndim(tip_radius):
         # below a nanometre the tip is an edge (and its curvature would overflow)
+        tip = np.asarray(tip_radius, dtype=float)
+        geometry = ("line", R, np.where(tip >= 1e-9, tip, np.nan))
+        kind, what = "sliding", "knife edge"
+    else:
         geometry = ("line", R, float(tip_radius)) if tip_radius >= 1e-9 else None
         kind, what = "sliding", "knife edge"
     out = []
@@ -238,12 +256,66 @@ def pairs(params: ec.EccentricCam, state: ContactState, bearing_radius: float,
 
 def own_summary(state: ContactState) -> dict:
     """The drive's own force keys: follower force peak and minimum, lift-off, side thrust,
-    tilting moment on the guides, net radial load of both discs on the shaft."""
-    return {
-        "follower_force_peak_N": float(np.max(np.abs(state.normal))),
-        "follower_force_min_N": float(np.min(state.normal)),
-        "follower_lift_off": bool(np.min(state.normal) < 0.0),
-        "side_thrust_peak_N": float(np.max(np.abs(state.side_thrust))),
-        "guide_tilting_moment_peak_Nm": float(np.max(np.abs(state.tilting_moment))),
-        "shaft_radial_load_peak_N": float(np.max(np.hypot(*state.shaft_load))),
+    tilting moment on the guides, net radial load of both discs on the shaft.
+
+    Floats for one design; arrays (d,) for a state of designs (d, n).
+    """
+    axes = (0, -1)  # the pistons and the angles
+    out = {
+        "follower_force_peak_N": np.max(np.abs(state.normal), axis=axes),
+        "follower_force_min_N": np.min(state.normal, axis=axes),
+        "follower_lift_off": np.min(state.normal, axis=axes) < 0.0,
+        "side_thrust_peak_N": np.max(np.abs(state.side_thrust), axis=axes),
+        "guide_tilting_moment_peak_Nm": np.max(np.abs(state.tilting_moment), axis=axes),
+        "shaft_radial_load_peak_N": np.max(np.hypot(*state.shaft_load), axis=-1),
     }
+    return {k: v.item() if np.ndim(v) == 0 else v for k, v in out.items()}
+
+
+def work_through_drive(state: ContactState, beta):
+    """Work the shaft hands to the pistons per turn through the discs [J] (>= 0).
+
+    The fluid is a conservative spring (no net work over a turn), so the drive's
+    efficiency is taken on the work that passes through it: the integral of the
+    contact forces' torque on the shaft where it resists the shaft,
+    ``oint max(-T_contact, 0) dbeta``. A float, or an array (d,) for designs (d, n).
+    """
+    return np.trapezoid(np.maximum(-state.shaft_torque, 0.0), beta, axis=-1)[()]
+
+
+def forces_summary(params: ec.EccentricCam, reactor, inertia, speed, beta,
+                   model: pairs_mod.ContactModel, bearing_radius, tip_radius,
+                   state: dict | None = None) -> dict:  # fmt: skip
+    """Contact, bearing, friction, efficiency and the drive's own force keys of the summary.
+
+    Parameters
+    ----------
+    params, reactor, inertia, speed
+        As :func:`~rotorkin.drives.eccentric_cam.reactor.reactor_state`; designs as
+        columns (d, 1) share one follower.
+    beta : ndarray, shape (n,)
+        Shaft angles over one turn, ends included [rad].
+    model : ContactModel
+        The ``[contact]`` section (floats, or columns (d, 1) for designs).
+    bearing_radius, tip_radius : float or ndarray, shape (d, 1)
+        ``contact.bearing_radius``, ``drive.tip_radius`` [m] (:func:`pairs`).
+    state : dict, optional
+        :func:`~rotorkin.drives.eccentric_cam.reactor.reactor_state` at ``beta`` if
+        already at hand.
+
+    Returns
+    -------
+    dict
+        Floats (one design) or arrays (d,) (designs).
+    """
+    st = reactor_state(params, reactor, inertia, speed, beta) if state is None else state
+    m = st["motion"]
+    contact = contact_state(params, beta, st["F"], inertia[1], st["omega"], st["omega_dot"],
+                            (m.q, m.dq, m.d2q, m.d3q))  # fmt: skip
+    prs = pairs(params, contact, bearing_radius, tip_radius)
+    work = work_through_drive(contact, beta)
+    batch = np.ndim(work) > 0
+    out = pairs_mod.summary(prs, beta, -work, model, st["omega"], batch=batch)
+    out["work_through_drive_J"] = work if batch else float(work)
+    out.update(own_summary(contact))
+    return out

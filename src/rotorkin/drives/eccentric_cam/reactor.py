@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import torque as tq
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.machines import opposed_piston as op
 
-__all__ = ["opposed_piston", "closed_forms", "reactor_state"]
+__all__ = ["opposed_piston", "closed_forms", "reactor_state", "shaft_speeds", "reactor_summary"]
 
 
 def opposed_piston(params: ec.EccentricCam, **machine) -> op.OpposedPiston:
@@ -51,11 +52,14 @@ def reactor_state(params: ec.EccentricCam, reactor: op.OpposedPiston, inertia, s
     Parameters
     ----------
     params : EccentricCam
+        One design, or designs whose fields are columns (d, 1).
     reactor : OpposedPiston
+        Its fields floats or columns (d, 1).
     inertia : (float, (float, float))
-        ``J_shaft`` [kg*m^2] and the piston masses [kg].
-    speed : float or sequence of float
-        ``run.speed`` [rad/s].
+        ``J_shaft`` [kg*m^2] and the piston masses [kg]; for designs, ``J_shaft``
+        (d, 1) and the masses (2, d, 1).
+    speed : float or sequence of float or ndarray, shape (d, 1)
+        ``run.speed`` [rad/s] (:func:`shaft_speeds`).
     beta : ndarray, shape (n,)
         Shaft angles [rad].
 
@@ -63,14 +67,16 @@ def reactor_state(params: ec.EccentricCam, reactor: op.OpposedPiston, inertia, s
     -------
     dict of ndarray
         ``V``, ``dV``, ``p`` (1, n); ``F`` (2, n); ``shaft``, ``inertia``, ``net``,
-        ``J_eq``, ``omega``, ``omega_dot`` (n,).
+        ``J_eq``, ``omega``, ``omega_dot``, ``omega_ddot`` (n,); for designs the axis
+        ``d`` before the angles'; ``motion``, the pistons'
+        :class:`~rotorkin.core.motion.Motion` at ``beta``.
     """
     m = ec.motion(params, beta)
     V, dV, _, _ = op.enclosed_volume(reactor, m)
     p, _ = op.pressure(reactor, m)
     F = tq.member_torques(op.net_pressure(reactor, p), op.volume_derivatives_dq(reactor, m))
     shaft = tq.shaft_torque_from_members(F, m.dq)
-    omega, omega_dot, _ = shaft_speed(beta, speed, ec.period(params))
+    omega, omega_dot, omega_ddot = shaft_speeds(beta, speed, ec.period(params))
     js, masses = inertia
     t_in = tq.inertia_torque(js, masses, m.dq, m.d2q, omega, omega_dot)
     return {
@@ -84,7 +90,84 @@ def reactor_state(params: ec.EccentricCam, reactor: op.OpposedPiston, inertia, s
         "J_eq": tq.equivalent_inertia(js, masses, m.dq),
         "omega": omega,
         "omega_dot": omega_dot,
+        "omega_ddot": omega_ddot,
+        "motion": m,
     }
+
+
+def shaft_speeds(beta, speed, period: float):
+    """:func:`~rotorkin.analysis.timing.shaft_speed`, or constant speeds of many designs.
+
+    Parameters
+    ----------
+    beta : ndarray, shape (n,)
+        Shaft angles [rad].
+    speed : float or sequence of float or ndarray, shape (d, 1)
+        A speed or a profile (``run.speed``, one design or all designs alike), or one
+        constant speed per design as a column (d, 1) [rad/s].
+    period : float
+        Period of a profile [rad].
+
+    Returns
+    -------
+    (omega, omega_dot, omega_ddot) : tuple of ndarray, shape (n,) or (d, n)
+        For constant speeds of designs, ``omega_dot`` and ``omega_ddot`` are 0-d zeros
+        (they broadcast).
+    """
+    if np.ndim(speed) < 2:
+        return shaft_speed(beta, speed, period)
+    omega = np.broadcast_to(np.asarray(speed, dtype=float), np.broadcast_shapes(
+        np.shape(speed), np.shape(beta)))  # fmt: skip
+    zero = np.zeros(())
+    return omega, zero, zero
+
+
+def reactor_summary(params: ec.EccentricCam, reactor: op.OpposedPiston, inertia, speed,
+                    coefficient, beta, state: dict | None = None) -> dict:  # fmt: skip
+    """Torque, inertia and flywheel keys of the study's summary (floats or arrays (d,)).
+
+    Parameters
+    ----------
+    params, reactor, inertia, speed
+        As :func:`reactor_state` (one design, or columns (d, 1) of designs).
+    coefficient : float or ndarray, shape (d,)
+        ``machine.speed_fluctuation``, the wanted coefficient of speed fluctuation.
+    beta : ndarray, shape (n,)
+        Shaft angles over one turn, ends included [rad].
+    state : dict, optional
+        :func:`reactor_state` at ``beta`` if already at hand.
+    """
+    period = ec.period(params)
+    st = reactor_state(params, reactor, inertia, speed, beta) if state is None else state
+    omega_mean = np.mean(st["omega"][..., :-1], axis=-1)
+    dq, d2q = st["motion"].dq, st["motion"].d2q
+    js, masses = inertia
+    net_const = st["shaft"] - tq.inertia_torque(js, masses, dq, d2q, omega_mean[..., None], 0.0)
+    delta_e = fw.energy_fluctuation(net_const, beta)
+    j_mean = np.trapezoid(st["J_eq"], beta, axis=-1) / period
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cs = np.where(j_mean > 0.0, delta_e / (j_mean * omega_mean**2), np.nan)
+    work = tq.cycle_integral(st["shaft"], beta)
+    shape = np.shape(work)
+    back = np.asarray(reactor.back_pressure, dtype=float)
+    back = back[..., 0] if back.ndim else back  # columns (d, 1) of designs
+    out = {
+        "back_pressure_bar": back / 1e5,
+        "piston_force_peak_N": np.max(np.abs(st["F"]), axis=(0, -1)),
+        "indicated_work_J": work,
+        "mean_torque_Nm": work / period,
+        "shaft_torque_min_Nm": np.min(st["shaft"], axis=-1),
+        "shaft_torque_max_Nm": np.max(st["shaft"], axis=-1),
+        "shaft_torque_peak_Nm": np.max(np.abs(st["shaft"]), axis=-1),
+        "shaft_torque_with_inertia_peak_Nm": np.max(np.abs(st["net"]), axis=-1),
+        "inertia_torque_peak_Nm": np.max(np.abs(st["inertia"]), axis=-1),
+        "equivalent_inertia_mean_kgm2": j_mean,
+        "energy_fluctuation_J": delta_e,
+        "speed_fluctuation_without_flywheel": cs,
+        "speed_fluctuation": np.asarray(coefficient, dtype=float),
+        "flywheel_inertia_kgm2": fw.flywheel_inertia(delta_e, omega_mean, coefficient, j_mean),
+    }
+    return {k: np.broadcast_to(v, shape) if shape else np.asarray(v).item() for k, v in out.items()}
 
 
 def closed_forms(params: ec.EccentricCam, reactor: op.OpposedPiston) -> dict:

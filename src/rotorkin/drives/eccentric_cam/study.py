@@ -20,9 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import pairs as pairs_mod
-from rotorkin.analysis import torque as tq
 from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError
 from rotorkin.core.schema import ContactSection, RunSection
@@ -30,7 +28,13 @@ from rotorkin.drives.eccentric_cam import figures as figures_eccentric_cam
 from rotorkin.drives.eccentric_cam import forces as fz
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.drives.eccentric_cam.curves import drive_curves
-from rotorkin.drives.eccentric_cam.reactor import closed_forms, opposed_piston, reactor_state
+from rotorkin.drives.eccentric_cam.forces import forces_summary
+from rotorkin.drives.eccentric_cam.reactor import (
+    closed_forms,
+    opposed_piston,
+    reactor_state,
+    reactor_summary,
+)
 from rotorkin.drives.eccentric_cam.schema import EccentricMachine
 from rotorkin.machines import opposed_piston as op
 from rotorkin.studies import StudyResult
@@ -163,36 +167,9 @@ def _inertias(machine: dict) -> tuple[float, tuple[float, float]]:
 
 def _reactor_summary(drive: ec.EccentricCam, reactor: op.OpposedPiston, inertia, speed,
                      coefficient) -> dict:  # fmt: skip
-    period = ec.period(drive)
-    fine = np.linspace(0.0, period, _PEAK_SAMPLES)
-    st = reactor_state(drive, reactor, inertia, speed, fine)
-    omega_mean = float(np.mean(st["omega"][:-1]))
-    _, dq, d2q, _ = ec.piston_travels(drive, fine)
-    js, masses = inertia
-    net_const = st["shaft"] - tq.inertia_torque(js, masses, dq, d2q, omega_mean, 0.0)
-    delta_e = float(fw.energy_fluctuation(net_const, fine))
-    j_mean = float(np.trapezoid(st["J_eq"], fine) / period)
-    cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
-    work = float(tq.cycle_integral(st["shaft"], fine))
-    out = {
-        "back_pressure_bar": float(reactor.back_pressure) / 1e5,
-        "piston_force_peak_N": float(np.max(np.abs(st["F"]))),
-        "indicated_work_J": work,
-        "mean_torque_Nm": work / period,
-        "shaft_torque_min_Nm": float(np.min(st["shaft"])),
-        "shaft_torque_max_Nm": float(np.max(st["shaft"])),
-        "shaft_torque_peak_Nm": float(np.max(np.abs(st["shaft"]))),
-        "shaft_torque_with_inertia_peak_Nm": float(np.max(np.abs(st["net"]))),
-        "inertia_torque_peak_Nm": float(np.max(np.abs(st["inertia"]))),
-        "equivalent_inertia_mean_kgm2": j_mean,
-        "energy_fluctuation_J": delta_e,
-        "speed_fluctuation_without_flywheel": cs,
-        "speed_fluctuation": float(coefficient),
-        "flywheel_inertia_kgm2": float(
-            fw.flywheel_inertia(delta_e, omega_mean, coefficient, j_mean)
-        ),
-    }
-    out.update(time_domain(ec.motion(drive, fine), speed, _SLUGS, period)[2])
+    fine = np.linspace(0.0, ec.period(drive), _PEAK_SAMPLES)
+    out = reactor_summary(drive, reactor, inertia, speed, coefficient, fine)
+    out.update(time_domain(ec.motion(drive, fine), speed, _SLUGS, ec.period(drive))[2])
     return out
 
 
@@ -262,26 +239,13 @@ def _forces(params, reactor, inertia, speed, beta, cfg):
     return st, state, fz.pairs(params, state, float(contact["bearing_radius"]), tip)
 
 
-def work_through_drive(state, beta) -> float:
-    """Work the shaft hands to the pistons per turn through the discs [J] (>= 0).
-
-    The fluid is a conservative spring (no net work over a turn), so the drive's
-    efficiency is taken on the work that passes through it: the integral of the
-    contact forces' torque on the shaft where it resists the shaft,
-    ``oint max(-T_contact, 0) dbeta``.
-    """
-    return float(np.trapezoid(np.maximum(-state.shaft_torque, 0.0), beta))
-
-
 def _forces_summary(params, reactor, inertia, speed, cfg) -> dict:
     fine = np.linspace(0.0, ec.period(params), _PEAK_SAMPLES)
-    st, state, prs = _forces(params, reactor, inertia, speed, fine, cfg)
-    work = work_through_drive(state, fine)
-    out = pairs_mod.summary(prs, fine, -work, pairs_mod.ContactModel.from_config(cfg),
-                            st["omega"])  # fmt: skip
-    out["work_through_drive_J"] = work
-    out.update(fz.own_summary(state))
-    return out
+    contact = {**ContactSection().model_dump(), **(cfg.get("contact") or {})}
+    tip = float(cfg["drive"].get("tip_radius") or 0.0)
+    return forces_summary(params, reactor, inertia, speed, fine,
+                          pairs_mod.ContactModel.from_config(cfg),
+                          float(contact["bearing_radius"]), tip)  # fmt: skip
 
 
 _FORCE_DOCS = {

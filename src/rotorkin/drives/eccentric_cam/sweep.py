@@ -8,16 +8,33 @@ acceleration and jerk coefficients sampled on ``samples`` shaft angles (the
 drive's :func:`~rotorkin.drives.eccentric_cam.kinematics.harmonic_travel` and
 :func:`~rotorkin.drives.eccentric_cam.kinematics.additional_travel`, broadcast over a
 design x angle array).
+
+The torques, inertia and flywheel keys, the pistons' peaks in time, and the contact,
+bearing, friction and efficiency keys come from the study's own functions
+(:func:`~rotorkin.drives.eccentric_cam.reactor.reactor_summary`,
+:func:`~rotorkin.drives.eccentric_cam.forces.forces_summary`) called with the designs
+as columns ``(d, 1)`` against the ``samples`` shaft angles, in blocks of designs and
+once per follower (each follower has its own pairs). With the default ``samples``
+(20 001, the study's grid) every key equals the study's, the angle of the peak contact
+stress included.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.analysis.pairs import KINDS, ContactModel
+from rotorkin.analysis.timing import SPEED_MAX, SPEED_MIN
 from rotorkin.core.batch import flag, full, run_blocks, sample_grid
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.drives.eccentric_cam.curves import drive_curves
-from rotorkin.drives.eccentric_cam.reactor import closed_forms, opposed_piston
+from rotorkin.drives.eccentric_cam.forces import forces_summary
+from rotorkin.drives.eccentric_cam.reactor import (
+    closed_forms,
+    opposed_piston,
+    reactor_state,
+    reactor_summary,
+)
 from rotorkin.machines import opposed_piston as op
 
 __all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "unsupported", "metric_names", "reasons",
@@ -37,6 +54,18 @@ KEYS = frozenset(
         "machine.initial_pressure",
         "machine.polytropic_exponent",
         "machine.bulk_modulus",
+        "machine.back_pressure",
+        "machine.piston_mass",
+        "machine.inertia_shaft",
+        "machine.speed_fluctuation",
+        "drive.tip_radius",
+        "run.speed",
+        "contact.youngs_modulus",
+        "contact.poisson_ratio",
+        "contact.allowable_stress",
+        "contact.roller_width",
+        "contact.bearing_radius",
+        *(f"contact.friction_{kind}" for kind in KINDS),
     }
 )
 
@@ -72,6 +101,50 @@ _METRICS = (
     "cavitation",
 )
 
+#: Keys of the reactor's torques, inertia and flywheel (:func:`reactor_summary`).
+_REACTOR = (
+    "back_pressure_bar",
+    "piston_force_peak_N",
+    "indicated_work_J",
+    "mean_torque_Nm",
+    "shaft_torque_min_Nm",
+    "shaft_torque_max_Nm",
+    "shaft_torque_peak_Nm",
+    "shaft_torque_with_inertia_peak_Nm",
+    "inertia_torque_peak_Nm",
+    "equivalent_inertia_mean_kgm2",
+    "energy_fluctuation_J",
+    "speed_fluctuation_without_flywheel",
+    "speed_fluctuation",
+    "flywheel_inertia_kgm2",
+)
+#: The pistons' peaks in time and the mean shaft speed (the study's ``time_domain``).
+_SLUGS = ("piston_left", "piston_right")
+_TIME = (
+    *(f"{s}_{what}_peak_{u}" for s in _SLUGS
+      for what, u in (("speed", "m_per_s"), ("accel", "m_per_s2"), ("jerk", "m_per_s3"))),
+    "shaft_speed_mean_rpm",
+)  # fmt: skip
+#: Contact, bearing, friction, efficiency and the drive's own force keys (:func:`forces_summary`).
+_FORCES = (
+    "peak_contact_force_N",
+    "peak_contact_stress_MPa",
+    "peak_contact_stress_at_deg",
+    "contact_safety_factor",
+    "peak_bearing_load_N",
+    "friction_loss_J_per_rev",
+    "friction_loss_W",
+    "mechanical_efficiency",
+    "work_through_drive_J",
+    "follower_force_peak_N",
+    "follower_force_min_N",
+    "follower_lift_off",
+    "side_thrust_peak_N",
+    "guide_tilting_moment_peak_Nm",
+    "shaft_radial_load_peak_N",
+)
+_DYNAMIC = frozenset(_REACTOR + _TIME + _FORCES)
+
 CURVES = (
     "z_left_mm",
     "z_right_mm",
@@ -101,7 +174,7 @@ def unsupported(cfg: dict) -> str | None:
 
 def metric_names(cfg: dict) -> tuple[str, ...]:
     """Summary keys the kernel computes."""
-    return _METRICS
+    return _METRICS + _REACTOR + _TIME + _FORCES
 
 
 def period(p) -> float:
@@ -125,7 +198,7 @@ def _drive(p, column: bool = False) -> ec.EccentricCam:
 
 
 _MACHINE = ("device_length", "bore", "fluid", "initial_pressure", "polytropic_exponent",
-            "bulk_modulus")  # fmt: skip
+            "bulk_modulus", "back_pressure")  # fmt: skip
 
 
 def _machine_values(p) -> dict:
@@ -153,7 +226,29 @@ def reasons(p, code: dict) -> np.ndarray:
     for section, bad in (("drive", drive), ("machine", machine)):
         for name in np.unique(bad[bad != ""]):
             flag(r, bad == name, code.get(f"{section}.{name}", code["other"]))
+    for key, bad in _dynamic_refusals(p):
+        flag(r, bad, code.get(key, code["other"]))
     return r
+
+
+def _dynamic_refusals(p):
+    """What the study refuses after the drive and the reactor, in its order: the inertias,
+    the shaft speed, the wanted speed fluctuation, the contact materials."""
+    with np.errstate(invalid="ignore"):
+        for key in ("machine.inertia_shaft", "machine.piston_mass"):
+            v = np.asarray(p.float(key))
+            yield key, ~(np.isfinite(v) & (v >= 0.0))
+        speed = p["run.speed"]
+        if np.ndim(speed) == 0 or p.varies("run.speed"):  # a profile is checked with the base
+            w = np.asarray(speed, dtype=float)
+            slack = 1e-12  # as analysis.timing.shaft_speed
+            yield "run.speed", ~((w >= SPEED_MIN * (1 - slack)) & (w <= SPEED_MAX * (1 + slack)))
+        c = np.asarray(p.float("machine.speed_fluctuation"))
+        yield "machine.speed_fluctuation", ~((c > 0.0) & (c < 1.0))
+        e = np.asarray(p.float("contact.youngs_modulus"))
+        yield "contact.youngs_modulus", ~(np.isfinite(e) & (e > 0.0))
+        nu = np.asarray(p.float("contact.poisson_ratio"))
+        yield "contact.poisson_ratio", ~((nu >= 0.0) & (nu < 0.5))
 
 
 def metrics(p, names, samples: int, threads: int | None = None) -> dict:
@@ -170,7 +265,78 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
         val.update(
             _peaks(full(drive.contact_radius, n), full(drive.eccentricity, n), samples, threads)
         )
+    if names & _DYNAMIC:
+        val.update(_dynamic(p, sorted(names & _DYNAMIC), samples, threads))
     return {name: full(val[name], n) for name in names}
+
+
+def _dynamic(p, names, samples, threads) -> dict:
+    """The :data:`_DYNAMIC` keys ``names``, arrays (n,): one pass per follower."""
+    follower = p["drive.follower"]
+    if not p.varies("drive.follower"):
+        return _dynamic_follower(p, str(follower), names, samples, threads)
+    out = {name: np.full(p.n, np.nan) for name in names}
+    for kind in np.unique(follower):
+        at = np.flatnonzero(follower == kind)
+        part = _dynamic_follower(p.take(at), str(kind), names, samples, threads)
+        for name in names:
+            out[name][at] = part[name]
+    return out
+
+
+def _dynamic_follower(p, follower: str, names, samples, threads) -> dict:
+    """The :data:`_DYNAMIC` keys ``names`` of designs ``p`` with one ``follower``."""
+    n = p.n
+    beta = sample_grid(2.0 * np.pi, samples)
+    keys = ("drive.disc_radius", "drive.eccentricity", "drive.roller_radius", "drive.tip_radius",
+            "machine.piston_mass", "machine.inertia_shaft", "machine.speed_fluctuation",
+            "contact.youngs_modulus", "contact.poisson_ratio", "contact.roller_width",
+            "contact.allowable_stress", "contact.bearing_radius",
+            *(f"contact.friction_{kind}" for kind in KINDS))  # fmt: skip
+    values = {k: 0.0 if p[k] is None else p.float(k) for k in keys}  # no tip: an edge
+    machine = _machine_values(p)
+    speed = p.float("run.speed") if p.varies("run.speed") else p["run.speed"]
+
+    def fn(lo, hi):
+        def col(v):  # a varying value as a column (d, 1) against the angles
+            return v[lo:hi, None] if np.ndim(v) else v
+
+        v = {k: col(x) for k, x in values.items()}
+        drive = ec.EccentricCam(v["drive.disc_radius"], v["drive.eccentricity"], follower,
+                                v["drive.roller_radius"])  # fmt: skip
+        reactor = opposed_piston(drive, **{k: col(x) for k, x in machine.items()})
+        mass = v["machine.piston_mass"]
+        inertia = (v["machine.inertia_shaft"], np.stack([mass, mass]) if np.ndim(mass) else
+                   (mass, mass))  # fmt: skip
+        w = col(speed) if p.varies("run.speed") else speed
+        coefficient = values["machine.speed_fluctuation"]
+        coefficient = coefficient[lo:hi] if np.ndim(coefficient) else coefficient
+        model = ContactModel(v["contact.youngs_modulus"], v["contact.poisson_ratio"],
+                             v["contact.roller_width"], v["contact.allowable_stress"],
+                             {kind: v[f"contact.friction_{kind}"] for kind in KINDS})  # fmt: skip
+        st = reactor_state(drive, reactor, inertia, w, beta)
+        out = reactor_summary(drive, reactor, inertia, w, coefficient, beta, state=st)
+        out.update(forces_summary(drive, reactor, inertia, w, beta, model,
+                                  v["contact.bearing_radius"], v["drive.tip_radius"],
+                                  state=st))  # fmt: skip
+        out.update(_time_peaks(st))
+        return {name: np.broadcast_to(np.asarray(out.get(name, np.nan), dtype=float), (hi - lo,))
+                for name in names}  # fmt: skip
+
+    return run_blocks(fn, n, samples, threads)
+
+
+def _time_peaks(st) -> dict:
+    """Peaks of the pistons' velocity, acceleration and jerk in time; the mean shaft speed
+    (the study's :func:`~rotorkin.studies.helpers.time_domain`)."""
+    v, a, j = st["motion"].in_time(st["omega"], st["omega_dot"], st["omega_ddot"])
+    out = {}
+    for k, slug in enumerate(_SLUGS):
+        for what, x, u in (("speed", v, "m_per_s"), ("accel", a, "m_per_s2"),
+                           ("jerk", j, "m_per_s3")):  # fmt: skip
+            out[f"{slug}_{what}_peak_{u}"] = np.max(np.abs(x[k]), axis=-1)
+    out["shaft_speed_mean_rpm"] = np.mean(st["omega"][..., :-1], axis=-1) * 30.0 / np.pi
+    return out
 
 
 def _peaks(rc, e, samples, threads) -> dict:
