@@ -24,6 +24,7 @@ from rotorkin.cli import console
 from rotorkin.cli.console import one_line as _one_line
 from rotorkin.cli.lazy import COMMANDS, LazyGroup, running
 from rotorkin.core.errors import RotorkinError
+from rotorkin.core.memory import tune_allocator
 
 __all__ = ["app", "main", "COMMANDS", "EXTRAS", "ENVIRONMENT_ERROR"]
 
@@ -120,6 +121,7 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit code."""
     # figures are files here: matplotlib draws off screen unless the user chose a backend
     os.environ.setdefault("MPLBACKEND", "Agg")
+    tune_allocator()  # array temporaries from the heap, not fresh pages (rotorkin.core.memory)
     previous = _on_sigterm()
     args = sys.argv[1:] if argv is None else list(argv)
     if not args:

@@ -33,6 +33,7 @@ import numpy as np
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, block_progress
 from rotorkin.core.errors import ConfigError, ParameterError, shown
 from rotorkin.core.extras import xarray_module
+from rotorkin.core.memory import release_memory
 from rotorkin.drives import evaluate, spec_of
 from rotorkin.io.config import validate_config
 from rotorkin.sweep.checks import check_metrics
@@ -337,7 +338,7 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
                     res = compute_chunk(spec, start, stop, threads)
                 take(index, res)
     if chunks:
-        _release_free_memory()  # the chunks' freed work arrays, before the result is assembled
+        release_memory()  # the chunks' freed work arrays, back before the result is assembled
         flat = _assemble(spec, chunks)
     flat.pop("count", None)
     result = to_result(spec, flat)
@@ -346,23 +347,6 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
         if not keep_chunks:
             chunks.remove()
     return result
-
-
-def _release_free_memory() -> None:
-    """Return the memory freed by the chunks' computation to the system (glibc only).
-
-    glibc keeps freed blocks for reuse (its threshold for giving large arrays back
-    rises as they are freed), so without this the kernels' work arrays would stay
-    in the process beside the assembled result.
-    """
-    if not sys.platform.startswith("linux"):
-        return
-    try:
-        import ctypes
-
-        ctypes.CDLL("libc.so.6").malloc_trim(0)
-    except (OSError, AttributeError):  # another C library: nothing to do
-        pass
 
 
 def _empty(spec: SweepSpec) -> dict:

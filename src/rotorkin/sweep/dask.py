@@ -16,6 +16,7 @@ import contextlib
 import logging
 
 from rotorkin.core.errors import ConfigError, ParameterError
+from rotorkin.core.memory import tune_allocator
 from rotorkin.sweep.engine import compute_chunk
 
 __all__ = ["LOOPBACK", "local_client", "connect", "run_chunks"]
@@ -53,6 +54,7 @@ def local_client(workers: int, processes: bool = True):
     )
     try:
         with distributed.Client(cluster) as client:
+            client.run(tune_allocator)  # the workers are this run's own processes
             yield client
     finally:
         cluster.close()
