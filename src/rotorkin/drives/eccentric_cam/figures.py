@@ -6,12 +6,14 @@ matplotlib is imported on first use (:func:`rotorkin.render.figures.pyplot`).
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
 
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.machines import opposed_piston as op
+from rotorkin.render.figures import draw
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save as _save
 
@@ -321,20 +323,22 @@ def plot_all(params: ec.EccentricCam, outdir: Path, reactor=None, beta=None, sta
     """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    paths = [
-        fig_decomposition(params, outdir / "fig06_travel_decomposition.png"),
-        fig_gap_change_ratio(params, outdir / "fig07_gap_change_ratio.png"),
-        fig_pistons(params, outdir / "fig08_pistons_and_gap.png"),
-        fig_followers(params, outdir / "fig_followers_comparison.png"),
+    p = functools.partial
+    tasks = [
+        p(fig_decomposition, params, outdir / "fig06_travel_decomposition.png"),
+        p(fig_gap_change_ratio, params, outdir / "fig07_gap_change_ratio.png"),
+        p(fig_pistons, params, outdir / "fig08_pistons_and_gap.png"),
+        p(fig_followers, params, outdir / "fig_followers_comparison.png"),
     ]
     if reactor is not None:
-        paths += [
-            fig_reactor_volume_pressure(params, reactor, beta, state, summary,
-                                        outdir / "reactor_volume_pressure.png"),
-            fig_reactor_torque(params, reactor, beta, state, summary,
-                               outdir / "reactor_torque.png"),
-            fig_reactor_ripple_vs_lambda(params, reactor, outdir / "reactor_ripple_vs_lambda.png"),
+        tasks += [
+            p(fig_reactor_volume_pressure, params, reactor, beta, state, summary,
+              outdir / "reactor_volume_pressure.png"),
+            p(fig_reactor_torque, params, reactor, beta, state, summary,
+              outdir / "reactor_torque.png"),
+            p(fig_reactor_ripple_vs_lambda, params, reactor,
+              outdir / "reactor_ripple_vs_lambda.png"),
         ]  # fmt: skip
     if forces is not None:
-        paths.append(fig_forces(params, beta, forces, outdir / "forces.png"))
-    return paths
+        tasks.append(p(fig_forces, params, beta, forces, outdir / "forces.png"))
+    return draw(tasks)

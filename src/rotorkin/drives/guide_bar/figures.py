@@ -6,6 +6,7 @@ pyplot comes from :func:`rotorkin.render.figures.pyplot` (the command line choos
 
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 from pathlib import Path
 
@@ -15,9 +16,9 @@ from matplotlib.patches import Patch, Wedge
 from rotorkin.analysis import pairs as pr
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.machines import vane_pump as vp
+from rotorkin.render.figures import draw, save_in
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save as _save
-from rotorkin.render.figures import save_in
 
 __all__ = [
     "TORQUE_LAMBDAS",
@@ -439,22 +440,23 @@ def plot_all(params: gb.GuideBar, m7: float, m8: float, outdir: Path, pump=None,
     """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    paths = [
-        fig_speed_ratios(params, "crank", outdir / "fig03_speed_crank_driven.png", 3),
-        fig_speed_ratios(params, "guide", outdir / "fig05_speed_guide_driven.png", 5),
-        fig_vane_angle(params, outdir / "fig09_lambda_vane_angle.png"),
-        fig_input_torque(params, "crank", m7, m8, outdir / "fig10_torque_crank_driven.png", 10),
-        fig_input_torque(params, "guide", m7, m8, outdir / "fig11_torque_guide_driven.png", 11),
-        fig_relative_angle(params, outdir / "fig_relative_angle.png"),
+    p = functools.partial
+    tasks = [
+        p(fig_speed_ratios, params, "crank", outdir / "fig03_speed_crank_driven.png", 3),
+        p(fig_speed_ratios, params, "guide", outdir / "fig05_speed_guide_driven.png", 5),
+        p(fig_vane_angle, params, outdir / "fig09_lambda_vane_angle.png"),
+        p(fig_input_torque, params, "crank", m7, m8, outdir / "fig10_torque_crank_driven.png", 10),
+        p(fig_input_torque, params, "guide", m7, m8, outdir / "fig11_torque_guide_driven.png", 11),
+        p(fig_relative_angle, params, outdir / "fig_relative_angle.png"),
     ]
     if pump is not None:
-        paths += [
-            fig_pump_sections(params, pump, ports, outdir / "pump_sections.png"),
-            fig_pump_chambers(pump, ports, theta, state, outdir / "pump_chambers.png"),
-            fig_pump_flow(pump, ports, theta, state, summary, outdir / "pump_flow.png"),
-            fig_pump_torque(pump, ports, theta, state, summary, outdir / "pump_torque.png"),
+        tasks += [
+            p(fig_pump_sections, params, pump, ports, outdir / "pump_sections.png"),
+            p(fig_pump_chambers, pump, ports, theta, state, outdir / "pump_chambers.png"),
+            p(fig_pump_flow, pump, ports, theta, state, summary, outdir / "pump_flow.png"),
+            p(fig_pump_torque, pump, ports, theta, state, summary, outdir / "pump_torque.png"),
         ]
     if pairs:
-        paths.append(fig_forces(theta, pairs, contact or pr.ContactModel(), summary or {},
-                                outdir / "forces.png"))  # fmt: skip
-    return paths
+        tasks.append(p(fig_forces, theta, pairs, contact or pr.ContactModel(), summary or {},
+                       outdir / "forces.png"))  # fmt: skip
+    return draw(tasks)

@@ -7,12 +7,13 @@ the backend is the caller's.
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
 
 from rotorkin.drives.rhomboid_cam import kinematics as rc
-from rotorkin.render.figures import pyplot, save, save_in
+from rotorkin.render.figures import draw, pyplot, save, save_in
 
 __all__ = [
     "plot_all",
@@ -196,16 +197,23 @@ def fig_work_loop(params, torque_high, torque_low, outdir: Path, points: int = 1
     return save(fig, Path(outdir) / "fig04_work_loop.png")
 
 
+def figure_tasks(params, torque_high, torque_low, outdir: Path) -> list:
+    """The figures of :func:`plot_all` as tasks (:func:`rotorkin.render.figures.draw`)."""
+    outdir = Path(outdir)
+    p = functools.partial
+    return [
+        p(fig_cam_profile, params, outdir),
+        p(fig_psi_law, params, outdir),
+        p(fig_blade_motion, params, outdir),
+        p(fig_work_loop, params, float(torque_high), float(torque_low), outdir),
+    ]
+
+
 def plot_all(params, torque_high, torque_low, outdir: Path) -> list[Path]:
     """Write every figure of the drive into ``outdir``; return the paths."""
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    return [
-        fig_cam_profile(params, outdir),
-        fig_psi_law(params, outdir),
-        fig_blade_motion(params, outdir),
-        fig_work_loop(params, float(torque_high), float(torque_low), outdir),
-    ]
+    return draw(figure_tasks(params, torque_high, torque_low, outdir))
 
 
 # --- the rotary-blade engine ---------------------------------------------------------------
@@ -505,11 +513,18 @@ def plot_machine(params, machine, loads, state, curves, summary, outdir: Path) -
     """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    paths = [fig_chamber_volumes(machine, loads, state, summary, outdir)]
+    return draw(machine_tasks(params, machine, loads, state, curves, summary, outdir))
+
+
+def machine_tasks(params, machine, loads, state, curves, summary, outdir: Path) -> list:
+    """The figures of :func:`plot_machine` as tasks (:func:`rotorkin.render.figures.draw`)."""
+    outdir = Path(outdir)
+    p = functools.partial
+    tasks = [p(fig_chamber_volumes, machine, loads, state, summary, outdir)]
     if loads.model == "isothermal":
-        paths.append(fig_pv_diagram(machine, loads, state, summary, outdir))
-    paths.append(fig_shaft_torque(machine, loads, curves, summary, outdir))
-    paths.append(fig_blade_layout(params, machine, loads, state, outdir))
+        tasks.append(p(fig_pv_diagram, machine, loads, state, summary, outdir))
+    tasks.append(p(fig_shaft_torque, machine, loads, curves, summary, outdir))
+    tasks.append(p(fig_blade_layout, params, machine, loads, state, outdir))
     if "forces" in curves:
-        paths.append(fig_forces(machine, loads, curves, summary, outdir))
-    return paths
+        tasks.append(p(fig_forces, machine, loads, curves, summary, outdir))
+    return tasks

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.drives.wobble_cam import cam as sph
-from rotorkin.render.figures import pyplot, save_in
+from rotorkin.render.figures import fixed_layout, pyplot, save_in
 
 __all__ = ["plot_spherical_cam"]
 
@@ -178,5 +178,5 @@ def plot_spherical_cam(source, outdir, cam=None, points: int = 1441) -> list[Pat
         f", r = {r:.4g} mm, shell {cam.inner_radius * 1e3:.4g}..{cam.outer_radius * 1e3:.4g} mm, "
         f"groove to {cam.bottom_radius * 1e3:.4g} mm"
     )
-    fig.tight_layout(rect=(0, 0, 1, 0.97))
+    fixed_layout(fig, 0.7, 0.6, 0.3, 1.0, 0.85, 1.02)
     return [save_in(fig, outdir, "fig_spherical_cam.png")]
