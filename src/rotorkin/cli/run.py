@@ -38,12 +38,12 @@ __all__ = ["register"]
 
 
 def _figure_settings() -> None:
-    """Figures drawn at the resolution they are written at (the text laid out once)."""
+    """matplotlib's settings for the run's figures (:data:`rotorkin.render.figures.RUN_STYLE`)."""
     import matplotlib
 
-    from rotorkin.render.figures import DPI
+    from rotorkin.render.figures import RUN_STYLE
 
-    matplotlib.rcParams["figure.dpi"] = DPI
+    matplotlib.rcParams.update(RUN_STYLE)
 
 
 def register(app) -> None:

@@ -37,6 +37,8 @@ __all__ = [
     "save",
     "save_in",
     "fixed_layout",
+    "axes3d",
+    "RUN_STYLE",
     "degree_axis",
     "Recipe",
 ]
@@ -98,6 +100,28 @@ def _laid_out(fig) -> None:
         or matplotlib.rcParams["figure.constrained_layout.use"]
     ):
         fig.set_layout_engine(None)
+
+
+#: matplotlib settings of the figures of ``rotorkin run`` (set by the command line):
+#: drawn at the resolution they are written at, so their text is laid out once, and
+#: the titles of 2D axes at their top edge (no run figure puts tick labels on top), so
+#: matplotlib need not measure the axes to place them; :func:`axes3d` keeps the
+#: automatic place for 3D axes, whose box the title would overlap.
+RUN_STYLE = {"figure.dpi": DPI, "axes.titley": 1.0}
+
+
+def axes3d(fig, *args, title: str = "", **kwargs):
+    """``fig.add_subplot(*args, projection="3d", **kwargs)`` with ``title`` placed by matplotlib.
+
+    matplotlib moves the title of a 3D axes above its box, whatever ``axes.titley``.
+    """
+    import matplotlib
+
+    with matplotlib.rc_context({"axes.titley": None}):
+        ax = fig.add_subplot(*args, projection="3d", **kwargs)
+        if title:
+            ax.set_title(title)
+    return ax
 
 
 def fixed_layout(fig, left, bottom, right, top, wspace=0.0, hspace=0.0) -> None:

@@ -21,7 +21,7 @@ from rotorkin.analysis.torque import inertia_torque
 from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import forces as fo
 from rotorkin.drives.wobble_cam import kinematics as wc
-from rotorkin.render.figures import draw, fixed_layout, pyplot, save_in
+from rotorkin.render.figures import axes3d, draw, fixed_layout, pyplot, save_in
 
 __all__ = [
     "plot_all",
@@ -72,7 +72,7 @@ def _four_views(fig, curves, radius_mm, title):
 
     curves : list of (xyz array (3, N) in mm, style dict).
     """
-    ax3 = fig.add_subplot(2, 2, 1, projection="3d")
+    ax3 = axes3d(fig, 2, 2, 1, title="(a) 3D view")
     _sphere(ax3, radius_mm)
     for p, style in curves:
         ax3.plot(p[0], p[1], p[2], **style)
@@ -83,7 +83,6 @@ def _four_views(fig, curves, radius_mm, title):
     lim = 1.05 * radius_mm
     for setter in (ax3.set_xlim, ax3.set_ylim, ax3.set_zlim):
         setter(-lim, lim)
-    ax3.set_title("(a) 3D view")
     views = (
         (0, 1, "(b) z-axis view (xy plane)"),
         (0, 2, "(c) y-axis view (xz plane)"),
