@@ -80,3 +80,156 @@ def test_drive_package_as_attribute():
     assert drives.tabulated.SPEC is drives.REGISTRY["tabulated"]
     with pytest.raises(AttributeError):
         drives.no_such_drive  # noqa: B018
+
+
+# --- figures drawn by several processes ------------------------------------------------------
+def _square_figure(outdir: Path, name: str, size: tuple, value: float) -> Path:
+    """A small figure whose content depends on ``value`` (what the parent can check)."""
+    from rotorkin.render.figures import pyplot, save
+
+    fig, ax = pyplot().subplots(figsize=size)
+    ax.plot([0.0, 1.0], [0.0, value])
+    return save(fig, outdir / name, layout=(0.6, 0.5, 0.2, 0.3))
+
+
+def _tasks(outdir: Path) -> list:
+    import functools
+
+    return [functools.partial(_square_figure, outdir, f"f{i}.png", (2 + i % 3, 2), float(i))
+            for i in range(7)]  # fmt: skip
+
+
+def _png_size(path: Path) -> tuple[int, int]:
+    data = path.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    return int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+
+
+def test_parallel_draw_writes_the_files_of_the_serial_one(tmp_path):
+    from rotorkin.render.figures import draw
+
+    serial, parallel = tmp_path / "serial", tmp_path / "parallel"
+    serial.mkdir()
+    parallel.mkdir()
+    one = draw(_tasks(serial), workers=1)
+    two = draw(_tasks(parallel), workers=3, slowest=(6, 6, 99))
+    assert [p.name for p in one] == [p.name for p in two] == [f"f{i}.png" for i in range(7)]
+    assert all(p.parent == parallel for p in two)
+    for a, b in zip(one, two, strict=True):
+        # 2..4 inches wide, 2 high, at 120 dpi
+        assert _png_size(a) == _png_size(b) == (120 * (2 + int(a.stem[1:]) % 3), 240)
+        assert a.read_bytes() == b.read_bytes()
+
+
+class _Odd(Exception):
+    """An exception that cannot be rebuilt from its arguments (pickling fails)."""
+
+    def __init__(self, a, b):
+        super().__init__(f"{a}/{b}")
+
+
+def _fails_in_child(parent: int, how: str):
+    from rotorkin.core.errors import ParameterError
+
+    if os.getpid() == parent:
+        import time
+
+        time.sleep(0.5)  # the child takes the failing task first
+        return []
+    if how == "parameter":
+        raise ParameterError("cam.roller_radius", "9 mm", "roller_radius <= 5 mm")
+    if how == "odd":
+        raise _Odd(1, 2)
+    if how == "local":
+
+        class Local(Exception):
+            pass
+
+        raise Local("nowhere to rebuild it")
+    os._exit(3)
+
+
+@pytest.mark.parametrize(
+    ("how", "kind", "text"),
+    [
+        ("parameter", "ParameterError", "cam.roller_radius = 9 mm is not admissible"),
+        ("odd", "_Odd", "1/2"),
+        ("local", "FigureError", "a figure could not be drawn: Local: nowhere to rebuild it"),
+        ("exit", "FigureError", "ended with code 3"),
+    ],
+)
+def test_a_failure_in_a_worker_is_raised_in_the_caller(how, kind, text):
+    import functools
+
+    from rotorkin.render.figures import draw
+
+    task = functools.partial(_fails_in_child, os.getpid(), how)
+    with pytest.raises(Exception) as info:  # noqa: PT011 - the class is checked below
+        draw([task, task, task], workers=2)
+    assert type(info.value).__name__ == kind
+    assert text in str(info.value)
+    if how == "parameter":  # rebuilt with what the command line reads
+        assert info.value.name == "cam.roller_radius"
+        assert info.value.admissible == "roller_radius <= 5 mm"
+    assert "\n" not in str(info.value)
+
+
+def test_workers_from_the_environment(monkeypatch):
+    from rotorkin.core.errors import ParameterError
+    from rotorkin.render.figures import WORKERS_ENV, figure_workers, recording
+
+    monkeypatch.setenv(WORKERS_ENV, "1")
+    assert figure_workers() == 1
+    monkeypatch.setenv(WORKERS_ENV, "3")
+    assert figure_workers() == 3
+    with recording():  # the recorded figures must stay in this process
+        assert figure_workers() == 1
+    for bad in ("0", "two", "-1"):
+        monkeypatch.setenv(WORKERS_ENV, bad)
+        with pytest.raises(ParameterError, match=WORKERS_ENV):
+            figure_workers()
+
+
+def _run_cli(tmp_path, example: str, workers: str, prelude: str = ""):
+    out = tmp_path / f"out-{workers}"
+    code = (
+        "import sys\n" + prelude + "from rotorkin.cli import main\n"
+        f"sys.exit(main(['run', '-e', {example!r}, '-o', {str(out)!r}, '-q']))\n"
+    )
+    return out, _python(code, ROTORKIN_FIGURE_WORKERS=workers)
+
+
+def test_run_draws_the_same_figures_in_one_process_or_two(tmp_path):
+    outs = {}
+    for workers in ("1", "2"):
+        out, done = _run_cli(tmp_path, "eccentric-reactor", workers)
+        assert done.returncode == 0, done.stderr
+        outs[workers] = out
+    names = sorted(p.name for p in outs["1"].glob("*.png"))
+    assert len(names) >= 8
+    assert names == sorted(p.name for p in outs["2"].glob("*.png"))
+    for name in names:
+        assert _png_size(outs["1"] / name) == _png_size(outs["2"] / name)
+        assert (outs["1"] / name).read_bytes() == (outs["2"] / name).read_bytes()
+    assert (outs["1"] / "README.txt").read_text() == (outs["2"] / "README.txt").read_text()
+
+
+def test_run_with_a_failing_figure_worker_writes_nothing(tmp_path):
+    prelude = (
+        "import os\n"
+        "from rotorkin.core.errors import ParameterError\n"
+        "from rotorkin.drives.eccentric_cam import figures\n"
+        "PARENT = os.getpid()\n"
+        "def fail(*args, **kwargs):\n"
+        "    if os.getpid() != PARENT:\n"
+        "        raise ParameterError('run.points', '7', 'points >= 9')\n"
+        "    import time; time.sleep(1.0)\n"
+        "figures.fig_pistons = fail\n"
+        "figures.fig_decomposition = fail\n"
+    )
+    out, done = _run_cli(tmp_path, "eccentric-reactor", "2", prelude)
+    assert done.returncode == 2, done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert lines == ["rotorkin: error: run.points = 7 is not admissible: points >= 9"]
+    assert not out.exists()
+    assert [p.name for p in tmp_path.iterdir()] == []  # no staging folder left either

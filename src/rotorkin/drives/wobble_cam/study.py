@@ -507,7 +507,7 @@ def evaluate(cfg: dict) -> StudyResult:
                                            model, outdir))  # fmt: skip
         if "cam" in cfg:  # the cam's own figure, when its roller fits the grooves
             tasks.append(functools.partial(_cam_figure, cfg, outdir))
-        return draw(tasks)
+        return draw(tasks, slowest=(len(tasks) - 1, len(tasks) - 2))
 
     return StudyResult(
         drive_type="wobble_cam",
