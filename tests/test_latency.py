@@ -233,3 +233,15 @@ def test_run_with_a_failing_figure_worker_writes_nothing(tmp_path):
     assert lines == ["rotorkin: error: run.points = 7 is not admissible: points >= 9"]
     assert not out.exists()
     assert [p.name for p in tmp_path.iterdir()] == []  # no staging folder left either
+
+
+def test_a_worker_does_not_repeat_what_the_caller_had_not_yet_written():
+    done = _python(
+        "import sys\n"
+        "from rotorkin.render.figures import draw\n"
+        "print('before the figures')\n"  # stdout is a pipe: held in the buffer
+        "draw([lambda: None] * 4, workers=2)\n"
+        "print('after the figures')\n"
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == ["before the figures", "after the figures"]

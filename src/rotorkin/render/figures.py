@@ -317,6 +317,9 @@ def draw(
     if workers <= 1 or len(tasks) > 255:
         return [p for task in tasks for p in _flat(task())]
     pyplot()  # imported once, before the fork, for every worker
+    for stream in (sys.stdout, sys.stderr):  # a child would write their buffers once more
+        with contextlib.suppress(Exception):
+            stream.flush()
     queue_r, queue_w = os.pipe()
     first = [i for i in dict.fromkeys(slowest) if 0 <= i < len(tasks)]
     order = first + [i for i in range(len(tasks)) if i not in first]
