@@ -241,7 +241,8 @@ def test_a_worker_does_not_repeat_what_the_caller_had_not_yet_written():
         "from rotorkin.render.figures import draw\n"
         "print('before the figures')\n"  # stdout is a pipe: held in the buffer
         "draw([lambda: None] * 4, workers=2)\n"
-        "print('after the figures')\n"
+        "print('after the figures')\n",
+        PYTHONUNBUFFERED="",  # buffered, as when a user pipes the output
     )
     assert done.returncode == 0, done.stderr
     assert done.stdout.splitlines() == ["before the figures", "after the figures"]
