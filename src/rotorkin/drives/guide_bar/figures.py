@@ -11,7 +11,6 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-from matplotlib.patches import Patch, Wedge
 
 from rotorkin.analysis import pairs as pr
 from rotorkin.drives.guide_bar import kinematics as gb
@@ -234,6 +233,8 @@ def fig_pump_sections(drive: gb.GuideBar, pump, ports, path: Path) -> Path:
     k = pump.volume_per_angle * 1e6
     z = int(pump.vanes_per_impeller)
     rh, rc, g = pump.hub_radius * 1e3, pump.casing_radius * 1e3, float(pump.vane_angle)
+    from matplotlib.patches import Patch, Wedge  # with pyplot, not when the drive is imported
+
     fig, axes = plt.subplots(1, 4, figsize=(16, 5.2))
     for n, ax in enumerate(axes):
         ax.add_patch(Wedge((0, 0), rc * 1.04, 0, 360, width=rc * 0.04, color="0.3"))
