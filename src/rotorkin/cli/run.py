@@ -3,7 +3,9 @@
 ``rotorkin run`` evaluates a config (or the default example), writes its outputs
 (``summary.json``, ``motion.csv``, ``config.toml``, ``checks.csv``, ``README.txt``
 and the figures; ``--no-figures`` leaves the figures out, ``--report`` adds the
-HTML report) and prints the summary as a table, JSON or CSV (``--format``).
+HTML report) and prints the summary as a table, JSON or CSV (``--format``). The
+figures are drawn by forked processes, one per core
+(:func:`rotorkin.render.figures.draw`; ``$ROTORKIN_FIGURE_WORKERS`` sets their number).
 """
 
 from __future__ import annotations
@@ -63,7 +65,8 @@ def register(app) -> None:
             "exit 2.")] = False,
         figures: Annotated[bool, typer.Option(
             "--figures/--no-figures", help="Draw the PNG figures (the slowest part of a "
-            "run).")] = True,
+            "run; drawn by the machine's cores, ROTORKIN_FIGURE_WORKERS=1 for one "
+            "process).")] = True,
         fmt: FormatOpt = "table",
         quiet: QuietOpt = False,
         verbose: VerboseOpt = False,
