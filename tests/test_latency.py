@@ -105,7 +105,16 @@ def _png_size(path: Path) -> tuple[int, int]:
     return int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
 
 
-def test_parallel_draw_writes_the_files_of_the_serial_one(tmp_path):
+@pytest.fixture
+def forking(monkeypatch):
+    """Fork even if an earlier test left threads running in this process (the tasks here
+    take no lock those threads could hold)."""
+    from rotorkin.render import figures
+
+    monkeypatch.setattr(figures, "_fork_safe", lambda: True)
+
+
+def test_parallel_draw_writes_the_files_of_the_serial_one(tmp_path, forking):
     from rotorkin.render.figures import draw
 
     serial, parallel = tmp_path / "serial", tmp_path / "parallel"
@@ -158,7 +167,7 @@ def _fails_in_child(parent: int, how: str):
         ("exit", "FigureError", "ended with code 3"),
     ],
 )
-def test_a_failure_in_a_worker_is_raised_in_the_caller(how, kind, text):
+def test_a_failure_in_a_worker_is_raised_in_the_caller(how, kind, text, forking):
     import functools
 
     from rotorkin.render.figures import draw
@@ -174,7 +183,7 @@ def test_a_failure_in_a_worker_is_raised_in_the_caller(how, kind, text):
     assert "\n" not in str(info.value)
 
 
-def test_workers_from_the_environment(monkeypatch):
+def test_workers_from_the_environment(monkeypatch, forking):
     from rotorkin.core.errors import ParameterError
     from rotorkin.render.figures import WORKERS_ENV, figure_workers, recording
 
@@ -246,3 +255,25 @@ def test_a_worker_does_not_repeat_what_the_caller_had_not_yet_written():
     )
     assert done.returncode == 0, done.stderr
     assert done.stdout.splitlines() == ["before the figures", "after the figures"]
+
+
+def test_no_fork_while_another_thread_runs():
+    import threading
+
+    from rotorkin.render.figures import figure_workers
+
+    stop = threading.Event()
+    for name, expected in (("someone-else", 1), ("rotorkin_0", 2)):
+        thread = threading.Thread(target=stop.wait, name=name)
+        thread.start()
+        try:
+            others = [t for t in threading.enumerate()
+                      if t is not threading.main_thread() and t is not thread]  # fmt: skip
+            if not others:  # only then is the answer the thread's alone
+                assert figure_workers(2) == expected
+            else:
+                assert figure_workers(2) == 1
+        finally:
+            stop.set()
+            thread.join()
+            stop.clear()
