@@ -42,6 +42,8 @@ def test_listing_drives_and_examples_imports_none():
     assert names == list(drives.BUILTIN)
     assert contained
     assert _drive_packages(modules) == set()
+    # nor the machines, studies and units behind the drives (pint, scipy)
+    assert not {"rotorkin.vane", "rotorkin.studies.limits", "pint", "scipy"} & set(modules)
     # the same examples as the specs list once every drive is imported
     assert examples == sorted(e for s in drives.REGISTRY.values() for e in s.examples)
 

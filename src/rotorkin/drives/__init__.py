@@ -21,18 +21,18 @@ import functools
 import importlib
 from collections.abc import Iterator, MutableMapping
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-from pydantic import Field, create_model
 
 from rotorkin.core.errors import ConfigError, ParameterError
 from rotorkin.drives._spec import DriveSpec
-from rotorkin.studies.checks import failure_line, limit_checks, profile_checks
-from rotorkin.studies.limits import limit_value, violations
-from rotorkin.synthesis import SynthesisResult
-from rotorkin.vane import MACHINES
-from rotorkin.vane import evaluate as evaluate_vane_machine
-from rotorkin.vane.study import CONTACT_HEADLINE, HEADLINES
+
+if TYPE_CHECKING:
+    from rotorkin.synthesis import SynthesisResult
+
+# The vane machines, the studies' checks and limits (pint, scipy) are imported by the
+# functions that use them: listing the drives and examples imports none of them.
 
 __all__ = [
     "REGISTRY",
@@ -196,6 +196,8 @@ def machine_type(cfg: dict, spec: DriveSpec | None = None) -> str:
 
 
 def _check_machine(spec: DriveSpec, kind) -> None:
+    from rotorkin.vane import MACHINES
+
     if kind == spec.machine:
         return
     if spec.law is None:
@@ -212,6 +214,10 @@ def _check_machine(spec: DriveSpec, kind) -> None:
 
 @functools.cache
 def _composed(model: type, kind: str) -> type:
+    from pydantic import Field, create_model
+
+    from rotorkin.vane import MACHINES
+
     machine, loads, _ = MACHINES[kind]
     return create_model(
         f"{model.__name__}_{kind}",
@@ -252,6 +258,9 @@ def spec_of(cfg: dict) -> DriveSpec:
 
 
 def _carrying(spec: DriveSpec, kind: str) -> DriveSpec:
+    from rotorkin.vane import evaluate as evaluate_vane_machine
+    from rotorkin.vane.study import HEADLINES
+
     if spec.carries_any:  # its study runs any machine: only the headline's tail changes
         own = {k: v for k, v in spec.headline.items() if k not in HEADLINES.get(spec.machine, {})}
         return dataclasses.replace(
@@ -297,6 +306,10 @@ def evaluate(cfg: dict):
     -------
     rotorkin.studies.StudyResult
     """
+    from rotorkin.studies.checks import failure_line, limit_checks
+    from rotorkin.studies.limits import violations
+    from rotorkin.vane.study import CONTACT_HEADLINE
+
     spec = spec_of(cfg)
     checks = design_checks(cfg)  # what export refuses, every command refuses
     result = spec.study(cfg)
@@ -334,6 +347,9 @@ def design_checks(cfg: dict) -> list:
     if spec.checks is not None:
         return list(spec.checks(cfg))
     if spec.cad_parts is not None:
+        from rotorkin.studies.checks import profile_checks
+        from rotorkin.studies.limits import limit_value
+
         _, profiles = spec.cad_parts(cfg, False)
         angle = limit_value(cfg, "limits.pressure_angle")
         return [c for label, p in profiles for c in profile_checks(label, p, angle)]
