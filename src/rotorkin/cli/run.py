@@ -34,7 +34,6 @@ from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import REGISTRY, evaluate
 from rotorkin.io.config import example_names, example_path, glossary, load_config, read_toml
 from rotorkin.io.output import check_out, write_outputs
-from rotorkin.studies.limits import refuse
 
 __all__ = ["register"]
 
@@ -83,6 +82,8 @@ def register(app) -> None:
             step("evaluating the design")
             result = evaluate(cfg)
             if strict:
+                from rotorkin.studies.limits import refuse
+
                 refuse(result)  # before anything is written
             if not figures:
                 result = dataclasses.replace(result, write_figures=lambda outdir: [])
