@@ -346,8 +346,8 @@ def draw(
             children[0] = (pid, None)
             _, status = os.waitpid(pid, 0)
             children.pop(0)
-            status, payload = _result(data, status)
-            if status == "ok":
+            kind, payload = _result(data, status)
+            if kind == "ok":
                 done.update(payload)
             elif failure is None:
                 failure = payload
