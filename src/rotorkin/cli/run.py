@@ -10,7 +10,9 @@ figures are drawn by forked processes, one per core
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import gc
 import sys
 from pathlib import Path
 from typing import Annotated
@@ -47,6 +49,17 @@ def _figure_settings() -> None:
     matplotlib.rcParams.update(RUN_STYLE)
 
 
+@contextlib.contextmanager
+def _frozen():
+    """The objects that exist now (the libraries, the drive) out of the garbage collector's
+    passes for the block (``gc.freeze``): the study's passes scan its own objects only."""
+    gc.freeze()
+    try:
+        yield
+    finally:
+        gc.unfreeze()
+
+
 def register(app) -> None:
     """Add ``run``, ``examples`` and ``keys`` to the typer ``app``."""
 
@@ -80,7 +93,8 @@ def register(app) -> None:
             outdir = out if out is not None else Path("rotorkin-out") / name
             check_out(outdir)  # before any work
             step("evaluating the design")
-            result = evaluate(cfg)
+            with _frozen():
+                result = evaluate(cfg)
             if strict:
                 from rotorkin.studies.limits import refuse
 
