@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import gc
 import importlib
 from collections.abc import Iterator, MutableMapping
 from pathlib import Path
@@ -81,7 +82,13 @@ class Registry(MutableMapping):
     def __getitem__(self, name: str) -> DriveSpec:
         entry = self._entries[name]
         if isinstance(entry, str):
-            spec = importlib.import_module(entry).SPEC
+            enabled = gc.isenabled()
+            gc.disable()  # an import creates few cycles: no collection meanwhile
+            try:
+                spec = importlib.import_module(entry).SPEC
+            finally:
+                if enabled:
+                    gc.enable()
             if spec.name != name:  # pragma: no cover - a package's SPEC under another name
                 raise ValueError(f"the package {entry} holds the drive {spec.name!r}, not {name!r}")
             self._entries[name] = entry = spec

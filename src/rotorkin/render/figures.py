@@ -49,9 +49,17 @@ DPI = 120
 
 
 def pyplot():
-    """``matplotlib.pyplot``, imported on first use."""
-    import matplotlib.pyplot as plt
-
+    """``matplotlib.pyplot``, imported on first use (no garbage collection meanwhile)."""
+    plt = sys.modules.get("matplotlib.pyplot")
+    if plt is not None:
+        return plt
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        import matplotlib.pyplot as plt
+    finally:
+        if enabled:
+            gc.enable()
     return plt
 
 
