@@ -19,7 +19,8 @@ appended to ``benchmarks/results/history.jsonl`` (``--record``: commit, date, ma
 load, ratios), the record of the figures over commits.
 
 **Full mode** refreshes the absolute figures: ``bench_kinematics.py`` (every drive, 1e4
-and 1e6 points) and ``bench_sweep.py`` (1e3 and 1e4 designs, like-for-like baseline),
+and 1e6 points), ``bench_sweep.py`` (1e3 and 1e4 designs, like-for-like baseline) and
+``bench_latency.py`` (``rotorkin run`` of every example, ``--help``, the import floor),
 their result files in ``benchmarks/results/``, and the tables of ``docs/performance.md``
 between their ``<!-- bench:... -->`` markers. Best run in a quiet spell: the load
 average is recorded with every figure.
@@ -138,13 +139,16 @@ def _replace_between(text: str, tag: str, body: str) -> str:
 
 
 def full(update_docs: bool = True) -> int:
-    """Refresh the kinematics and sweep results and the tables of docs/performance.md."""
+    """Refresh the kinematics, sweep and latency results and the tables of docs/performance.md."""
     py = sys.executable
     kin = HERE / "results" / "kinematics.json"
     sweep = HERE / "results" / "sweep.json"
     subprocess.run([py, str(HERE / "bench_kinematics.py"), "--out", str(kin)], check=True)
     subprocess.run([py, str(HERE / "bench_sweep.py"), "--sizes", "1e3,1e4", "--repeat", "2",
                     "--like-designs", "216", "--out", str(sweep)],
+                   check=True)  # fmt: skip
+    latency = HERE / "results" / "latency.json"
+    subprocess.run([py, str(HERE / "bench_latency.py"), "--serial", "--out", str(latency)],
                    check=True)  # fmt: skip
     if update_docs:
         text = DOCS.read_text()

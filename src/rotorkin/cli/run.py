@@ -3,12 +3,16 @@
 ``rotorkin run`` evaluates a config (or the default example), writes its outputs
 (``summary.json``, ``motion.csv``, ``config.toml``, ``checks.csv``, ``README.txt``
 and the figures; ``--no-figures`` leaves the figures out, ``--report`` adds the
-HTML report) and prints the summary as a table, JSON or CSV (``--format``).
+HTML report) and prints the summary as a table, JSON or CSV (``--format``). The
+figures are drawn by forked processes, one per core
+(:func:`rotorkin.render.figures.draw`; ``$ROTORKIN_FIGURE_WORKERS`` sets their number).
 """
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import gc
 import sys
 from pathlib import Path
 from typing import Annotated
@@ -32,18 +36,28 @@ from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import REGISTRY, evaluate
 from rotorkin.io.config import example_names, example_path, glossary, load_config, read_toml
 from rotorkin.io.output import check_out, write_outputs
-from rotorkin.studies.limits import refuse
 
 __all__ = ["register"]
 
 
 def _figure_settings() -> None:
-    """Figures drawn at the resolution they are written at (the text laid out once)."""
+    """matplotlib's settings for the run's figures (:data:`rotorkin.render.figures.RUN_STYLE`)."""
     import matplotlib
 
-    from rotorkin.render.figures import DPI
+    from rotorkin.render.figures import RUN_STYLE
 
-    matplotlib.rcParams["figure.dpi"] = DPI
+    matplotlib.rcParams.update(RUN_STYLE)
+
+
+@contextlib.contextmanager
+def _frozen():
+    """The objects that exist now (the libraries, the drive) out of the garbage collector's
+    passes for the block (``gc.freeze``): the study's passes scan its own objects only."""
+    gc.freeze()
+    try:
+        yield
+    finally:
+        gc.unfreeze()
 
 
 def register(app) -> None:
@@ -63,7 +77,8 @@ def register(app) -> None:
             "exit 2.")] = False,
         figures: Annotated[bool, typer.Option(
             "--figures/--no-figures", help="Draw the PNG figures (the slowest part of a "
-            "run).")] = True,
+            "run; drawn by the machine's cores, ROTORKIN_FIGURE_WORKERS=1 for one "
+            "process).")] = True,
         fmt: FormatOpt = "table",
         quiet: QuietOpt = False,
         verbose: VerboseOpt = False,
@@ -78,8 +93,11 @@ def register(app) -> None:
             outdir = out if out is not None else Path("rotorkin-out") / name
             check_out(outdir)  # before any work
             step("evaluating the design")
-            result = evaluate(cfg)
+            with _frozen():
+                result = evaluate(cfg)
             if strict:
+                from rotorkin.studies.limits import refuse
+
                 refuse(result)  # before anything is written
             if not figures:
                 result = dataclasses.replace(result, write_figures=lambda outdir: [])

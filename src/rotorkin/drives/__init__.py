@@ -5,34 +5,35 @@ schema, study, batch evaluation, synthesis, figures, report scene, CAD, publishe
 numbers) whose ``spec.py`` builds a :class:`~rotorkin.drives._spec.DriveSpec`.
 Everything else (config validation, ``run``, ``sweep``, ``tolerance``,
 ``synthesize``, ``export``, ``report``, the command-line help) iterates
-:data:`REGISTRY`. Adding a drive is one package and one line below; a drive
-defined elsewhere (a test, a plug-in) joins with :func:`register`.
+:data:`REGISTRY`. Adding a drive is one package and one line in :data:`BUILTIN`; a
+drive defined elsewhere (a test, a plug-in) joins with :func:`register`.
+
+The registry knows the built-in drives by name and imports a drive's package (its
+study, figures, CAD, ...) the first time its spec is asked for: ``rotorkin run`` of
+one drive imports that drive only. Listing the names (:func:`names`, ``in``,
+iterating the keys) and the built-in examples (:func:`example_files`) imports none.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import functools
+import gc
+import importlib
+from collections.abc import Iterator, MutableMapping
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-from pydantic import Field, create_model
 
 from rotorkin.core.errors import ConfigError, ParameterError
-from rotorkin.drives import (
-    eccentric_cam,
-    guide_bar,
-    noncircular_gears,
-    rhomboid_cam,
-    tabulated,
-    wobble_cam,
-)
 from rotorkin.drives._spec import DriveSpec
-from rotorkin.studies.checks import failure_line, limit_checks, profile_checks
-from rotorkin.studies.limits import limit_value, violations
-from rotorkin.synthesis import SynthesisResult
-from rotorkin.vane import MACHINES
-from rotorkin.vane import evaluate as evaluate_vane_machine
-from rotorkin.vane.study import CONTACT_HEADLINE, HEADLINES
+
+if TYPE_CHECKING:
+    from rotorkin.synthesis import SynthesisResult
+
+# The vane machines, the studies' checks and limits (pint, scipy) are imported by the
+# functions that use them: listing the drives and examples imports none of them.
 
 __all__ = [
     "REGISTRY",
@@ -44,13 +45,92 @@ __all__ = [
     "config_model",
     "spec_of",
     "register",
+    "unregister",
+    "loaded",
+    "example_files",
     "evaluate",
     "design_checks",
     "synthesize",
 ]
 
-#: drive.type -> its spec, in the order of the command-line help.
-REGISTRY: dict[str, DriveSpec] = {}
+#: The built-in drives, in the order of the command-line help: drive.type -> the package
+#: (under ``rotorkin/drives/``) whose ``SPEC`` is the drive's spec; its examples are the
+#: ``examples/*.toml`` files of that package.
+BUILTIN = (
+    "wobble_cam",
+    "eccentric_cam",
+    "guide_bar",
+    "rhomboid_cam",
+    "noncircular_gears",
+    "tabulated",
+)
+
+
+class Registry(MutableMapping):
+    """drive.type -> :class:`DriveSpec`, importing a built-in drive on first access.
+
+    A mapping like a dict (in the order of the command-line help): its keys, ``len``
+    and ``in`` import nothing; ``registry[name]``, ``values()`` and ``items()`` import
+    the drives they return (once). A spec set with ``registry[name] = spec`` (see
+    :func:`register`) is held as given.
+    """
+
+    def __init__(self, builtin=()):
+        # name -> its spec, or the module that holds it (not imported yet)
+        self._entries: dict[str, DriveSpec | str] = {name: f"{__name__}.{name}" for name in builtin}
+
+    def __getitem__(self, name: str) -> DriveSpec:
+        entry = self._entries[name]
+        if isinstance(entry, str):
+            enabled = gc.isenabled()
+            gc.disable()  # an import creates few cycles: no collection meanwhile
+            try:
+                spec = importlib.import_module(entry).SPEC
+            finally:
+                if enabled:
+                    gc.enable()
+            if spec.name != name:  # pragma: no cover - a package's SPEC under another name
+                raise ValueError(f"the package {entry} holds the drive {spec.name!r}, not {name!r}")
+            self._entries[name] = entry = spec
+        return entry
+
+    def __setitem__(self, name: str, spec: DriveSpec) -> None:
+        self._entries[name] = spec
+
+    def __delitem__(self, name: str) -> None:
+        del self._entries[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(list(self._entries))
+
+    def __len__(self) -> int:
+        return len(self._entries)
+
+    def __contains__(self, name) -> bool:
+        return name in self._entries
+
+    def loaded(self, name: str) -> bool:
+        """Whether ``name``'s spec is at hand (its package imported)."""
+        return isinstance(self._entries.get(name), DriveSpec)
+
+    def package(self, name: str) -> Path | None:
+        """The folder of a built-in drive not imported yet (None otherwise)."""
+        entry = self._entries.get(name)
+        if not isinstance(entry, str):
+            return None
+        return Path(__file__).resolve().parent / entry.rsplit(".", 1)[-1]
+
+    def __repr__(self) -> str:
+        shown = ", ".join(
+            f"{k!r}: {'<not imported>' if isinstance(v, str) else v.title!r}"
+            for k, v in self._entries.items()
+        )
+        return f"Registry({{{shown}}})"
+
+
+#: drive.type -> its spec, in the order of the command-line help (built-in drives are
+#: imported on first access, see :class:`Registry`).
+REGISTRY: Registry = Registry(BUILTIN)
 
 #: Most harmonics a synthesized law may have (``rotorkin synthesize --harmonics``).
 MAX_HARMONICS = 1000
@@ -75,8 +155,31 @@ def unregister(name: str) -> None:
 
 
 def names() -> list[str]:
-    """The registered drive types."""
+    """The registered drive types (nothing imported)."""
     return list(REGISTRY)
+
+
+def loaded(name: str) -> bool:
+    """Whether the drive ``name`` has been imported (its spec is at hand)."""
+    return REGISTRY.loaded(name)
+
+
+def example_files() -> dict[str, Path]:
+    """Built-in example name -> its TOML file, over every registered drive.
+
+    A built-in drive not imported yet is read from its package's ``examples`` folder
+    (nothing imported); any other from its spec's ``examples`` and ``example_dir``.
+    """
+    out = {}
+    for kind in REGISTRY:
+        folder = REGISTRY.package(kind)
+        if folder is not None:
+            out.update({p.stem: p for p in sorted((folder / "examples").glob("*.toml"))})
+            continue
+        spec = REGISTRY[kind]
+        if spec.example_dir is not None:
+            out.update({name: spec.example_dir / f"{name}.toml" for name in spec.examples})
+    return out
 
 
 def get(name) -> DriveSpec:
@@ -100,6 +203,8 @@ def machine_type(cfg: dict, spec: DriveSpec | None = None) -> str:
 
 
 def _check_machine(spec: DriveSpec, kind) -> None:
+    from rotorkin.vane import MACHINES
+
     if kind == spec.machine:
         return
     if spec.law is None:
@@ -116,6 +221,10 @@ def _check_machine(spec: DriveSpec, kind) -> None:
 
 @functools.cache
 def _composed(model: type, kind: str) -> type:
+    from pydantic import Field, create_model
+
+    from rotorkin.vane import MACHINES
+
     machine, loads, _ = MACHINES[kind]
     return create_model(
         f"{model.__name__}_{kind}",
@@ -156,6 +265,9 @@ def spec_of(cfg: dict) -> DriveSpec:
 
 
 def _carrying(spec: DriveSpec, kind: str) -> DriveSpec:
+    from rotorkin.vane import evaluate as evaluate_vane_machine
+    from rotorkin.vane.study import HEADLINES
+
     if spec.carries_any:  # its study runs any machine: only the headline's tail changes
         own = {k: v for k, v in spec.headline.items() if k not in HEADLINES.get(spec.machine, {})}
         return dataclasses.replace(
@@ -201,6 +313,10 @@ def evaluate(cfg: dict):
     -------
     rotorkin.studies.StudyResult
     """
+    from rotorkin.studies.checks import failure_line, limit_checks
+    from rotorkin.studies.limits import violations
+    from rotorkin.vane.study import CONTACT_HEADLINE
+
     spec = spec_of(cfg)
     checks = design_checks(cfg)  # what export refuses, every command refuses
     result = spec.study(cfg)
@@ -238,6 +354,9 @@ def design_checks(cfg: dict) -> list:
     if spec.checks is not None:
         return list(spec.checks(cfg))
     if spec.cad_parts is not None:
+        from rotorkin.studies.checks import profile_checks
+        from rotorkin.studies.limits import limit_value
+
         _, profiles = spec.cad_parts(cfg, False)
         angle = limit_value(cfg, "limits.pressure_angle")
         return [c for label, p in profiles for c in profile_checks(label, p, angle)]
@@ -322,5 +441,8 @@ def synthesize(
     return spec.synthesize(cfg, raw, objective, target, harmonics, None)
 
 
-for _module in (wobble_cam, eccentric_cam, guide_bar, rhomboid_cam, noncircular_gears, tabulated):
-    register(_module.SPEC)
+def __getattr__(name: str):
+    """A built-in drive's package as an attribute (``rotorkin.drives.wobble_cam``), imported."""
+    if name in BUILTIN:
+        return importlib.import_module(f"{__name__}.{name}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

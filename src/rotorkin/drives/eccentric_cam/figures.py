@@ -6,12 +6,14 @@ matplotlib is imported on first use (:func:`rotorkin.render.figures.pyplot`).
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
 
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.machines import opposed_piston as op
+from rotorkin.render.figures import draw
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save as _save
 
@@ -82,7 +84,7 @@ def fig_decomposition(params: ec.EccentricCam, path: Path) -> Path:
     fig.suptitle(
         "Fig. 6  Knife-edge piston travel: harmonic and additional parts (" + _tag(params) + ")"
     )
-    return _save(fig, path)
+    return _save(fig, path, layout=(1.0, 1.3, 0.3, 0.68, 1.1))
 
 
 def fig_gap_change_ratio(params: ec.EccentricCam, path: Path) -> Path:
@@ -98,7 +100,7 @@ def fig_gap_change_ratio(params: ec.EccentricCam, path: Path) -> Path:
     _axes_deg(ax, "delta = Delta / e [-]")
     ax.legend(fontsize=8, loc="lower center")
     ax.set_title("Fig. 7  Change of the distance between the inner faces, knife-edge pistons")
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.9, 0.6, 0.3, 0.37))
 
 
 def fig_pistons(params: ec.EccentricCam, path: Path) -> Path:
@@ -122,7 +124,7 @@ def fig_pistons(params: ec.EccentricCam, path: Path) -> Path:
     _axes_deg(ax, "x, x', delta [-]")
     ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=4)
     ax.set_title("Fig. 8  Left and right pistons and gap change\n" + _tag(params))
-    return _save(fig, path)
+    return _save(fig, path, layout=(1.0, 0.98, 0.3, 0.58))
 
 
 def fig_followers(params: ec.EccentricCam, path: Path) -> Path:
@@ -150,7 +152,7 @@ def fig_followers(params: ec.EccentricCam, path: Path) -> Path:
     ax1.legend(fontsize=7, loc="lower left")
     ax2.legend(fontsize=8, loc="lower left")
     fig.suptitle(f"Follower comparison: R = {R * 1e3:.4g} mm, e = {e * 1e3:.4g} mm")
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.87, 0.6, 0.3, 0.68, 0.95))
 
 
 # --------------------------------------------------------------------------------------------
@@ -200,7 +202,7 @@ def fig_reactor_volume_pressure(params, reactor, beta, state, summary, path: Pat
     ax2.legend(fontsize=8, loc="center right")
     ax2.set_title(f"pressure ripple {summary['pressure_ripple_bar']:.4g} bar "
                   f"({summary['pressure_ripple_relative']:.4g} x p0)", fontsize=9)  # fmt: skip
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.97, 0.6, 0.3, 0.5, 0.0, 0.38))
 
 
 def fig_reactor_torque(params, reactor, beta, state, summary, path: Path) -> Path:
@@ -225,7 +227,7 @@ def fig_reactor_torque(params, reactor, beta, state, summary, path: Path) -> Pat
     ax2.plot(b, state["F"][1] / 1e3, "C1", lw=1.5, ls="--", label="fluid on the right piston")
     _axes_deg(ax2, "piston force [kN] (+ towards the centre)")
     ax2.legend(fontsize=8, loc="lower right")
-    return _save(fig, path)
+    return _save(fig, path, layout=(1.08, 0.6, 0.3, 0.5, 0.0, 0.21))
 
 
 def fig_reactor_ripple_vs_lambda(params, reactor, path: Path) -> Path:
@@ -257,7 +259,7 @@ def fig_reactor_ripple_vs_lambda(params, reactor, path: Path) -> Path:
     ax.legend(fontsize=8, loc="lower right")
     ax.set_title("Pressure ripple vs eccentricity ratio (the flat follower gives none)\n"
                  + _reactor_tag(params, reactor), fontsize=9)  # fmt: skip
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.9, 0.6, 0.3, 0.5))
 
 
 def fig_forces(params, beta, cols: dict, path: Path) -> Path:
@@ -297,7 +299,7 @@ def fig_forces(params, beta, cols: dict, path: Path) -> Path:
     fig.suptitle(f"Pair forces at the run speed, {params.follower} follower, "
                  f"R = {float(params.disc_radius) * 1e3:.4g} mm, "
                  f"e = {float(params.eccentricity) * 1e3:.4g} mm", fontsize=10)  # fmt: skip
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.95, 0.6, 0.3, 0.49, 0.0, 0.22))
 
 
 def plot_all(params: ec.EccentricCam, outdir: Path, reactor=None, beta=None, state=None,
@@ -321,20 +323,22 @@ def plot_all(params: ec.EccentricCam, outdir: Path, reactor=None, beta=None, sta
     """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    paths = [
-        fig_decomposition(params, outdir / "fig06_travel_decomposition.png"),
-        fig_gap_change_ratio(params, outdir / "fig07_gap_change_ratio.png"),
-        fig_pistons(params, outdir / "fig08_pistons_and_gap.png"),
-        fig_followers(params, outdir / "fig_followers_comparison.png"),
+    p = functools.partial
+    tasks = [
+        p(fig_decomposition, params, outdir / "fig06_travel_decomposition.png"),
+        p(fig_gap_change_ratio, params, outdir / "fig07_gap_change_ratio.png"),
+        p(fig_pistons, params, outdir / "fig08_pistons_and_gap.png"),
+        p(fig_followers, params, outdir / "fig_followers_comparison.png"),
     ]
     if reactor is not None:
-        paths += [
-            fig_reactor_volume_pressure(params, reactor, beta, state, summary,
-                                        outdir / "reactor_volume_pressure.png"),
-            fig_reactor_torque(params, reactor, beta, state, summary,
-                               outdir / "reactor_torque.png"),
-            fig_reactor_ripple_vs_lambda(params, reactor, outdir / "reactor_ripple_vs_lambda.png"),
+        tasks += [
+            p(fig_reactor_volume_pressure, params, reactor, beta, state, summary,
+              outdir / "reactor_volume_pressure.png"),
+            p(fig_reactor_torque, params, reactor, beta, state, summary,
+              outdir / "reactor_torque.png"),
+            p(fig_reactor_ripple_vs_lambda, params, reactor,
+              outdir / "reactor_ripple_vs_lambda.png"),
         ]  # fmt: skip
     if forces is not None:
-        paths.append(fig_forces(params, beta, forces, outdir / "forces.png"))
-    return paths
+        tasks.append(p(fig_forces, params, beta, forces, outdir / "forces.png"))
+    return draw(tasks)

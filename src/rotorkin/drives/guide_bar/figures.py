@@ -6,18 +6,18 @@ pyplot comes from :func:`rotorkin.render.figures.pyplot` (the command line choos
 
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-from matplotlib.patches import Patch, Wedge
 
 from rotorkin.analysis import pairs as pr
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.machines import vane_pump as vp
+from rotorkin.render.figures import draw, fixed_layout, save_in
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save as _save
-from rotorkin.render.figures import save_in
 
 __all__ = [
     "TORQUE_LAMBDAS",
@@ -76,7 +76,7 @@ def fig_speed_ratios(params: gb.GuideBar, driver: str, path: Path, number: int) 
         f"Fig. {number}  {_LABEL[driver]} impeller speeds ({_tag(p)})\n"
         f"vane angle gamma_0 = {np.degrees(g0):.2f} deg"
     )
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.8, 1.17, 0.3, 0.58))
 
 
 def fig_vane_angle(params: gb.GuideBar, path: Path) -> Path:
@@ -101,7 +101,7 @@ def fig_vane_angle(params: gb.GuideBar, path: Path) -> Path:
     ax.plot([np.degrees(g_cfg)], [params.lam], "k*", ms=12,
             label=f"config ({_LABEL[params.driver]}): {np.degrees(g_cfg):.2f} deg")  # fmt: skip
     fig9_axes(ax, "Fig. 9  lambda vs vane angle gamma_0, Sigma = 180 deg")
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.8, 0.6, 0.2, 0.37))
 
 
 def fig9_axes(ax, title: str) -> None:
@@ -159,7 +159,7 @@ def fig_input_torque(params: gb.GuideBar, driver: str, m7, m8, path: Path, numbe
     if driver == "guide" and m7 == m8 and abs(np.cos(0.5 * params.phase)) < 1e-12:
         ax.text(0.5, 0.08, "M7 = M8 and Sigma = 180 deg: M1 is constant, h'(y) + h'(y + pi) = 2",
                 transform=ax.transAxes, ha="center", fontsize=9)  # fmt: skip
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.8, 0.6, 0.2, 0.58))
 
 
 def fig_relative_angle(params: gb.GuideBar, path: Path) -> Path:
@@ -180,7 +180,7 @@ def fig_relative_angle(params: gb.GuideBar, path: Path) -> Path:
     ax.grid(True, alpha=0.4)
     ax.legend(fontsize=8)
     ax.set_title(f"Angle between the impellers (chamber angle change)\n{_tag(params)}")
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.85, 0.6, 0.2, 0.58))
 
 
 # --------------------------------------------------------------------------------------------
@@ -233,6 +233,8 @@ def fig_pump_sections(drive: gb.GuideBar, pump, ports, path: Path) -> Path:
     k = pump.volume_per_angle * 1e6
     z = int(pump.vanes_per_impeller)
     rh, rc, g = pump.hub_radius * 1e3, pump.casing_radius * 1e3, float(pump.vane_angle)
+    from matplotlib.patches import Patch, Wedge  # with pyplot, not when the drive is imported
+
     fig, axes = plt.subplots(1, 4, figsize=(16, 5.2))
     for n, ax in enumerate(axes):
         ax.add_patch(Wedge((0, 0), rc * 1.04, 0, 360, width=rc * 0.04, color="0.3"))
@@ -272,7 +274,7 @@ def fig_pump_sections(drive: gb.GuideBar, pump, ports, path: Path) -> Path:
     fig.legend(handles=handles, loc="lower center", ncol=5, fontsize=9)
     fig.suptitle("Pump cross-sections (sense of rotation counter-clockwise)\n"
                  + _pump_tag(pump, ports), fontsize=10)  # fmt: skip
-    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    fixed_layout(fig, 0.85, 0.52, 0.15, 0.64, 0.6)
     return save_in(fig, path.parent, path.name)
 
 
@@ -313,7 +315,7 @@ def fig_pump_chambers(pump, ports, theta, state, path: Path) -> Path:
         max(ports.suction_pressure, ports.discharge_pressure) / 1e5 + 0.15 * span + 0.1,
     )
     ax2.legend(fontsize=8, loc="center right")
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.85, 0.6, 0.3, 0.5, 0.0, 0.21))
 
 
 def fig_pump_flow(pump, ports, theta, state, summary, path: Path) -> Path:
@@ -336,7 +338,7 @@ def fig_pump_flow(pump, ports, theta, state, summary, path: Path) -> Path:
         + _pump_tag(pump, ports),
         fontsize=9,
     )
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.85, 0.6, 0.3, 0.5))
 
 
 def fig_pump_torque(pump, ports, theta, state, summary, path: Path) -> Path:
@@ -362,7 +364,7 @@ def fig_pump_torque(pump, ports, theta, state, summary, path: Path) -> Path:
     ax2.plot(deg, state["M"][1], "C2", lw=1.5, ls="--", label="impeller 2: sum p dV/dq_2")
     _theta_axis(ax2, theta, "pressure torque on impeller [N*m]")
     ax2.legend(fontsize=8, loc="lower right")
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.95, 0.6, 0.3, 0.5, 0.0, 0.21))
 
 
 def fig_forces(theta, pairs, model: pr.ContactModel, summary, path: Path) -> Path:
@@ -412,7 +414,7 @@ def fig_forces(theta, pairs, model: pr.ContactModel, summary, path: Path) -> Pat
         f"{summary.get('friction_loss_W', float('nan')):.4g} W, efficiency {100 * eta:.4g} %",
         fontsize=9,
     )
-    return _save(fig, path)
+    return _save(fig, path, layout=(0.95, 0.6, 0.3, 0.33, 0.0, 0.24))
 
 
 def plot_all(params: gb.GuideBar, m7: float, m8: float, outdir: Path, pump=None, ports=None,
@@ -439,22 +441,23 @@ def plot_all(params: gb.GuideBar, m7: float, m8: float, outdir: Path, pump=None,
     """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    paths = [
-        fig_speed_ratios(params, "crank", outdir / "fig03_speed_crank_driven.png", 3),
-        fig_speed_ratios(params, "guide", outdir / "fig05_speed_guide_driven.png", 5),
-        fig_vane_angle(params, outdir / "fig09_lambda_vane_angle.png"),
-        fig_input_torque(params, "crank", m7, m8, outdir / "fig10_torque_crank_driven.png", 10),
-        fig_input_torque(params, "guide", m7, m8, outdir / "fig11_torque_guide_driven.png", 11),
-        fig_relative_angle(params, outdir / "fig_relative_angle.png"),
+    p = functools.partial
+    tasks = [
+        p(fig_speed_ratios, params, "crank", outdir / "fig03_speed_crank_driven.png", 3),
+        p(fig_speed_ratios, params, "guide", outdir / "fig05_speed_guide_driven.png", 5),
+        p(fig_vane_angle, params, outdir / "fig09_lambda_vane_angle.png"),
+        p(fig_input_torque, params, "crank", m7, m8, outdir / "fig10_torque_crank_driven.png", 10),
+        p(fig_input_torque, params, "guide", m7, m8, outdir / "fig11_torque_guide_driven.png", 11),
+        p(fig_relative_angle, params, outdir / "fig_relative_angle.png"),
     ]
     if pump is not None:
-        paths += [
-            fig_pump_sections(params, pump, ports, outdir / "pump_sections.png"),
-            fig_pump_chambers(pump, ports, theta, state, outdir / "pump_chambers.png"),
-            fig_pump_flow(pump, ports, theta, state, summary, outdir / "pump_flow.png"),
-            fig_pump_torque(pump, ports, theta, state, summary, outdir / "pump_torque.png"),
+        tasks += [
+            p(fig_pump_sections, params, pump, ports, outdir / "pump_sections.png"),
+            p(fig_pump_chambers, pump, ports, theta, state, outdir / "pump_chambers.png"),
+            p(fig_pump_flow, pump, ports, theta, state, summary, outdir / "pump_flow.png"),
+            p(fig_pump_torque, pump, ports, theta, state, summary, outdir / "pump_torque.png"),
         ]
     if pairs:
-        paths.append(fig_forces(theta, pairs, contact or pr.ContactModel(), summary or {},
-                                outdir / "forces.png"))  # fmt: skip
-    return paths
+        tasks.append(p(fig_forces, theta, pairs, contact or pr.ContactModel(), summary or {},
+                       outdir / "forces.png"))  # fmt: skip
+    return draw(tasks)

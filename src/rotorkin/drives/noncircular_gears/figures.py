@@ -30,4 +30,4 @@ def plot_pitch_curves(params: ng.NoncircularGears, outdir: Path) -> list[Path]:
     ax.grid(True, alpha=0.4)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=3, fontsize=8)
     ax.set_title(f"pitch curves in mesh at theta = 0, e = {params.eccentricity:g}", fontsize=10)
-    return [save(fig, Path(outdir) / "pitch_curves.png")]
+    return [save(fig, Path(outdir) / "pitch_curves.png", layout=(0.85, 0.95, 0.15, 0.35))]

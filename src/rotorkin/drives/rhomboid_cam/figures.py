@@ -7,12 +7,13 @@ the backend is the caller's.
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
 
 from rotorkin.drives.rhomboid_cam import kinematics as rc
-from rotorkin.render.figures import pyplot, save, save_in
+from rotorkin.render.figures import draw, fixed_layout, pyplot, save, save_in
 
 __all__ = [
     "plot_all",
@@ -94,7 +95,7 @@ def fig_cam_profile(params, outdir: Path, alphas_deg=(0.0, 30.0, 60.0)) -> Path:
     ax.set_title(f"Cam pitch curve and rhomboid (cf. Fig. 1)\n{_tag(params)}", fontsize=10)
     ax.grid(True, alpha=0.4)
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
-    return save(fig, Path(outdir) / "fig01_cam_profile.png")
+    return save(fig, Path(outdir) / "fig01_cam_profile.png", layout=(0.15, 0.6, 2.05, 0.53))
 
 
 def fig_psi_law(params, outdir: Path, points: int = 1441) -> Path:
@@ -122,7 +123,7 @@ def fig_psi_law(params, outdir: Path, points: int = 1441) -> Path:
     axes[-1].set_xlabel("alpha [deg]")
     axes[-1].set_xticks(np.arange(0, 181, 30))
     fig.suptitle(f"Angle between the blade axes psi(alpha)\n{_tag(params)}", fontsize=10)
-    return save(fig, Path(outdir) / "fig02_psi_law.png")
+    return save(fig, Path(outdir) / "fig02_psi_law.png", layout=(0.9, 0.6, 0.15, 0.64, 0.0, 0.21))
 
 
 def fig_blade_motion(params, outdir: Path, points: int = 1441) -> Path:
@@ -145,7 +146,9 @@ def fig_blade_motion(params, outdir: Path, points: int = 1441) -> Path:
     axes[-1].set_xlabel("alpha [deg]")
     axes[-1].set_xticks(np.arange(0, 181, 30))
     fig.suptitle(f"Blade motion\n{_tag(params)}", fontsize=10)
-    return save(fig, Path(outdir) / "fig03_blade_motion.png")
+    return save(
+        fig, Path(outdir) / "fig03_blade_motion.png", layout=(0.85, 0.6, 0.15, 0.64, 0.0, 0.21)
+    )
 
 
 def fig_work_loop(params, torque_high, torque_low, outdir: Path, points: int = 1441) -> Path:
@@ -193,19 +196,26 @@ def fig_work_loop(params, torque_high, torque_low, outdir: Path, points: int = 1
     bx.grid(True, alpha=0.4)
     bx.legend(fontsize=8)
     fig.suptitle(f"{_tag(params)}; M1 = {torque_high:g} N m, M2 = {torque_low:g} N m", fontsize=10)
-    return save(fig, Path(outdir) / "fig04_work_loop.png")
+    return save(fig, Path(outdir) / "fig04_work_loop.png", layout=(0.95, 0.6, 0.15, 0.64, 0.85))
+
+
+def figure_tasks(params, torque_high, torque_low, outdir: Path) -> list:
+    """The figures of :func:`plot_all` as tasks (:func:`rotorkin.render.figures.draw`)."""
+    outdir = Path(outdir)
+    p = functools.partial
+    return [
+        p(fig_cam_profile, params, outdir),
+        p(fig_psi_law, params, outdir),
+        p(fig_blade_motion, params, outdir),
+        p(fig_work_loop, params, float(torque_high), float(torque_low), outdir),
+    ]
 
 
 def plot_all(params, torque_high, torque_low, outdir: Path) -> list[Path]:
     """Write every figure of the drive into ``outdir``; return the paths."""
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    return [
-        fig_cam_profile(params, outdir),
-        fig_psi_law(params, outdir),
-        fig_blade_motion(params, outdir),
-        fig_work_loop(params, float(torque_high), float(torque_low), outdir),
-    ]
+    return draw(figure_tasks(params, torque_high, torque_low, outdir))
 
 
 # --- the rotary-blade engine ---------------------------------------------------------------
@@ -282,7 +292,9 @@ def fig_chamber_volumes(machine, loads, state, summary, outdir: Path) -> Path:
         a.grid(True, alpha=0.4)
     ax.legend(fontsize=8, loc="upper center", ncol=2)
     fig.suptitle(f"Rotary-blade engine: chambers\n{_machine_tag(machine, loads)}", fontsize=9)
-    return save(fig, Path(outdir) / "fig05_chamber_volumes.png")
+    return save(
+        fig, Path(outdir) / "fig05_chamber_volumes.png", layout=(0.95, 0.6, 0.75, 0.8, 0.0, 0.24)
+    )
 
 
 def fig_pv_diagram(machine, loads, state, summary, outdir: Path) -> Path:
@@ -330,7 +342,7 @@ def fig_pv_diagram(machine, loads, state, summary, outdir: Path) -> Path:
         fontsize=9,
     )
     fig.suptitle(_machine_tag(machine, loads), fontsize=8)
-    return save(fig, Path(outdir) / "fig06_pv_diagram.png")
+    return save(fig, Path(outdir) / "fig06_pv_diagram.png", layout=(0.75, 0.6, 0.15, 0.6))
 
 
 def fig_shaft_torque(machine, loads, curves, summary, outdir: Path) -> Path:
@@ -379,7 +391,9 @@ def fig_shaft_torque(machine, loads, curves, summary, outdir: Path) -> Path:
     for a in (ax, bx, cx):
         a.grid(True, alpha=0.4)
     fig.suptitle(f"Output-shaft torque and flywheel\n{_machine_tag(machine, loads)}", fontsize=9)
-    return save(fig, Path(outdir) / "fig07_shaft_torque.png")
+    return save(
+        fig, Path(outdir) / "fig07_shaft_torque.png", layout=(0.97, 0.6, 0.15, 0.8, 0.0, 0.4)
+    )
 
 
 def fig_blade_layout(params, machine, loads, state, outdir: Path,
@@ -437,7 +451,7 @@ def fig_blade_layout(params, machine, loads, state, outdir: Path,
         f"{_machine_tag(machine, loads)}",
         fontsize=9,
     )
-    fig.tight_layout(rect=(0.0, 0.03, 1.0, 1.0))
+    fixed_layout(fig, 0.85, 0.83, 0.15, 0.72, 0.85, 0.63)
     return save_in(fig, outdir, "fig08_blade_layout.png")
 
 
@@ -486,7 +500,7 @@ def fig_forces(machine, loads, curves, summary, outdir: Path) -> Path:
         a.legend(fontsize=8, loc="upper right")
     fig.suptitle(f"Forces in the converter (blade loads and inertia at the run speed)\n"
                  f"{_machine_tag(machine, loads)}", fontsize=9)  # fmt: skip
-    return save(fig, Path(outdir) / "fig09_forces.png")
+    return save(fig, Path(outdir) / "fig09_forces.png", layout=(1.2, 0.6, 0.15, 0.79, 0.0, 0.22))
 
 
 def plot_machine(params, machine, loads, state, curves, summary, outdir: Path) -> list[Path]:
@@ -505,11 +519,18 @@ def plot_machine(params, machine, loads, state, curves, summary, outdir: Path) -
     """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    paths = [fig_chamber_volumes(machine, loads, state, summary, outdir)]
+    return draw(machine_tasks(params, machine, loads, state, curves, summary, outdir))
+
+
+def machine_tasks(params, machine, loads, state, curves, summary, outdir: Path) -> list:
+    """The figures of :func:`plot_machine` as tasks (:func:`rotorkin.render.figures.draw`)."""
+    outdir = Path(outdir)
+    p = functools.partial
+    tasks = [p(fig_chamber_volumes, machine, loads, state, summary, outdir)]
     if loads.model == "isothermal":
-        paths.append(fig_pv_diagram(machine, loads, state, summary, outdir))
-    paths.append(fig_shaft_torque(machine, loads, curves, summary, outdir))
-    paths.append(fig_blade_layout(params, machine, loads, state, outdir))
+        tasks.append(p(fig_pv_diagram, machine, loads, state, summary, outdir))
+    tasks.append(p(fig_shaft_torque, machine, loads, curves, summary, outdir))
+    tasks.append(p(fig_blade_layout, params, machine, loads, state, outdir))
     if "forces" in curves:
-        paths.append(fig_forces(machine, loads, curves, summary, outdir))
-    return paths
+        tasks.append(p(fig_forces, machine, loads, curves, summary, outdir))
+    return tasks

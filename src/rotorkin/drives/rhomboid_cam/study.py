@@ -54,6 +54,7 @@ from rotorkin.drives.rhomboid_cam.schema import (
 )
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.machines import rotary_blade_stirling as rbs
+from rotorkin.render.figures import draw
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 from rotorkin.vane import RotaryLaw
@@ -613,10 +614,12 @@ def evaluate(cfg: dict) -> StudyResult:
         return machine_state(params, machine, loads, alpha)
 
     def plot(outdir: Path) -> list[Path]:
-        figs = figures_rhomboid_cam.plot_all(params, m1, m2, Path(outdir))
-        return figs + figures_rhomboid_cam.plot_machine(
-            params, machine, loads, state, curves, summary, Path(outdir)
-        )
+        outdir = Path(outdir)
+        return draw([
+            *figures_rhomboid_cam.figure_tasks(params, m1, m2, outdir),
+            *figures_rhomboid_cam.machine_tasks(params, machine, loads, state, curves, summary,
+                                                outdir),
+        ])  # fmt: skip
 
     return StudyResult(
         drive_type="rhomboid_cam",

@@ -8,6 +8,7 @@ chooses the backend).
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -20,10 +21,11 @@ from rotorkin.analysis.torque import inertia_torque
 from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import forces as fo
 from rotorkin.drives.wobble_cam import kinematics as wc
-from rotorkin.render.figures import pyplot, save_in
+from rotorkin.render.figures import axes3d, draw, fixed_layout, pyplot, save_in
 
 __all__ = [
     "plot_all",
+    "figure_tasks",
     "fig_roller_trajectory",
     "fig_groove_centreline",
     "fig_chamber_angle",
@@ -70,7 +72,7 @@ def _four_views(fig, curves, radius_mm, title):
 
     curves : list of (xyz array (3, N) in mm, style dict).
     """
-    ax3 = fig.add_subplot(2, 2, 1, projection="3d")
+    ax3 = axes3d(fig, 2, 2, 1, title="(a) 3D view")
     _sphere(ax3, radius_mm)
     for p, style in curves:
         ax3.plot(p[0], p[1], p[2], **style)
@@ -81,7 +83,6 @@ def _four_views(fig, curves, radius_mm, title):
     lim = 1.05 * radius_mm
     for setter in (ax3.set_xlim, ax3.set_ylim, ax3.set_zlim):
         setter(-lim, lim)
-    ax3.set_title("(a) 3D view")
     views = (
         (0, 1, "(b) z-axis view (xy plane)"),
         (0, 2, "(c) y-axis view (xz plane)"),
@@ -118,7 +119,7 @@ def fig_roller_trajectory(params, outdir: Path, points: int = 1441) -> Path:
         params.sphere_radius * 1e3,
         f"Fig. 8  Roller trajectory in the fixed frame xyz\n{_tag(params)}",
     )
-    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    fixed_layout(fig, 0.65, 0.95, 0.15, 0.91, 0.55, 0.8)  # the legend below
     return save_in(fig, outdir, "fig08_roller_trajectory.png")
 
 
@@ -153,7 +154,7 @@ def fig_groove_centreline(params, outdir: Path, points: int = 1441) -> Path:
         params.sphere_radius * 1e3,
         "Fig. 9  Figure-eight groove centre-lines in the cam frame x4y4z4\n" + _tag(params),
     )
-    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    fixed_layout(fig, 0.65, 1.22, 0.15, 0.91, 0.55, 0.8)  # the legend below
     return save_in(fig, outdir, "fig09_groove_centreline.png")
 
 
@@ -188,7 +189,7 @@ def fig_chamber_angle(params, layout, outdir: Path, points: int = 1441) -> Path:
     ax.set_title("Fig. 10  Angle between neighbouring pistons vs shaft angle\n" + _tag(params))
     ax.grid(True, alpha=0.4)
     ax.legend(loc="upper right", ncol=2, fontsize=9)
-    fig.tight_layout()
+    fixed_layout(fig, 0.7, 0.6, 0.3, 0.58)
     return save_in(fig, outdir, "fig10_chamber_angle.png")
 
 
@@ -220,7 +221,7 @@ def fig_rotor_kinematics(params, outdir: Path, points: int = 2881) -> Path:
         ax.set_xlabel("shaft angle theta [deg]")
     axes[0, 0].legend(loc="center right")
     fig.suptitle("Rotor kinematics (exact closed forms)\n" + _tag(params))
-    fig.tight_layout()
+    fixed_layout(fig, 0.85, 0.6, 0.3, 0.91, 0.85, 0.45)
     return save_in(fig, outdir, "fig_rotor_kinematics.png")
 
 
@@ -328,7 +329,7 @@ def fig_chamber_volumes(params, layout, machine, cycle, outdir: Path, points: in
     fig.suptitle(
         "Chamber volumes over one shaft turn\n" + _engine_tag(params, machine, cycle), fontsize=10
     )
-    fig.tight_layout()
+    fixed_layout(fig, 0.9, 0.6, 0.3, 0.98, 0.0, 0.42)
     return save_in(fig, outdir, "fig_chamber_volumes.png")
 
 
@@ -409,7 +410,7 @@ def fig_pv_diagram(params, layout, machine, cycle, outdir: Path, points: int = 4
         + _engine_tag(params, machine, cycle),
         fontsize=10,
     )
-    fig.tight_layout()
+    fixed_layout(fig, 0.75, 0.62, 0.15, 0.85, 1.75)
     return save_in(fig, outdir, "fig_pv_diagram.png")
 
 
@@ -458,7 +459,7 @@ def fig_shaft_torque(
     ax.legend(loc="upper right", fontsize=8)
     _xaxis(ax, 360)
     fig.suptitle("Shaft torque over one turn\n" + _engine_tag(params, machine, cycle), fontsize=10)
-    fig.tight_layout()
+    fixed_layout(fig, 1.0, 0.6, 0.3, 0.85, 0.0, 0.42)
     return save_in(fig, outdir, "fig_shaft_torque.png")
 
 
@@ -528,7 +529,7 @@ def fig_four_stroke(params, layout, machine, cycle, outdir: Path, points: int = 
     )
     _xaxis(ax2, 360)
     fig.suptitle("Four-stroke assignment\n" + _engine_tag(params, machine, cycle), fontsize=10)
-    fig.tight_layout()
+    fixed_layout(fig, 0.85, 0.6, 0.3, 0.85, 0.0, 0.45)
     return save_in(fig, outdir, "fig_four_stroke.png")
 
 
@@ -580,12 +581,38 @@ def fig_forces(f: fo.Forces, plist, fp: fo.ForceParams, model, outdir: Path) -> 
     ax.legend(loc="upper right", fontsize=7, ncol=5)
     _xaxis(ax, 360)
     fig.suptitle("Forces in the pairs of the wobble-cam drive over one turn", fontsize=10)
-    fig.tight_layout()
+    fixed_layout(fig, 1.05, 0.6, 0.3, 0.62, 0.0, 0.38)
     return save_in(fig, outdir, "forces.png")
 
 
 _BEARINGS = ("plate_bearing_a", "plate_bearing_b", "cam_bearing_a", "cam_bearing_b",
              "bevel_idler_bearing")  # fmt: skip
+
+
+def figure_tasks(params, layout, outdir: Path, machine=None, cycle=None, speed=None) -> list:
+    """The figures of :func:`plot_all` as tasks for :func:`rotorkin.render.figures.draw`.
+
+    Each task draws one figure into ``outdir`` and returns its path; the list is in the
+    order of :func:`plot_all`'s paths.
+    """
+    outdir = Path(outdir)
+    p = functools.partial
+    tasks = [
+        p(fig_roller_trajectory, params, outdir),
+        p(fig_groove_centreline, params, outdir),
+        p(fig_chamber_angle, params, layout, outdir),
+        p(fig_rotor_kinematics, params, outdir),
+    ]
+    if machine is not None:
+        cycle = IdealCycle() if cycle is None else cycle
+        speed = 100.0 * np.pi if speed is None else speed
+        tasks += [
+            p(fig_chamber_volumes, params, layout, machine, cycle, outdir),
+            p(fig_pv_diagram, params, layout, machine, cycle, outdir),
+            p(fig_shaft_torque, params, layout, machine, cycle, speed, outdir),
+            p(fig_four_stroke, params, layout, machine, cycle, outdir),
+        ]
+    return tasks
 
 
 def plot_all(params, layout, outdir: Path, machine=None, cycle=None, speed=None) -> list[Path]:
@@ -603,19 +630,4 @@ def plot_all(params, layout, outdir: Path, machine=None, cycle=None, speed=None)
     """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    paths = [
-        fig_roller_trajectory(params, outdir),
-        fig_groove_centreline(params, outdir),
-        fig_chamber_angle(params, layout, outdir),
-        fig_rotor_kinematics(params, outdir),
-    ]
-    if machine is not None:
-        cycle = IdealCycle() if cycle is None else cycle
-        speed = 100.0 * np.pi if speed is None else speed
-        paths += [
-            fig_chamber_volumes(params, layout, machine, cycle, outdir),
-            fig_pv_diagram(params, layout, machine, cycle, outdir),
-            fig_shaft_torque(params, layout, machine, cycle, speed, outdir),
-            fig_four_stroke(params, layout, machine, cycle, outdir),
-        ]
-    return paths
+    return draw(figure_tasks(params, layout, outdir, machine, cycle, speed))

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.drives.wobble_cam import cam as sph
-from rotorkin.render.figures import pyplot, save_in
+from rotorkin.render.figures import axes3d, fixed_layout, pyplot, save_in
 
 __all__ = ["plot_spherical_cam"]
 
@@ -74,7 +74,13 @@ def plot_spherical_cam(source, outdir, cam=None, points: int = 1441) -> list[Pat
 
     fig = plt.figure(figsize=(13, 10.5))
     # (a) sphere
-    ax = fig.add_subplot(2, 2, 1, projection="3d")
+    ax = axes3d(
+        fig,
+        2,
+        2,
+        1,
+        title="(a) grooves in the cam frame: centre-lines (r) and walls (R_i); x: crossing",
+    )
     r = drive.sphere_radius * 1e3
     u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 37), np.linspace(0, np.pi, 19))
     ax.plot_wireframe(
@@ -93,7 +99,6 @@ def plot_spherical_cam(source, outdir, cam=None, points: int = 1441) -> list[Pat
     ax.set_xlabel("x4 [mm]")
     ax.set_ylabel("y4 [mm]")
     ax.set_zlabel("z4 [mm]")
-    ax.set_title("(a) grooves in the cam frame: centre-lines (r) and walls (R_i); x: crossing")
 
     # (b) unrolled
     ax = fig.add_subplot(2, 2, 2)
@@ -178,5 +183,5 @@ def plot_spherical_cam(source, outdir, cam=None, points: int = 1441) -> list[Pat
         f", r = {r:.4g} mm, shell {cam.inner_radius * 1e3:.4g}..{cam.outer_radius * 1e3:.4g} mm, "
         f"groove to {cam.bottom_radius * 1e3:.4g} mm"
     )
-    fig.tight_layout(rect=(0, 0, 1, 0.97))
+    fixed_layout(fig, 0.7, 0.6, 0.3, 1.0, 0.85, 1.02)
     return [save_in(fig, outdir, "fig_spherical_cam.png")]

@@ -38,6 +38,7 @@ from rotorkin.drives.wobble_cam import forces as fo
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.machines import fuel_air as fa
 from rotorkin.machines import twin_rotor as tr
+from rotorkin.render.figures import draw
 from rotorkin.studies import StudyResult
 from rotorkin.studies.helpers import angle_grid, build_params, time_domain, undefined_warnings
 from rotorkin.vane import RotaryLaw
@@ -498,17 +499,15 @@ def evaluate(cfg: dict) -> StudyResult:
     summary = {k: v.item() if isinstance(v, np.generic) else v for k, v in summary.items()}
 
     def plot(outdir: Path) -> list[Path]:
-        paths = figures_wobble_cam.plot_all(
-            params, layout, Path(outdir), machine=machine, cycle=cycle, speed=speed
-        )
+        outdir = Path(outdir)
+        tasks = figures_wobble_cam.figure_tasks(params, layout, outdir, machine=machine,
+                                                cycle=cycle, speed=speed)  # fmt: skip
         if scam is not None:
-            paths.append(figures_wobble_cam.fig_forces(f_cols, p_cols, fp, model, Path(outdir)))
+            tasks.append(functools.partial(figures_wobble_cam.fig_forces, f_cols, p_cols, fp,
+                                           model, outdir))  # fmt: skip
         if "cam" in cfg:  # the cam's own figure, when its roller fits the grooves
-            try:
-                paths += figures_spherical_cam.plot_spherical_cam(cfg, Path(outdir))
-            except ParameterError as exc:
-                print(f"rotorkin: warning: spherical cam figure not drawn: {exc}", file=sys.stderr)
-        return paths
+            tasks.append(functools.partial(_cam_figure, cfg, outdir))
+        return draw(tasks, slowest=(len(tasks) - 1, len(tasks) - 2))
 
     return StudyResult(
         drive_type="wobble_cam",
@@ -521,6 +520,15 @@ def evaluate(cfg: dict) -> StudyResult:
         motion=wc.motion(params, theta),
         warnings=(*_warnings(cycle, summary), *_cam_warnings(cfg), *force_warnings),
     )
+
+
+def _cam_figure(cfg: dict, outdir: Path) -> list[Path]:
+    """The spherical cam's figure, or a warning line when its roller does not fit."""
+    try:
+        return figures_spherical_cam.plot_spherical_cam(cfg, outdir)
+    except ParameterError as exc:
+        print(f"rotorkin: warning: spherical cam figure not drawn: {exc}", file=sys.stderr)
+        return []
 
 
 def _forces(params, scam, fp, machine, cycle, speed, theta) -> fo.Forces:
