@@ -23,6 +23,12 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorkin.core.memory import tune_allocator
+
+#: The allocator the command line runs with (rotorkin.core.memory), for the library and
+#: its yardsticks alike: both sides of every ratio are timed in the same process.
+ALLOCATOR_TUNED = tune_allocator()
+
 __all__ = [
     "best_of",
     "interleaved",
@@ -162,6 +168,7 @@ def machine() -> dict:
         "numba": _numba_version(),
         "platform": platform.platform(),
         "load_average": load(),
+        "allocator": "glibc thresholds 32 MiB" if ALLOCATOR_TUNED else "default",
     }
 
 

@@ -139,7 +139,7 @@ def _replace_between(text: str, tag: str, body: str) -> str:
 
 
 def full(update_docs: bool = True) -> int:
-    """Refresh the kinematics, sweep and latency results and the tables of docs/performance.md."""
+    """Refresh the kinematics, sweep, cycle and latency results and the tables of the docs."""
     py = sys.executable
     kin = HERE / "results" / "kinematics.json"
     sweep = HERE / "results" / "sweep.json"
@@ -147,6 +147,9 @@ def full(update_docs: bool = True) -> int:
     subprocess.run([py, str(HERE / "bench_sweep.py"), "--sizes", "1e3,1e4", "--repeat", "2",
                     "--like-designs", "216", "--out", str(sweep)],
                    check=True)  # fmt: skip
+    subprocess.run([py, str(HERE / "bench_sweep.py"), "--cli", "--out", str(sweep)], check=True)
+    cycle = HERE / "results" / "cycle.json"
+    subprocess.run([py, str(HERE / "bench_cycle.py"), "--out", str(cycle)], check=True)
     latency = HERE / "results" / "latency.json"
     subprocess.run([py, str(HERE / "bench_latency.py"), "--serial", "--out", str(latency)],
                    check=True)  # fmt: skip
