@@ -64,7 +64,9 @@ shared machine the absolute times are upper bounds.
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
+import os
 import subprocess
 import sys
 import time
@@ -179,11 +181,12 @@ print(json.dumps({"code": code, **parts}))
 """
 
 
-def _cli(args: list[str], folder: Path) -> dict:
+def _cli(args: list[str], folder: Path, env: dict | None = None) -> dict:
     """``rotorkin sweep ARGS --out folder -q`` in a fresh process: its timed parts, wall, RSS."""
     t0 = time.perf_counter()
     proc = subprocess.run([sys.executable, "-c", _CLI_CHILD, "sweep", *args, "-q", "--out",
-                           str(folder)], capture_output=True, text=True)  # fmt: skip
+                           str(folder)], capture_output=True, text=True,
+                          env={**os.environ, **(env or {})})  # fmt: skip
     wall = time.perf_counter() - t0
     if proc.returncode:
         raise RuntimeError(proc.stderr)
@@ -215,7 +218,10 @@ def cli(designs: int, repeat: int = 3) -> dict:
                       "--vary", f"loads.polytropic_exponent=1.2:1.4:{k}"]  # fmt: skip
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        small = _cli(grid(2), tmp / "small")
+        # the baseline loads the code the large run loads: the compiled loops, when numba is
+        # there (a large evaluation uses them; 8 designs alone would not load them)
+        kernel = "numba" if importlib.util.find_spec("numba") else "numpy"
+        small = _cli(grid(2), tmp / "small", {"ROTORKIN_KERNEL": kernel})
         big = _cli(grid(n), tmp / "big")
         result = _result_bytes(tmp / "big" / "sweep.nc")
         fixed_args = [a for v in CLI_FIXED_VARY for a in ("--vary", v)]
@@ -228,6 +234,8 @@ def cli(designs: int, repeat: int = 3) -> dict:
         "result_MiB": result / 2**20,
         "peak_rss_MiB": big["peak_rss_MiB"],
         "baseline_peak_rss_MiB": small["peak_rss_MiB"],
+        "baseline_kernel": kernel,
+        "peak_over_result": big["peak_rss_MiB"] * 2**20 / result,
         "rss_over_result": (big["peak_rss_MiB"] - small["peak_rss_MiB"]) * 2**20 / result,
         "wall_s": big["wall_s"],
     }
@@ -256,7 +264,6 @@ def cli(designs: int, repeat: int = 3) -> dict:
           f"{cost['interpreter_start_s']:.2f}, imports {cost['imports_s']:.2f}, spec checks "
           f"{cost['spec_checks_s']:.2f}, figure {cost['overview_figure_s']:.2f}, netCDF "
           f"{cost['write_netcdf_s']:.3f}, other {cost['other_s']:.2f})", flush=True)  # fmt: skip
-    import importlib.util
 
     return {"memory": memory, "fixed_cost": cost,
             # False: measured on the core install (pip install ., no xarray or pandas)

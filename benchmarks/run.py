@@ -154,13 +154,86 @@ def full(update_docs: bool = True) -> int:
     subprocess.run([py, str(HERE / "bench_latency.py"), "--serial", "--out", str(latency)],
                    check=True)  # fmt: skip
     if update_docs:
-        text = DOCS.read_text()
-        text = _replace_between(text, "kinematics",
-                                bench_kinematics.markdown(json.loads(kin.read_text())))  # fmt: skip
-        text = _replace_between(text, "sweep", sweep_markdown(json.loads(sweep.read_text())))
-        DOCS.write_text(text)
-        print(f"updated the tables of {DOCS}")
+        write_tables()
     return 0
+
+
+def write_tables() -> None:
+    """Write every ``<!-- bench:TAG -->`` table of docs/performance.md from the result files."""
+    text = DOCS.read_text()
+    for tag, body in tables().items():
+        text = _replace_between(text, tag, body)
+    DOCS.write_text(text)
+    print(f"updated the tables of {DOCS}")
+
+
+def tables(results: Path = HERE / "results") -> dict:
+    """The markdown of every ``<!-- bench:TAG -->`` table of the docs, from the result files."""
+    import bench_latency
+
+    def read(name):
+        return json.loads((results / name).read_text())
+
+    sweep = read("sweep.json")
+    return {
+        "kinematics": bench_kinematics.markdown(read("kinematics.json")),
+        "sweep": sweep_markdown(sweep),
+        "sweep-cli": sweep_cli_markdown(sweep["cli"]),
+        "cycle": cycle_markdown(read("cycle.json")),
+        "latency": bench_latency.markdown(read("latency.json")),
+    }
+
+
+def sweep_cli_markdown(cli: dict) -> str:
+    """The command line's sweep: peak memory against its result, and the fixed cost."""
+    mem, fixed = cli["memory"], cli["fixed_cost"]
+    return "\n".join([
+        "| command | designs | result MiB | peak RSS MiB | baseline MiB | (peak - baseline) "
+        "/ result | wall s |",
+        "|---|---:|---:|---:|---:|---:|---:|",
+        f"| {mem['command']} | {mem['designs']} | {mem['result_MiB']:.0f} | "
+        f"{mem['peak_rss_MiB']:.0f} | {mem['baseline_peak_rss_MiB']:.0f} | "
+        f"{mem['rss_over_result']:.2f} | {mem['wall_s']:.1f} |",
+        "",
+        "| command | designs | wall s | compute s | fixed s | interpreter | imports | "
+        "one-design checks | overview figure | sweep.nc |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        f"| {fixed['command']} | {fixed['designs']} | {fixed['wall_s']:.2f} | "
+        f"{fixed['compute_s']:.2f} | {fixed['fixed_s']:.2f} | "
+        f"{fixed['interpreter_start_s']:.2f} | {fixed['imports_s']:.2f} | "
+        f"{fixed['spec_checks_s']:.2f} | {fixed['overview_figure_s']:.2f} | "
+        f"{fixed['write_netcdf_s']:.3f} |",
+        "",
+        f"Load {cli['load_before'][0]:.1f} at start, {cli['load_after'][0]:.1f} at end; "
+        f"best of {fixed['rounds']} rounds.",
+    ])  # fmt: skip
+
+
+def cycle_markdown(result: dict) -> str:
+    """The fuel-air cycle sweep and its one-by-one yardstick."""
+    lines = [
+        "| designs | samples | wall s | CPU s | us / design | CPU us / design | peak RSS MiB | "
+        "load |",
+        "|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for r in result["rows"]:
+        lines.append(f"| {r['designs']} | {r['samples']} | {r['wall_s']:.1f} | {r['cpu_s']:.1f} | "
+                     f"{r['us_per_design']:.0f} | {r['cpu_us_per_design']:.0f} | "
+                     f"{r['peak_rss_MiB']:.0f} | {r['load_before'][0]:.1f}-"
+                     f"{r['load_after'][0]:.1f} |")  # fmt: skip
+    one = result["one_by_one"]
+    lines += [
+        "",
+        f"Like for like, {one['designs']} designs one by one through the study's cycle path: "
+        f"{one['cycle_path_numba_us_per_design']:.0f} us per design with the compiled cycle "
+        f"({one['speedup_vs_cycle_path_numba']:.0f}x the sweep's time per design), "
+        f"{one['cycle_path_numpy_us_per_design']:.0f} us with the numpy one "
+        f"({one['speedup_vs_cycle_path_numpy']:.0f}x); the whole study "
+        f"{one['study_us_per_design'] / 1e3:.0f} ms per design ({one['study_designs']} designs). "
+        f"The sweep's cycle metrics against the study's: largest relative difference "
+        f"{one['max_rel_diff_vs_study']:.1e}.",
+    ]
+    return "\n".join(lines)
 
 
 def sweep_markdown(result: dict) -> str:
@@ -192,6 +265,8 @@ def main(argv=None) -> int:
     mode = ap.add_mutually_exclusive_group(required=True)
     mode.add_argument("--short", action="store_true", help="regression gate on ratios (< 60 s)")
     mode.add_argument("--full", action="store_true", help="refresh every figure (minutes)")
+    mode.add_argument("--tables", action="store_true",
+                      help="only write the docs' tables from the result files")  # fmt: skip
     ap.add_argument("--update-baseline", action="store_true", help="store the ratios as baseline")
     ap.add_argument("--record", action="store_true", help=f"append the run to {HISTORY.name}")
     ap.add_argument("--tolerance", type=float, default=TOLERANCE, help="allowed ratio increase")
@@ -201,6 +276,9 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.full:
         return full(update_docs=not args.no_docs)
+    if args.tables:
+        write_tables()
+        return 0
     print(f"short benchmark: every drive at {SHORT_POINTS} points, ratios to floor (b')")
     result = short()
     write_json(args.out, result)

@@ -645,3 +645,23 @@ def test_a_benchmark_command_is_checked_by_its_own_parser(tmp_path):
     assert (rc, out.strip()) == (0, "arguments accepted")
     rc, out = runner.parse_benchmark("python benchmarks/bench_kinematics.py --no-such-option 3")
     assert rc == 2 and "--no-such-option" in out
+
+
+def test_the_benchmark_tables_are_those_of_the_result_files():
+    """Each ``<!-- bench:TAG -->`` table of docs/performance.md is what benchmarks/run.py
+    writes from benchmarks/results/ (the figures come from the measurements, not by hand)."""
+    import subprocess
+    import sys
+
+    code = "import json, sys; sys.path.insert(0, 'benchmarks'); import run; " \
+           "print(json.dumps(run.tables()))"  # fmt: skip
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True,
+                         text=True, check=True, timeout=120).stdout  # fmt: skip
+    tables = json.loads(out.strip().splitlines()[-1])
+    text = (ROOT / "docs/performance.md").read_text(encoding="utf-8")
+    tags = re.findall(r"<!-- bench:([\w-]+) -->", text)
+    assert sorted(tags) == sorted(tables), "markers and the tables run.py writes differ"
+    for tag, body in tables.items():
+        start, end = f"<!-- bench:{tag} -->\n", f"\n<!-- /bench:{tag} -->"
+        shown = text[text.index(start) + len(start) : text.index(end)]
+        assert shown == body.rstrip(), f"the {tag} table is not that of the result file"

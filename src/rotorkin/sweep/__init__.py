@@ -391,6 +391,7 @@ def _assemble(spec: SweepSpec, chunks) -> dict:
         raise RuntimeError(f"sweep chunks missing after the run: {missing[:5]}")
     for i in range(spec.n_chunks):
         _place(flat, chunks.read(i))
+        release_memory()  # the chunk's buffer: not kept in the heap beside the result
     if not np.all(flat["count"] == 1):
         bad = np.flatnonzero(flat["count"] != 1)
         raise RuntimeError(f"{bad.size} designs lost or duplicated in the sweep chunks")
