@@ -8,7 +8,8 @@
 * :func:`machine` -- cores, CPU, vector instruction sets, numpy/python/numba versions and
   the load average;
 * :func:`scaling_probe` -- how much 2 processes gain over 1 here (scalar and SIMD work);
-* :func:`write_json` -- write a result file atomically.
+* :func:`write_json` -- write a result file atomically;
+* :func:`wobble_vary` -- the `--vary` ranges of the wobble-cam sweep benchmarks.
 """
 
 from __future__ import annotations
@@ -230,3 +231,20 @@ def scaling_probe(seconds: float = 1.0) -> dict:
             rates.append(total)
         out[kind] = rates[1] / rates[0]
     return out
+
+
+#: Wobble-cam sweep grids (plate tilt x roller axis angle x compression ratio) by size.
+GRIDS = {10_000: (25, 20, 20), 100_000: (50, 50, 40), 1_000_000: (100, 100, 100)}
+
+
+def wobble_vary(designs: int) -> dict:
+    """``--vary`` ranges of the benchmarks' wobble-cam sweep of about ``designs`` designs."""
+    if designs in GRIDS:
+        a, b, c = GRIDS[designs]
+    else:
+        a = b = c = max(1, round(designs ** (1.0 / 3.0)))
+    return {
+        "drive.plate_tilt": f"30deg:50deg:{a}",
+        "drive.roller_axis_angle": f"80deg:100deg:{b}",
+        "machine.compression_ratio": f"8:16:{c}",
+    }

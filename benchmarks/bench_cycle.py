@@ -46,11 +46,10 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import git_commit, load, machine, peak_rss, write_json  # noqa: E402
+from _common import git_commit, load, machine, peak_rss, wobble_vary, write_json  # noqa: E402
 
 EXAMPLE = "wobble-cam-engine"
 #: designs -> points per axis (tilt, roller axis angle, compression ratio)
-GRIDS = {10_000: (25, 20, 20), 100_000: (50, 50, 40)}
 #: The cycle's metrics compared with the study.
 CYCLE = ("trapped_mass_mg", "compression_end_pressure_bar", "peak_pressure_bar",
          "peak_pressure_angle_deg", "peak_temperature_K", "indicated_work_J",
@@ -59,28 +58,16 @@ CYCLE = ("trapped_mass_mg", "compression_end_pressure_bar", "peak_pressure_bar",
          "indicated_work_per_cycle_b_J", "indicated_power_kW")  # fmt: skip
 
 
-def _vary(designs: int) -> dict:
-    if designs in GRIDS:
-        a, b, c = GRIDS[designs]
-    else:
-        a = b = c = max(1, round(designs ** (1.0 / 3.0)))
-    return {
-        "drive.plate_tilt": f"30deg:50deg:{a}",
-        "drive.roller_axis_angle": f"80deg:100deg:{b}",
-        "machine.compression_ratio": f"8:16:{c}",
-    }
-
-
 def child(designs: int, threads, samples: int) -> dict:
     """One sweep of ``designs``, alone in this (fresh) process: wall, CPU, peak RSS."""
     from rotorkin.io.config import load_config
     from rotorkin.sweep import build_spec, execute
 
     _, raw, _ = load_config(None, EXAMPLE)
-    execute(build_spec(raw, _vary(8), samples=samples), progress=False, threads=threads)
+    execute(build_spec(raw, wobble_vary(8), samples=samples), progress=False, threads=threads)
     rss_start = peak_rss()
     t0, c0 = time.perf_counter(), time.process_time()
-    spec = build_spec(raw, _vary(designs), samples=samples)
+    spec = build_spec(raw, wobble_vary(designs), samples=samples)
     t1 = time.perf_counter()
     ds = execute(spec, progress=False, threads=threads)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0

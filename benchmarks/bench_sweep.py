@@ -75,24 +75,11 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import load, machine, peak_rss, write_json  # noqa: E402
+from _common import load, machine, peak_rss, wobble_vary, write_json  # noqa: E402
 
 from rotorkin.core.batch import DEFAULT_SAMPLES  # noqa: E402
 
 #: designs -> points per axis (tilt, roller axis angle, compression ratio)
-GRIDS = {10_000: (25, 20, 20), 100_000: (50, 50, 40), 1_000_000: (100, 100, 100)}
-
-
-def _vary(designs: int) -> dict:
-    if designs in GRIDS:
-        a, b, c = GRIDS[designs]
-    else:
-        a = b = c = max(1, round(designs ** (1.0 / 3.0)))
-    return {
-        "drive.plate_tilt": f"30deg:50deg:{a}",
-        "drive.roller_axis_angle": f"80deg:100deg:{b}",
-        "machine.compression_ratio": f"8:16:{c}",
-    }
 
 
 def metrics() -> list[str]:
@@ -108,7 +95,7 @@ def _setup(angles: int, threads):
 
     _, raw, _ = load_config(None, "wobble-cam-engine")
     run_sweep(
-        raw, _vary(8), samples=angles, progress=False, threads=threads, metrics=metrics()
+        raw, wobble_vary(8), samples=angles, progress=False, threads=threads, metrics=metrics()
     )  # warm-up
     return raw
 
@@ -120,7 +107,7 @@ def child(designs: int, angles: int, threads) -> dict:
     raw = _setup(angles, threads)
     rss_start = peak_rss()
     t0 = time.perf_counter()
-    spec = build_spec(raw, _vary(designs), samples=angles, metrics=metrics())
+    spec = build_spec(raw, wobble_vary(designs), samples=angles, metrics=metrics())
     ds = execute(spec, progress=False, threads=threads)
     seconds = time.perf_counter() - t0
     return {
@@ -312,10 +299,10 @@ def timings(sizes, angles: int, threads, repeat: int, baseline: int = 20,
     from rotorkin.sweep import build_spec, execute
 
     raw = _setup(angles, threads)
-    specs = {n: build_spec(raw, _vary(n), samples=angles, metrics=metrics()) for n in sizes}
+    specs = {n: build_spec(raw, wobble_vary(n), samples=angles, metrics=metrics()) for n in sizes}
     best = {n: {"spec_s": np.inf, "compute_s": np.inf, "compute_cpu_s": np.inf} for n in sizes}
     loop = _one_by_one(raw, angles, baseline)
-    like = build_spec(raw, _vary(like_designs), samples=DEFAULT_SAMPLES, metrics=metrics())
+    like = build_spec(raw, wobble_vary(like_designs), samples=DEFAULT_SAMPLES, metrics=metrics())
     n_like = int(np.prod([len(v) for v in like.varies]))
     for key in ("one_by_one_s", "one_by_one_cpu_s", "like_s", "like_cpu_s"):
         best[key] = np.inf
@@ -331,7 +318,7 @@ def timings(sizes, angles: int, threads, repeat: int, baseline: int = 20,
         best["like_cpu_s"] = min(best["like_cpu_s"], (c2 - c1) / n_like)
         for n in sizes[r % len(sizes) :] + sizes[: r % len(sizes)]:
             t0 = time.perf_counter()
-            build_spec(raw, _vary(n), samples=angles, metrics=metrics())
+            build_spec(raw, wobble_vary(n), samples=angles, metrics=metrics())
             t1, c1 = time.perf_counter(), time.process_time()
             execute(specs[n], progress=False, threads=threads)
             t2, c2 = time.perf_counter(), time.process_time()
