@@ -28,8 +28,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import interleaved, load, machine, peak_rss, write_json  # noqa: E402
-from bench_sweep import _vary  # noqa: E402
+from _common import interleaved, load, machine, peak_rss, wobble_vary, write_json  # noqa: E402
 
 
 def main() -> None:
@@ -47,8 +46,8 @@ def main() -> None:
 
     designs = int(float(args.designs))
     _, raw, _ = load_config(None, "wobble-cam-engine")
-    spec = build_spec(raw, _vary(designs), samples=args.angles)
-    warm = build_spec(raw, _vary(8), samples=args.angles)
+    spec = build_spec(raw, wobble_vary(designs), samples=args.angles)
+    warm = build_spec(raw, wobble_vary(8), samples=args.angles)
     execute(warm, progress=False, threads=args.workers)
     load_before = load()
     t0 = time.perf_counter()
