@@ -6,8 +6,8 @@ system and unmaps them when the array is freed, so a loop of array operations on
 blocks of a few megabytes -- the shape of every batch evaluation here: designs x
 angles, block by block -- faults every page of every temporary in again. With the
 threshold raised to :data:`THRESHOLD` those temporaries come from the heap and are
-reused: batch sweeps run 2-3.5x faster on the 2-core reference machine (the
-eccentric-cam and wobble-cam kernels, 1000 designs), at the cost of keeping up to
+reused: batch sweeps run 2-3.5x faster on the 2-core reference machine (two drives'
+batch kernels, 1000 designs; docs/performance.md), at the cost of keeping up to
 :data:`THRESHOLD` of freed memory in the process.
 
 The command line sets the thresholds when it starts (the process is its own); a
