@@ -104,3 +104,59 @@ def test_lengths_round_trip(number, unit, sep):
     value, reason = parse_quantity(text, "length")
     scale = {"mm": 1e-3, "m": 1.0, "cm": 1e-2, "inch": 0.0254}[unit]
     assert reason == "" and value == pytest.approx(number * scale, rel=1e-12, abs=1e-300)
+
+
+# -- the table of common units against pint ----------------------------------------------
+
+from rotorkin.core import units as U  # noqa: E402
+
+
+@pytest.mark.parametrize("name", sorted(U._NAMES))
+def test_table_reads_each_name_as_pint_does(name):
+    prefix, canonical = U._NAMES[name]
+    found = U._registry().parse_unit_name(name)
+    assert found and found[0] == (prefix, canonical, "")
+
+
+_COMPOSITES = ["N*m", "kN*m", "N m", "kg*m^2", "kg m**2", "g*cm^2", "rad/s", "deg/s", "1/min",
+               "1/s", "J/kg", "MJ/kg", "kJ/kg", "cm^3", "mm^3", "m^3", "L", "N/mm^2", "kN/m^2",
+               "W*s", "kW*h", "J*s/rad", "m/s", "revolution/min", "turn/s", "kg/m^3", "lb*in^2",
+               "Pa*s", "N*mm", "mm^2*kg", "bar/K", "degC/s", "degC^2", "kdegC", "s^-1",
+               "min^-1", "Hz", "rad*s^-1", "m/mm"]  # fmt: skip
+
+
+@pytest.mark.parametrize("kind", sorted(U.KINDS))
+@pytest.mark.parametrize("text", sorted(U._NAMES) + _COMPOSITES)
+def test_table_converts_as_pint_does(text, kind):
+    """Every unit the table reads, alone and in products, converts to the same SI value
+    (or is refused for the same kind) as pint's registry."""
+    factors = U._unit_factors(text)
+    if isinstance(factors, str):
+        pytest.fail(f"{text!r}: {factors}")
+    table = U._table_conversion(factors, kind)
+    pint_way = U._pint_conversion(factors, kind)
+    if table is None:  # outside the table: pint alone decides
+        assert text in ("degC/s", "degC^2", "kdegC") or any(
+            c[1] not in U._BASE for _, c, _ in factors
+        )
+        return
+    if isinstance(pint_way, str):
+        assert table == pint_way
+    else:
+        assert not isinstance(table, str), (text, kind, pint_way)
+        assert table == pytest.approx(pint_way, rel=1e-14, abs=1e-12)
+
+
+def test_common_units_need_no_pint():
+    """Reading the examples' configurations imports no pint (its registry costs ~0.3 s)."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from rotorkin.io.config import example_names, load_config, example_path\n"
+        "for n in example_names(): load_config(example_path(n))\n"
+        "assert 'pint' not in sys.modules, 'pint imported'\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr

@@ -43,13 +43,101 @@ KINDS = {
 def _registry():
     """pint's registry, its parsed definitions cached on disk by pint (``:auto:``, the
     user's cache folder: 0.1 s instead of 0.35 s to build); without a writable cache
-    folder, built from the definitions each time."""
+    folder, built from the definitions each time. Only units outside :data:`_BASE` and
+    :data:`_NAMES` need it."""
     import pint
 
     try:
         return pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=":auto:")
     except Exception:  # an unwritable or broken cache: build the registry afresh
         return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+
+
+#: The units written most, read without pint (whose import and registry cost ~0.3 s at
+#: every start): pint's canonical name -> (factor to SI, offset to SI, dimension as the
+#: powers of (m, kg, s, K)). Angles are dimensionless, as in pint. Every entry is tested
+#: equal to pint's conversion.
+_BASE = {
+    "radian": (1.0, 0.0, (0, 0, 0, 0)),
+    "degree": (math.pi / 180.0, 0.0, (0, 0, 0, 0)),
+    "turn": (2.0 * math.pi, 0.0, (0, 0, 0, 0)),
+    "arcminute": (math.pi / 10800.0, 0.0, (0, 0, 0, 0)),
+    "revolutions_per_minute": (2.0 * math.pi / 60.0, 0.0, (0, 0, -1, 0)),
+    "revolutions_per_second": (2.0 * math.pi, 0.0, (0, 0, -1, 0)),
+    "hertz": (1.0, 0.0, (0, 0, -1, 0)),
+    "meter": (1.0, 0.0, (1, 0, 0, 0)),
+    "inch": (0.0254, 0.0, (1, 0, 0, 0)),
+    "foot": (0.3048, 0.0, (1, 0, 0, 0)),
+    "second": (1.0, 0.0, (0, 0, 1, 0)),
+    "minute": (60.0, 0.0, (0, 0, 1, 0)),
+    "hour": (3600.0, 0.0, (0, 0, 1, 0)),
+    "gram": (1e-3, 0.0, (0, 1, 0, 0)),
+    "metric_ton": (1e3, 0.0, (0, 1, 0, 0)),
+    "pound": (0.45359237, 0.0, (0, 1, 0, 0)),
+    "newton": (1.0, 0.0, (1, 1, -2, 0)),
+    "pascal": (1.0, 0.0, (-1, 1, -2, 0)),
+    "bar": (1e5, 0.0, (-1, 1, -2, 0)),
+    "standard_atmosphere": (101325.0, 0.0, (-1, 1, -2, 0)),
+    "liter": (1e-3, 0.0, (3, 0, 0, 0)),
+    "cubic_centimeter": (1e-6, 0.0, (3, 0, 0, 0)),
+    "joule": (1.0, 0.0, (2, 1, -2, 0)),
+    "watt": (1.0, 0.0, (2, 1, -3, 0)),
+    "kelvin": (1.0, 0.0, (0, 0, 0, 1)),
+    "degree_Celsius": (1.0, 273.15, (0, 0, 0, 1)),
+    "degree_Fahrenheit": (5.0 / 9.0, 459.67 * 5.0 / 9.0, (0, 0, 0, 1)),
+}
+_PREFIX = {"": 1.0, "nano": 1e-9, "micro": 1e-6, "milli": 1e-3, "centi": 1e-2, "deci": 1e-1,
+           "hecto": 1e2, "kilo": 1e3, "mega": 1e6, "giga": 1e9}  # fmt: skip
+#: name as written -> pint's reading of it ``(prefix, canonical name)`` (tested against pint).
+_NAMES = {
+    **dict.fromkeys(("rad", "radian", "radians"), ("", "radian")),
+    **dict.fromkeys(("deg", "degree", "degrees"), ("", "degree")),
+    **dict.fromkeys(("turn", "turns", "revolution", "revolutions"), ("", "turn")),
+    **dict.fromkeys(("arcmin", "arcminute"), ("", "arcminute")),
+    "rpm": ("", "revolutions_per_minute"), "rps": ("", "revolutions_per_second"),
+    "Hz": ("", "hertz"), "kHz": ("kilo", "hertz"),
+    **dict.fromkeys(("m", "meter", "metre", "meters", "metres"), ("", "meter")),
+    "mm": ("milli", "meter"), "cm": ("centi", "meter"), "dm": ("deci", "meter"),
+    "km": ("kilo", "meter"), "um": ("micro", "meter"), "\u00b5m": ("micro", "meter"),
+    "nm": ("nano", "meter"), "in": ("", "inch"), "inch": ("", "inch"), "ft": ("", "foot"),
+    **dict.fromkeys(("s", "sec", "second", "seconds"), ("", "second")),
+    "ms": ("milli", "second"), "us": ("micro", "second"),
+    **dict.fromkeys(("min", "minute", "minutes"), ("", "minute")),
+    **dict.fromkeys(("h", "hr", "hour", "hours"), ("", "hour")),
+    "g": ("", "gram"), "kg": ("kilo", "gram"), "mg": ("milli", "gram"),
+    "t": ("", "metric_ton"), "tonne": ("", "metric_ton"), "lb": ("", "pound"),
+    "N": ("", "newton"), "kN": ("kilo", "newton"), "mN": ("milli", "newton"),
+    "Pa": ("", "pascal"), "hPa": ("hecto", "pascal"), "kPa": ("kilo", "pascal"),
+    "MPa": ("mega", "pascal"), "GPa": ("giga", "pascal"),
+    "bar": ("", "bar"), "mbar": ("milli", "bar"), "atm": ("", "standard_atmosphere"),
+    **dict.fromkeys(("L", "l", "liter", "litre"), ("", "liter")),
+    "mL": ("milli", "liter"), "ml": ("milli", "liter"), "cc": ("", "cubic_centimeter"),
+    "J": ("", "joule"), "kJ": ("kilo", "joule"), "MJ": ("mega", "joule"),
+    "GJ": ("giga", "joule"), "mJ": ("milli", "joule"),
+    "W": ("", "watt"), "kW": ("kilo", "watt"), "MW": ("mega", "watt"),
+    "K": ("", "kelvin"), "kelvin": ("", "kelvin"),
+    **dict.fromkeys(("degC", "\u00b0C", "celsius"), ("", "degree_Celsius")),
+    **dict.fromkeys(("degF", "\u00b0F", "fahrenheit"), ("", "degree_Fahrenheit")),
+}  # fmt: skip
+#: Dimension of each kind's SI unit, powers of (m, kg, s, K); a speed is compared as 1/s.
+_KIND_DIMENSION = {
+    "angle": (0, 0, 0, 0), "length": (1, 0, 0, 0), "torque": (2, 1, -2, 0),
+    "speed": (0, 0, -1, 0), "pressure": (-1, 1, -2, 0), "inertia": (2, 1, 0, 0),
+    "mass": (0, 1, 0, 0), "volume": (3, 0, 0, 0), "energy": (2, 1, -2, 0),
+    "temperature": (0, 0, 0, 1), "modulus": (-1, 1, -2, 0), "specific_energy": (2, 0, -2, 0),
+}  # fmt: skip
+
+
+def _canonical(name: str):
+    """``(prefix, canonical name, suffix)`` of a unit name as pint reads it, or ``()``."""
+    known = _NAMES.get(name)
+    if known is not None:
+        return (known[0], known[1], "")
+    try:
+        found = _registry().parse_unit_name(name)
+    except Exception:  # pint raises several kinds for a name it does not know
+        return ()
+    return found[0] if found else ()
 
 
 def describe_kind(kind: str) -> str:
@@ -108,7 +196,6 @@ def _unit_factors(text: str):
     ``kg*m^2``, ``1/min``, ``rad/s``, ``cm^3``). Nothing is evaluated: no
     parentheses, no arithmetic, no power beyond :data:`MAX_POWER`, no name twice.
     """
-    ureg = _registry()
     tokens = []
     for m in _TOKEN.finditer(text):
         if m.group("bad"):
@@ -126,15 +213,12 @@ def _unit_factors(text: str):
             continue
         if kind != "name":
             return "cannot be read as a number times a unit"
-        try:
-            canonical = ureg.parse_unit_name(tok)
-        except Exception:  # pint raises several kinds for a name it does not know
-            canonical = ()
+        canonical = _canonical(tok)
         if not canonical:
             return f"has an unknown unit {tok!r}"
-        if canonical[0] in seen:
+        if canonical in seen:
             return f"names the unit {tok!r} twice"
-        seen.add(canonical[0])
+        seen.add(canonical)
         power = 1
         if i + 1 < len(tokens) and tokens[i + 1][1] in ("^", "**"):
             if i + 2 >= len(tokens) or tokens[i + 2][0] != "int":
@@ -143,7 +227,7 @@ def _unit_factors(text: str):
             if not 1 <= abs(power) <= MAX_POWER:
                 return f"has a unit power {power} beyond +-{MAX_POWER}"
             i += 2
-        factors.append((tok, canonical[0][1], sign * power))
+        factors.append((tok, canonical, sign * power))
         sign, expect_factor, i = 1, False, i + 1
     if expect_factor:
         return "cannot be read as a number times a unit"
@@ -202,23 +286,53 @@ def _conversion(unit_text: str, kind: str):
     factors = _unit_factors(unit_text)
     if isinstance(factors, str):
         return factors
+    how = _table_conversion(factors, kind)
+    if how is None:
+        how = _pint_conversion(factors, kind)
+    if isinstance(how, str):
+        return how
+    scale, zero = how
+    angular = any(canon[1] in _ANGULAR for _, canon, _ in factors)
+    if kind == "speed" and not angular:
+        scale *= 2.0 * math.pi  # cycles per time (Hz, 1/min): revolutions
+    if kind == "angle" and not angular:
+        return "has the wrong unit"
+    return scale, zero
+
+
+def _table_conversion(factors, kind: str):
+    """:func:`_conversion`'s ``(scale, offset)`` to SI from :data:`_BASE`, "has the wrong
+    unit", or None where a unit is not in the table (or an offset unit is not alone)."""
+    scale, dims, zero = 1.0, [0, 0, 0, 0], 0.0
+    for _, (prefix, name, suffix), power in factors:
+        base = _BASE.get(name)
+        if base is None or suffix or prefix not in _PREFIX:
+            return None
+        factor, offset, dim = base
+        if offset and (len(factors) > 1 or power != 1 or prefix):
+            return None  # degC^2, degC/s: pint's rules for offset units
+        scale *= (_PREFIX[prefix] * factor) ** power
+        zero = offset
+        dims = [d + power * e for d, e in zip(dims, dim, strict=True)]
+    if tuple(dims) != _KIND_DIMENSION[kind]:
+        return "has the wrong unit"
+    return scale, zero
+
+
+def _pint_conversion(factors, kind: str):
+    """:func:`_conversion`'s ``(scale, offset)`` to SI by pint, or "has the wrong unit"."""
     import pint
 
     si, _ = KINDS[kind]
     ureg = _registry()
-    unit = ureg.dimensionless
-    for name, _, power in factors:
-        unit = unit * ureg.Unit(name) ** power
     target = "1/s" if kind == "speed" else si
     try:
+        unit = ureg.dimensionless
+        for name, _, power in factors:
+            unit = unit * ureg.Unit(name) ** power
         zero = float(ureg.Quantity(0.0, unit).to(target).magnitude)
         scale = float(ureg.Quantity(1.0, unit).to(target).magnitude) - zero
     except (pint.errors.DimensionalityError, pint.errors.OffsetUnitCalculusError):
-        return "has the wrong unit"
-    angular = any(canon in _ANGULAR for _, canon, _ in factors)
-    if kind == "speed" and not angular:
-        scale *= 2.0 * math.pi  # cycles per time (Hz, 1/min): revolutions
-    if kind == "angle" and not angular:
         return "has the wrong unit"
     return scale, zero
 
