@@ -33,12 +33,12 @@ length are as in :mod:`rotorkin.drives.rhomboid_cam.kinematics`.
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from rotorkin.cams import edges, planar
 from rotorkin.cams.planar import Curve, Part, ProfileCheck
 from rotorkin.core.angles import fmt_deg, fmt_mm
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.minimize import bounded_min
 from rotorkin.drives.rhomboid_cam import kinematics as rc
 
 __all__ = [
@@ -137,10 +137,8 @@ def pressure_angles(link_length, psi_min, a, b, alpha):
 
 def _refine(fun, grid, i, h):
     """Minimise the scalar ``fun`` near ``grid[i]`` (bracket +-h); returns (x, f)."""
-    res = minimize_scalar(
-        fun, bounds=(grid[i] - h, grid[i] + h), method="bounded", options={"xatol": 1e-12}
-    )
-    x, f = float(res.x), float(res.fun)
+    x, f = bounded_min(fun, grid[i] - h, grid[i] + h, xatol=1e-12)
+    x, f = float(x), float(f)
     f0 = float(fun(grid[i]))
     return (x, f) if f <= f0 else (float(grid[i]), f0)
 

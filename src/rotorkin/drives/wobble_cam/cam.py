@@ -23,11 +23,11 @@ import functools
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from rotorkin.analysis.fits import fit_clearance
 from rotorkin.core.angles import fmt_deg, fmt_mm
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.minimize import bounded_min
 from rotorkin.drives.wobble_cam import cam_walls
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam.cam_crossings import (
@@ -403,14 +403,6 @@ def roller_radius_limit(drive: wc.WobbleCam, theta, radius=None):
     return rad / np.sqrt(1.0 + (drive.sphere_radius * k) ** 2)
 
 
-def _refine_min(fun, theta0, step):
-    """Refine a sampled minimum of a scalar function of theta (bounded Brent)."""
-    res = minimize_scalar(
-        fun, bounds=(theta0 - step, theta0 + step), method="bounded", options={"xatol": 1e-12}
-    )
-    return float(res.x), float(res.fun)
-
-
 def sharpest_bend(drive: wc.WobbleCam, roller: int | None = None):
     """Largest ``|kappa_g|`` over the grooves: ``(kappa_max [1/m], theta [rad], roller)``.
 
@@ -432,18 +424,18 @@ def _sharpest_bend(drive: wc.WobbleCam, roller: int | None):
     period = groove_period(drive)
     theta = np.linspace(0.0, period, _SEARCH_SAMPLES, endpoint=False)
     k = np.abs(geodesic_curvature(drive, theta))
-    rollers = range(4) if roller is None else (roller,)
-    best = None
-    for i in rollers:
-        j = int(np.argmax(k[i]))
-        th, val = _refine_min(
-            lambda x, i=i: -abs(float(geodesic_curvature(drive, x)[i])),
-            theta[j],
-            period / _SEARCH_SAMPLES,
-        )
-        if best is None or -val > best[0]:
-            best = (-val, th % period, i)
-    return best
+    rollers = np.arange(4) if roller is None else np.array([roller])
+    step = period / _SEARCH_SAMPLES
+    start = theta[np.argmax(k[rollers], axis=-1)]
+    # the sampled peak of each roller refined at once (Brent in a bracket of +-1 sample)
+    th, val = bounded_min(
+        lambda x: -np.abs(geodesic_curvature(drive, x)[rollers, np.arange(len(rollers))]),
+        start - step,
+        start + step,
+        xatol=1e-12,
+    )
+    best = int(np.argmin(val))  # the first roller of the largest bend
+    return float(-val[best]), float(th[best] % period), int(rollers[best])
 
 
 def check_roller_radius(drive: wc.WobbleCam, cam: SphericalCam) -> float:
