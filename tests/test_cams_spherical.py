@@ -490,3 +490,43 @@ def test_pressure_angle_peaks(example):
     assert deg(peaks["best"][0]) == pytest.approx(30.36, abs=0.01)
     assert deg(peaks["best_guided"][0]) == pytest.approx(90.0, abs=1e-6)
     assert deg(peaks["best_guided"][1]) % 45.0 == pytest.approx(22.5)
+
+
+def _near_others_listed(ch, roller):
+    """The samples near another branch, from the k-d tree's lists of neighbours (every
+    neighbour taken one by one): the reference of the counting in ``near_others``."""
+    from rotorkin.drives.wobble_cam.cam_walls import SCAN
+
+    i, shift = ch.curve[roller]
+    own = ch.axes[ch.owner == i]
+    reach = 2.0 * np.sin(np.arcsin(min(1.0, 1.05 * ch.h / ch.lam_in))) + 2 * ch.pad
+    out = np.zeros(SCAN, dtype=bool)
+    for j, hits in enumerate(ch.tree.query_ball_point(np.roll(own, -shift, axis=0), reach)):
+        hits = np.asarray(hits, dtype=int)
+        gap = np.abs(ch.arc[i][hits % SCAN] - ch.arc[i][(j + shift) % SCAN])
+        gap = np.minimum(gap, ch.length[i] - gap)
+        out[j] = bool(np.any((ch.owner[hits] != i) | (gap > 2.5 * ch.h)))
+    return out
+
+
+@pytest.mark.parametrize("tilt", [45.0, 30.0, 60.0])
+def test_near_others_counts_what_the_neighbour_lists_find(example, tilt):
+    """Counting neighbours (all within reach less the own stretch of groove) flags the
+    same samples as looking at every neighbour; never fewer."""
+    from rotorkin.drives.wobble_cam import cam_walls
+
+    drive, cam = example
+    drive = wc.WobbleCam(
+        plate_tilt=np.radians(tilt),
+        roller_axis_angle=drive.roller_axis_angle,
+        spin_ratio=drive.spin_ratio,
+        sphere_radius=drive.sphere_radius,
+        pistons_per_rotor=drive.pistons_per_rotor,
+    )
+    ch = cam_walls._Channels(drive, cam)
+    ch.lam_in = cam.roller_span[0]
+    for roller in range(4):
+        want = _near_others_listed(ch, roller)
+        got = ch.near_others(roller)
+        assert want.any()
+        assert np.array_equal(got, want)

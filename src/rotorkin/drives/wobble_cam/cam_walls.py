@@ -32,7 +32,6 @@ along the branch by ``h cot(a)``, so one wall or the other is missing over about
 
 from __future__ import annotations
 
-import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -135,19 +134,33 @@ class _Channels:
         self.eps = 1e-9 * r
 
     def near_others(self, roller):
-        """Samples of ``roller``'s centre-line within 2 h of another branch (bool, (SCAN,))."""
+        """Samples of ``roller``'s centre-line within 2 h of another branch (bool, (SCAN,)).
+
+        Another branch is another groove, or the roller's own groove more than 2.5 h away
+        along it (where a figure-eight crosses itself). Counted, not listed: the axis
+        samples within reach of each sample (the k-d tree's count) less those of its own
+        stretch of groove (a window of samples either side, measured directly, at a reach
+        smaller by 1e-12 so that a sample on the edge of the ball counts as another
+        branch: a sample taken for near is only checked, never missed).
+        """
         i, shift = self.curve[roller]
         own = self.axes[self.owner == i]  # the roller's own curve, shifted by ``shift``
         reach = 2.0 * np.sin(np.arcsin(min(1.0, 1.05 * self.h / self.lam_in))) + 2 * self.pad
-        hits = self.tree.query_ball_point(np.roll(own, -shift, axis=0), reach)
-        j, cand = _flatten(hits)
-        arc = self.arc[i]
-        gap = np.abs(arc[cand % SCAN] - arc[(j + shift) % SCAN])
-        gap = np.minimum(gap, self.length[i] - gap)
-        other = (self.owner[cand] != i) | (gap > 2.5 * self.h)
-        out = np.zeros(SCAN, dtype=bool)
-        np.logical_or.at(out, j, other)
-        return out
+        at = (np.arange(SCAN) + shift) % SCAN  # the sample of curve i each point sits at
+        total = self.tree.query_ball_point(own[at], reach, return_length=True)
+        arc, length = self.arc[i], self.length[i]
+        spacing = float(np.min(np.diff(arc)))
+        half = min(SCAN // 2, int(np.ceil(2.5 * self.h / spacing)) + 1)
+        offsets = np.arange(-half, half + 1) if 2 * half < SCAN else np.arange(SCAN) - half
+        m = (at[:, None] + offsets[None, :]) % SCAN  # (SCAN, window)
+        gap = np.abs(arc[m] - arc[at][:, None])
+        gap = np.minimum(gap, length - gap)
+        # unit vectors: |a - b|^2 = 2 - 2 a.b (its rounding ~1e-16, far inside the margin)
+        x, y, z = own.T
+        dot = x[m] * x[at][:, None] + y[m] * y[at][:, None] + z[m] * z[at][:, None]
+        inner = (2.0 - 2.0 * dot) <= (reach * (1.0 - 1e-12)) ** 2
+        mine = np.count_nonzero(inner & (gap <= 2.5 * self.h), axis=1)
+        return total > mine
 
     def inside(self, points):
         """Whether each point (n, 3) [m] lies strictly inside some channel (bool, (n,)).
@@ -171,13 +184,6 @@ class _Channels:
         dist = np.sqrt(np.maximum(np.einsum("ij,ij->i", p, p) - along * along, 0.0))
         out[idx] = (along > 0.0) & (dist < self.h - self.eps)
         return out
-
-
-def _flatten(hits):
-    """``(owner index, hit)`` arrays of a k-d tree's ball query (a list of lists)."""
-    counts = np.fromiter((len(k) for k in hits), dtype=int, count=len(hits))
-    cand = np.fromiter(itertools.chain.from_iterable(hits), dtype=int, count=int(counts.sum()))
-    return np.repeat(np.arange(len(hits)), counts), cand
 
 
 def _missing(channels, cam, roller, theta, wall):
