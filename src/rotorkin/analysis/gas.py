@@ -32,6 +32,7 @@ J. B. Heywood, *Internal Combustion Engine Fundamentals*, 2nd ed., 2018, ch. 4.
 
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -119,12 +120,15 @@ def table_index(lo, inv_step, nodes, t):
 
 
 def cantera_available() -> bool:
-    """Whether Cantera (the ``thermo`` extra) can be imported."""
+    """Whether Cantera (the ``thermo`` extra) is installed (found, not imported: 0.1 s)."""
+    import importlib.util
+
+    if "cantera" in sys.modules:
+        return True
     try:
-        import cantera  # noqa: F401
-    except ImportError:
+        return importlib.util.find_spec("cantera") is not None
+    except (ImportError, ValueError):
         return False
-    return True
 
 
 @dataclass(frozen=True)
@@ -190,12 +194,21 @@ def burnt_composition(equivalence_ratio: float, hc_ratio: float) -> dict:
     }
 
 
+@lru_cache(maxsize=1)
+def _thermo():
+    """GRI-Mech 3.0 without its transport model (thermodynamic properties only: a few ms
+    to load instead of 30-50 ms), loaded once for every mixture."""
+    import cantera as ct
+
+    return ct.Solution("gri30.yaml", transport_model=None)
+
+
 @lru_cache(maxsize=32)
 def _tables(composition: tuple) -> tuple:
     """``(T, R, c_v(T), u(T))`` of a mixture given as ((species, moles), ...), by Cantera."""
     import cantera as ct
 
-    gas = ct.Solution("gri30.yaml")
+    gas = _thermo()
     t = np.arange(_T_LO, _T_HI + 0.5, 1.0)
     states = ct.SolutionArray(gas, len(t))
     states.TPX = t, 1.0e5, dict(composition)

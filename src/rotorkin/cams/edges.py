@@ -36,7 +36,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import BSpline, make_interp_spline
 
 __all__ = [
     "Line",
@@ -114,6 +113,8 @@ class Spline:
     degree = 3
 
     def _bspline(self, d: int = 0):
+        from scipy.interpolate import BSpline  # imported where used: 0.1 s at start
+
         b = BSpline(np.asarray(self.knots), np.asarray(self.poles), 3, extrapolate=False)
         return b.derivative(d) if d else b
 
@@ -210,6 +211,8 @@ def fit_closed(
         x = np.append(t, t0 + period)
         y = curve(x).T.copy()
         y[-1] = y[0]
+        from scipy.interpolate import make_interp_spline
+
         spl = make_interp_spline(x, y, k=3, bc_type="periodic")
         u = (x[:-1, None] + probes[None] * np.diff(x)[:, None]).ravel()
         err = np.hypot(*(spl(u).T - curve(u))).reshape(-1, probes.size).max(axis=1)
@@ -236,6 +239,8 @@ def _split(spl, x, spans: int, min_pieces: int) -> tuple[Spline, ...]:
         a, b = x[cuts[j]], x[cuts[j + 1]]
         knots = np.concatenate([[a] * 4, inner, [b] * 4])
         greville = np.clip((knots[1:-3] + knots[2:-2] + knots[3:-1]) / 3.0, a, b)
+        from scipy.interpolate import BSpline
+
         design = BSpline.design_matrix(greville, knots, 3).toarray()
         poles = np.linalg.solve(design, spl(greville))
         poles[0], poles[-1] = ends[j], ends[j + 1]

@@ -40,7 +40,6 @@ from rotorkin.core.angles import fmt_mm
 from rotorkin.core.errors import ParameterError, RotorkinError
 from rotorkin.drives.wobble_cam import cam as sph
 from rotorkin.drives.wobble_cam import checks as cam_checks
-from rotorkin.drives.wobble_cam.cad_assembly import build_parts, write_assembly
 from rotorkin.drives.wobble_cam.cad_grooves import (
     groove_pieces,
     piece_samples,
@@ -378,6 +377,8 @@ def export_wobble(cfg: dict, fmt: str, stage_dir, name: str, progress=None) -> l
         mesh.export(path)
         return [path]
     layout = layout_from_config(cfg)
+    from rotorkin.drives.wobble_cam.cad_assembly import build_parts, write_assembly
+
     parts = build_parts(layout, tol, progress)
     title = str(cfg.get("title") or name)
     path = stage / f"{name}.step"

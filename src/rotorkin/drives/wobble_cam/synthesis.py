@@ -53,7 +53,6 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
-from scipy.optimize import brentq
 
 from rotorkin.core.errors import ParameterError
 from rotorkin.core.schema import validate_model
@@ -333,6 +332,8 @@ def slow_for_dwell(params: wc.WobbleCam, fraction: float, admissible=None) -> fl
         return float(s_lo)
     if fraction <= lo:
         return float(s_hi)
+    from scipy.optimize import brentq  # imported where used (0.2 s)
+
     return float(brentq(lambda r: _target_dwell(params, r) - fraction, s_lo, s_hi, xtol=1e-12))
 
 
