@@ -279,3 +279,35 @@ def test_no_fork_while_another_thread_runs():
             stop.set()
             thread.join()
             stop.clear()
+
+
+def test_log_axes_in_plain_numbers_on_the_ticks_matplotlib_labels():
+    """plain_log_labels: the same labelled ticks as matplotlib's own formatter, written
+    as plain numbers (no mathtext to parse)."""
+    import numpy as np
+
+    from rotorkin.render.figures import plain_log_labels, pyplot
+
+    plt = pyplot()
+    labels = []
+    for plain in (False, True):
+        fig, ax = plt.subplots()
+        ax.plot(np.linspace(7.0, 72.0, 50), np.geomspace(1.0, 57.0, 50))
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        if plain:
+            plain_log_labels(ax)
+        fig.canvas.draw()
+        labels.append([[(t.get_position(), t.get_text()) for t in
+                         (*axis.get_majorticklabels(), *axis.get_minorticklabels())]
+                        for axis in (ax.xaxis, ax.yaxis)])  # fmt: skip
+        plt.close(fig)
+    mathtext, plain = labels
+    for before, after in zip(mathtext, plain, strict=True):
+        shown = [(pos, text) for pos, text in after if text]
+        assert [pos for pos, _ in shown] == [pos for pos, text in before if text]
+        assert shown and all("$" not in text for _, text in shown)
+        for pos, text in shown:
+            value = max(pos)  # (x, 0) or (0, y)
+            assert float(text) == pytest.approx(value, rel=1e-5)
+    assert {text for _, text in plain[0] if text} >= {"10", "20"}

@@ -41,6 +41,7 @@ __all__ = [
     "axes3d",
     "RUN_STYLE",
     "degree_axis",
+    "plain_log_labels",
     "Recipe",
 ]
 
@@ -490,6 +491,38 @@ def _fork_safe() -> bool:
     return threading.current_thread() is main and all(
         t is main or t.name.startswith("rotorkin") for t in threading.enumerate()
     )
+
+
+def plain_log_labels(ax, axes: str = "xy") -> None:
+    """Label the log-scaled ``axes`` ("x", "y" or "xy") of ``ax`` in plain numbers.
+
+    matplotlib labels log axes with mathtext (``$10^{1}$``, ``$2\\times10^{1}$``), whose
+    parser costs a figure 0.1-0.2 s to build; these labels read ``10``, ``20``, ``1e-16``,
+    on the ticks matplotlib's own formatter labels (call after ``set_xscale("log")``).
+    """
+    from matplotlib.ticker import Formatter
+
+    class PlainLog(Formatter):
+        def __init__(self, inner):
+            self.inner = inner
+
+        def set_axis(self, axis):
+            super().set_axis(axis)
+            self.inner.set_axis(axis)
+
+        def set_locs(self, locs):
+            super().set_locs(locs)
+            self.inner.set_locs(locs)
+
+        def __call__(self, x, pos=None):
+            return f"{x:g}" if self.inner(x, pos) else ""
+
+    for name in axes:
+        axis = ax.xaxis if name == "x" else ax.yaxis
+        if axis.get_scale() != "log":
+            continue
+        axis.set_major_formatter(PlainLog(axis.get_major_formatter()))
+        axis.set_minor_formatter(PlainLog(axis.get_minor_formatter()))
 
 
 def degree_axis(ax, end: float, step: float, label: str | None) -> None:

@@ -13,7 +13,7 @@ import numpy as np
 
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.machines import opposed_piston as op
-from rotorkin.render.figures import draw
+from rotorkin.render.figures import draw, plain_log_labels
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save as _save
 
@@ -244,6 +244,7 @@ def fig_reactor_ripple_vs_lambda(params, reactor, path: Path) -> Path:
         dmin = ec.gap_change_extreme(ec.EccentricCam(rc, lams * R))[0]
         ripple = reactor.initial_pressure - op.pressure_from_volume(reactor, A * (L - dmin))
         ax.semilogy(lams, ripple / 1e5, color=colour, lw=2, label=label)
+        plain_log_labels(ax, "y")
     if reactor.fluid == "liquid":
         ax.axhline(reactor.initial_pressure / 1e5, color="C3", ls="--",
                    label="ripple = p0: the liquid cavitates above")  # fmt: skip

@@ -21,7 +21,7 @@ from rotorkin.analysis.torque import inertia_torque
 from rotorkin.drives.wobble_cam import engine as eng
 from rotorkin.drives.wobble_cam import forces as fo
 from rotorkin.drives.wobble_cam import kinematics as wc
-from rotorkin.render.figures import axes3d, draw, fixed_layout, pyplot, save_in
+from rotorkin.render.figures import axes3d, draw, fixed_layout, plain_log_labels, pyplot, save_in
 
 __all__ = [
     "plot_all",
@@ -361,6 +361,7 @@ def fig_pv_diagram(params, layout, machine, cycle, outdir: Path, points: int = 4
         if log:
             ax.set_xscale("log")
             ax.set_yscale("log")
+            plain_log_labels(ax)
         ax.axhline(exhaust / 1e5, color="0.5", lw=0.7, ls=":")
         ax.set_xlabel("chamber volume V [cm^3]")
         ax.set_ylabel("absolute pressure p [bar]")

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.drives.wobble_cam import cam as sph
-from rotorkin.render.figures import axes3d, fixed_layout, pyplot, save_in
+from rotorkin.render.figures import axes3d, fixed_layout, plain_log_labels, pyplot, save_in
 
 __all__ = ["plot_spherical_cam"]
 
@@ -159,6 +159,7 @@ def plot_spherical_cam(source, outdir, cam=None, points: int = 1441) -> list[Pat
     ax.plot(t, rad_c, color="0.4", lw=0.9, ls=":", label="1/|kappa_g| on r, roller 1")
     ax.axhline(cam.roller_radius * 1e3, color="k", lw=1.8, label="roller radius")
     ax.set_yscale("log")
+    plain_log_labels(ax, "y")
     low = 0.5 * min(float(lim_r.min()), cam.roller_radius * 1e3)
     ax.set_ylim(low, 3.0 * float(lim_r.max()))
     ax.set_xlim(0, 360)

@@ -8,6 +8,7 @@ from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.render.figures import BASELINE as _BASE
 from rotorkin.render.figures import SYNTHESIZED as _SYN
 from rotorkin.render.figures import degree_axis as _deg_axis
+from rotorkin.render.figures import plain_log_labels
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save_in as _save
 from rotorkin.synthesis import DWELL_TOLERANCE
@@ -68,6 +69,7 @@ def plot_wobble(outdir, base, synth, target, groove_closing, offset, objective):
             lw=1.0,
             label=f"|{st['label']} - target|",
         )
+        plain_log_labels(axes[2], "y")
     axes[2].axhline(1e-6, color="k", ls=":", lw=1.0, label="1e-6 deg (required)")
     axes[0].set_ylabel("chamber angle delta_A [deg]")
     axes[0].set_title("(a) chamber angle: forward analysis of each spin law")
