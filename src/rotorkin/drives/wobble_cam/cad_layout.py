@@ -24,6 +24,7 @@ runs inside rotor 1's, both around the Z-shaft; the casing encloses everything.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, fields
 
 import numpy as np
@@ -261,7 +262,23 @@ def _annulus(machine: tr.TwinRotor):
 
 
 def _groove_polar_min(drive, samples: int = 4096) -> float:
-    """Smallest angle between a groove centre-line point and the cam axis (+-x) [rad]."""
+    """Smallest angle between a groove centre-line point and the cam axis (+-x) [rad].
+
+    Remembered per drive (the last 512): a sweep checks every design of one drive with
+    its own machine and cam sizes.
+    """
+    try:
+        return _groove_polar_min_remembered(drive, samples)
+    except TypeError:  # a drive holding arrays cannot be a key
+        return _groove_polar_min_of(drive, samples)
+
+
+@functools.lru_cache(maxsize=512)
+def _groove_polar_min_remembered(drive, samples: int) -> float:
+    return _groove_polar_min_of(drive, samples)
+
+
+def _groove_polar_min_of(drive, samples: int) -> float:
     theta = np.linspace(0.0, sph.groove_period(drive), samples, endpoint=False)
     g = sph.groove_derivatives(drive, theta)[0]
     cos = np.abs(g[:, 0]) / np.linalg.norm(g, axis=1)
