@@ -347,6 +347,31 @@ def test_auto_imports_numba_for_large_inputs_only():
     assert out == ["False", "True", "True"]
 
 
+PREFER_SCRIPT = """
+import sys
+from rotorkin.core import fused
+print(fused.prefer_compiled(fused.AUTO_MIN_POINTS - 1), "numba" in sys.modules)
+print(fused.prefer_compiled(fused.AUTO_MIN_POINTS), "numba" in sys.modules, fused.use_compiled(8))
+"""
+
+
+@pytest.mark.parametrize("choice", ["auto", "numpy"])
+def test_a_large_batch_loads_the_compiled_loops_up_front(choice):
+    """``prefer_compiled``: a batch of evaluations large in all (a sweep's blocks) loads
+    numba before its first evaluation with ``auto``, never with ``numpy``."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, fused.KERNEL_ENV: choice}
+    out = subprocess.run([sys.executable, "-c", PREFER_SCRIPT], env=env, capture_output=True,
+                         text=True, check=True).stdout.split()  # fmt: skip
+    if choice == "auto":
+        assert out == ["False", "False", "True", "True", "True"]
+    else:
+        assert out == ["False", "False", "False", "False", "False"]
+
+
 def test_auto_and_forced_paths_call_the_compiled_loops(monkeypatch):
     monkeypatch.delenv(fused.KERNEL_ENV, raising=False)
     assert fused.numba_available()

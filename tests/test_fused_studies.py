@@ -25,8 +25,9 @@ EXAMPLES = [
     "rhomboid-engine",
 ]
 
-# batch sweeps: (example, varied keys) with 30 designs, so that with 2001 samples per design
-# the blocks of the sweep kernels (65536 values) pass AUTO_MIN_POINTS
+# batch sweeps: (example, varied keys) with 30 designs, so that with SAMPLES samples per
+# design one evaluation of the sweep kernels passes AUTO_MIN_POINTS
+SAMPLES = 4501
 SWEEPS = {
     "wobble-cam-engine": {"drive.plate_tilt": "30deg:50deg:6", "drive.roller_axis_angle":
                           "80deg:100deg:5"},
@@ -76,10 +77,10 @@ def test_study_same_numbers_on_both_paths(example, monkeypatch, compiled_calls):
 def test_sweep_same_metrics_on_both_paths(example, monkeypatch, compiled_calls):
     _, raw, _ = load_config(None, example)
     monkeypatch.setenv(fused.KERNEL_ENV, "numpy")
-    ref = run_sweep(raw, SWEEPS[example], progress=False, samples=2001, threads=1)
+    ref = run_sweep(raw, SWEEPS[example], progress=False, samples=SAMPLES, threads=1)
     assert not compiled_calls
     monkeypatch.delenv(fused.KERNEL_ENV)
-    got = run_sweep(raw, SWEEPS[example], progress=False, samples=2001, threads=1)
+    got = run_sweep(raw, SWEEPS[example], progress=False, samples=SAMPLES, threads=1)
     assert compiled_calls, "the sweep did not run the compiled loops"
     assert ref.data_vars.keys() == got.data_vars.keys()
     for name, var in ref.data_vars.items():

@@ -49,7 +49,7 @@ def test_listing_drives_and_examples_imports_none():
 
 
 @pytest.mark.parametrize("kind", list(drives.BUILTIN))
-def test_run_imports_only_the_running_drive(kind, tmp_path):
+def test_run_imports_only_the_running_drive_and_no_costly_library(kind, tmp_path):
     example = drives.REGISTRY[kind].examples[0]
     done = _python(
         "import json, sys\n"
@@ -63,6 +63,11 @@ def test_run_imports_only_the_running_drive(kind, tmp_path):
     assert code == 0
     assert _drive_packages(modules) == {kind}
     assert (tmp_path / "out" / "summary.json").is_file()
+    # what one design does not need (0.1-0.5 s each to import): the units of its config
+    # from the table, no optimiser, no compiled loops for one study's evaluations
+    costly = ("pint", "numba", "scipy.optimize", "scipy.spatial", "dask", "xarray")
+    assert [m for m in costly if m in modules] == ([] if kind != "wobble_cam" else
+                                                   ["scipy.spatial"])  # fmt: skip
 
 
 def test_registry_keeps_order_and_loads_on_access():

@@ -59,6 +59,7 @@ __all__ = [
     "formula",
     "kernel_choice",
     "numba_available",
+    "prefer_compiled",
     "prepare",
     "shared_pool",
     "select",
@@ -73,7 +74,10 @@ KERNEL_ENV = "ROTORKIN_KERNEL"
 #: The admissible choices of kernels.
 KERNELS = ("auto", "numpy", "numba")
 #: With ``auto``: fewest points of one evaluation for which the compiled loops are used.
-AUTO_MIN_POINTS = 1 << 15
+#: Importing numba and loading the compiled code takes about 0.5 s, numpy about 0.1 us a
+#: point: one study's evaluations (up to ~1e5 points) stay numpy, a sweep's blocks of
+#: designs (360 angles x 1000 designs and more) load the compiled loops.
+AUTO_MIN_POINTS = 1 << 17
 #: Environment variable giving the default thread count (default 1).
 THREADS_ENV = "ROTORKIN_THREADS"
 #: Fewest points for which the thread pool is used.
@@ -222,6 +226,18 @@ def use_compiled(points: int, kernel=None) -> bool:
     if _NUMBA:
         return True
     return points >= AUTO_MIN_POINTS and numba_available()
+
+
+def prefer_compiled(points: int, kernel=None) -> bool:
+    """Before a batch of evaluations of ``points`` points in all: whether they run compiled.
+
+    With ``auto`` and ``points >= AUTO_MIN_POINTS`` numba is loaded now (when installed),
+    so that every evaluation of the batch runs the compiled loops, however small each one
+    is (a sweep evaluates its designs in blocks); otherwise as :func:`use_compiled`.
+    """
+    if kernel_choice(kernel) == "auto" and points >= AUTO_MIN_POINTS:
+        return numba_available()
+    return use_compiled(points, kernel)
 
 
 # --------------------------------------------------------------------------------------------

@@ -20,6 +20,7 @@ import numpy as np
 from rotorkin import __version__, drives
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, sample_grid
 from rotorkin.core.errors import ParameterError, RotorkinError, shown
+from rotorkin.core.fused import prefer_compiled
 from rotorkin.core.units import metric_units
 from rotorkin.io.config import glossary
 from rotorkin.studies import limits
@@ -235,6 +236,7 @@ def evaluate_designs(p: Designs, metrics, samples: int = DEFAULT_SAMPLES, thread
     checks = [m for m in metrics if sweep_checks.is_check(m)]
     fast, slow, why = coverage(drive_type, p.cfg, p.table, metrics)
     n = p.n
+    prefer_compiled(n * samples)  # a sweep's kernels evaluate its designs in blocks
     out = {m: np.full(n, np.nan) for m in metrics}
     curve_out = {c: np.full((n, curves), np.nan) for c in kern.CURVES} if curves else {}
     kernel_ok = kern.unsupported(p.cfg) is None and set(p.table) <= kern.KEYS

@@ -47,7 +47,6 @@ is then checked on a 10x finer grid by the drive's own functions.
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import NonlinearConstraint, differential_evolution, minimize
 
 from rotorkin.core.angles import fmt_deg
 from rotorkin.core.errors import ParameterError
@@ -220,6 +219,8 @@ def optimize_law(
         The optimum and ``{"objective": value, "baseline": value, "pa_limit": rad,
         "constraints": (3,) margins, "evaluations": int}``.
     """
+    from scipy.optimize import NonlinearConstraint, differential_evolution, minimize
+
     L, r = float(link_length), float(roller_radius)
     n = int(harmonics)
     alpha = np.arange(_GRID) * np.pi / _GRID
