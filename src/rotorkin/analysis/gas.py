@@ -123,7 +123,7 @@ def cantera_available() -> bool:
     """Whether Cantera (the ``thermo`` extra) is installed (found, not imported: 0.1 s)."""
     import importlib.util
 
-    if "cantera" in sys.modules:
+    if sys.modules.get("cantera") is not None:
         return True
     try:
         return importlib.util.find_spec("cantera") is not None
