@@ -1,7 +1,7 @@
 """Benchmark: the million-design wobble-cam sweep on a 2-worker dask LocalCluster vs locally.
 
-    python benchmarks/bench_dask.py                      # 1e6 designs, 2 workers (about 1 minute)
-    python benchmarks/bench_dask.py --designs 1e5        # quick look
+    python benchmarks/bench_dask.py                      # 1e6 designs, 2 workers (about 10 minutes)
+    python benchmarks/bench_dask.py --designs 1e5        # the target's size (about 1.5 minutes)
     python benchmarks/bench_dask.py --help
 
 The sweep of ``bench_sweep.py`` (plate tilt x roller axis angle x compression
