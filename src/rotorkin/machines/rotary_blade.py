@@ -396,13 +396,18 @@ def chamber_signs(machine: RotaryBlade) -> np.ndarray:
 
 
 def chamber_offsets(machine: RotaryBlade) -> np.ndarray:
-    """Constant part of the chamber angles: ``-t`` (even), ``2 pi/B - t`` (odd) [rad], ``(2B,)``."""
-    B, t = machine.blades_per_pair, machine.blade_thickness
-    return np.tile([-t, _TWO_PI / B - t], B)
+    """Constant part of the chamber angles: ``-t`` (even), ``2 pi/B - t`` (odd) [rad].
+
+    Shape ``(2B,)``, or ``(2B, ...)`` when ``t`` is an array of designs (one ``B``).
+    """
+    B, t = machine.blades_per_pair, np.asarray(machine.blade_thickness, dtype=float)
+    return np.concatenate([np.stack(np.broadcast_arrays(-t, _TWO_PI / B - t))] * int(B))
 
 
 def _expand(vec, ndim):
-    return np.asarray(vec).reshape((-1,) + (1,) * ndim)
+    """``vec`` (2B, ...) with unit axes appended to broadcast against ``ndim``-d angles."""
+    vec = np.asarray(vec)
+    return vec.reshape(vec.shape + (1,) * (ndim - (vec.ndim - 1)))
 
 
 def chamber_angles(machine: RotaryBlade, q) -> np.ndarray:

@@ -7,7 +7,7 @@ import numpy as np
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.errors import ParameterError
 
-__all__ = ["build_params", "angle_grid", "time_domain", "undefined_warnings"]
+__all__ = ["build_params", "angle_grid", "time_domain", "time_peaks", "undefined_warnings"]
 
 
 def build_params(cls, section: str, values: dict, aliases: dict | None = None):
@@ -65,22 +65,57 @@ def time_domain(motion, speed, slugs, period):
     omega = shaft_speed(motion.theta, speed, period)
     v, a, j = motion.in_time(*omega)
     u = motion.unit
-    columns, docs, summary = {}, {}, {}
+    columns, docs = {}, {}
     columns["shaft_speed_rpm"] = omega[0] * 30.0 / np.pi
     docs["shaft_speed_rpm"] = "input shaft speed"
     for k, slug in enumerate(slugs):
         name = motion.members[k]
-        for label, values, suffix, what in (
-            ("speed", v[k], f"{u}_per_s", "velocity"),
-            ("accel", a[k], f"{u}_per_s2", "acceleration"),
-            ("jerk", j[k], f"{u}_per_s3", "jerk"),
-        ):
-            key = f"{slug}_{label}_{suffix}"
+        for label, values, what in (("speed", v[k], "velocity"), ("accel", a[k], "acceleration"),
+                                    ("jerk", j[k], "jerk")):  # fmt: skip
+            key = f"{slug}_{label}_{u}_per_s{_POWER[label]}"
             columns[key] = values
             docs[key] = f"{what} of {name} in time, at the shaft speed of shaft_speed_rpm"
-            summary[f"{slug}_{label}_peak_{suffix}"] = float(np.max(np.abs(values)))
-    summary["shaft_speed_mean_rpm"] = float(np.mean(omega[0][:-1]) * 30.0 / np.pi)
+    summary = {k: float(x) for k, x in time_peaks(motion, omega, slugs, (v, a, j)).items()}
     return columns, docs, summary, omega
+
+
+_POWER = {"speed": "", "accel": "2", "jerk": "3"}
+
+
+def time_peaks(motion, omega, slugs, rates=None) -> dict:
+    """Peaks of the members' velocity, acceleration and jerk in time; the mean shaft speed.
+
+    For one design or many: the peaks are over the last axis (the angles), so a
+    motion of shape ``(2, d, n)`` (designs as columns against ``n`` angles) gives
+    arrays ``(d,)``.
+
+    Parameters
+    ----------
+    motion : rotorkin.core.motion.Motion
+        Motion of the two members over one period, ends included.
+    omega : tuple of array_like
+        ``(omega, omega_dot, omega_ddot)`` at the angles (broadcasting with ``motion.q[0]``).
+    slugs : tuple of str
+        Key stems of the two members.
+    rates : tuple of ndarray, optional
+        ``motion.in_time(*omega)`` if already at hand.
+
+    Returns
+    -------
+    dict
+        ``<slug>_speed_peak_<u>_per_s``, ``_accel_peak_<u>_per_s2``,
+        ``_jerk_peak_<u>_per_s3`` (u the motion's unit) and ``shaft_speed_mean_rpm``
+        (the mean over the period's samples, the end left out).
+    """
+    v, a, j = motion.in_time(*omega) if rates is None else rates
+    u = motion.unit
+    out = {}
+    for k, slug in enumerate(slugs):
+        for label, values in (("speed", v[k]), ("accel", a[k]), ("jerk", j[k])):
+            out[f"{slug}_{label}_peak_{u}_per_s{_POWER[label]}"] = np.max(np.abs(values), axis=-1)
+    w = np.broadcast_to(np.asarray(omega[0], dtype=float), np.shape(v[0]))
+    out["shaft_speed_mean_rpm"] = np.mean(w[..., :-1], axis=-1) * 30.0 / np.pi
+    return out
 
 
 #: Why a summary key shared by several drives can have no value.

@@ -36,6 +36,7 @@ from rotorkin.drives.eccentric_cam.reactor import (
     reactor_summary,
 )
 from rotorkin.machines import opposed_piston as op
+from rotorkin.studies.helpers import time_peaks
 
 __all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "unsupported", "metric_names", "reasons",
            "metrics", "curves", "period"]  # fmt: skip
@@ -319,24 +320,12 @@ def _dynamic_follower(p, follower: str, names, samples, threads) -> dict:
         out.update(forces_summary(drive, reactor, inertia, w, beta, model,
                                   v["contact.bearing_radius"], v["drive.tip_radius"],
                                   state=st))  # fmt: skip
-        out.update(_time_peaks(st))
+        out.update(time_peaks(st["motion"], (st["omega"], st["omega_dot"], st["omega_ddot"]),
+                              _SLUGS))  # fmt: skip
         return {name: np.broadcast_to(np.asarray(out.get(name, np.nan), dtype=float), (hi - lo,))
                 for name in names}  # fmt: skip
 
     return run_blocks(fn, n, samples, threads)
-
-
-def _time_peaks(st) -> dict:
-    """Peaks of the pistons' velocity, acceleration and jerk in time; the mean shaft speed
-    (the study's :func:`~rotorkin.studies.helpers.time_domain`)."""
-    v, a, j = st["motion"].in_time(st["omega"], st["omega_dot"], st["omega_ddot"])
-    out = {}
-    for k, slug in enumerate(_SLUGS):
-        for what, x, u in (("speed", v, "m_per_s"), ("accel", a, "m_per_s2"),
-                           ("jerk", j, "m_per_s3")):  # fmt: skip
-            out[f"{slug}_{what}_peak_{u}"] = np.max(np.abs(x[k]), axis=-1)
-    out["shaft_speed_mean_rpm"] = np.mean(st["omega"][..., :-1], axis=-1) * 30.0 / np.pi
-    return out
 
 
 def _peaks(rc, e, samples, threads) -> dict:

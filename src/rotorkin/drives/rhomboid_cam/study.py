@@ -38,7 +38,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import pairs as ap
 from rotorkin.analysis import torque as at
 from rotorkin.core.errors import ParameterError
@@ -375,18 +374,11 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient,
     st = machine_state(params, machine, loads, alpha)
     mo = st.motion
     _, _, td_summary, omega = time_domain(mo, speed, _SLUGS, period)
-    J = machine.member_inertias
-    t_inertia = _inertia_torque(machine, mo, omega)
-    w_mean = float(np.mean(omega[0][:-1]))
-    steady = st.torque - at.inertia_torque(machine.inertia_shaft, J, mo.dq, mo.d2q, w_mean, 0.0)
-    j_eq = at.equivalent_inertia(machine.inertia_shaft, J, mo.dq)
-    j_mean = float(np.mean(j_eq[:-1]))
-    d_e = float(fw.energy_fluctuation(steady, alpha))
-    flywheel = float(fw.flywheel_inertia(d_e, w_mean, coefficient, j_mean))
     work_period = indicated_work_per_period(params, machine, loads)
     revs = 2.0 * np.pi / period  # periods per output-shaft revolution
-    work_rev = revs * work_period
-    with_inertia = st.torque - t_inertia
+    dyn, curves = rs.dynamics_summary(machine, alpha, mo, st.members, st.torque, omega,
+                                      coefficient, work_period)  # fmt: skip
+    work_rev = float(dyn["indicated_work_J"])
     drive_torque = _drive_torque(machine, st, omega)
     pairs, fo = _pairs(params, machine, loads, forces_cfg, alpha, st, drive_torque)
     force_summary = {
@@ -397,29 +389,7 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient,
     s = {
         "pressure_model": loads.model,
         **{k: _plain(v) for k, v in geometry.items()},
-        "indicated_work_J": work_rev,
-        "indicated_work_per_period_J": work_period,
-        "indicated_power_kW": work_period / float(np.trapezoid(1.0 / omega[0], alpha)) * 1e-3,
-        "mean_torque_Nm": work_rev / (2.0 * np.pi),
-        "torque_ripple": float(at.torque_ripple(st.torque)),
-        "torque_ripple_with_inertia": float(at.torque_ripple(with_inertia)),
-        "shaft_torque_max_Nm": float(np.max(st.torque)),
-        "shaft_torque_min_Nm": float(np.min(st.torque)),
-        "shaft_torque_with_inertia_max_Nm": float(np.max(with_inertia)),
-        "shaft_torque_with_inertia_min_Nm": float(np.min(with_inertia)),
-        "inertia_torque_peak_Nm": float(np.max(np.abs(t_inertia))),
-        "blade_pair_torque_peak_Nm": float(np.max(np.abs(st.members))),
-        "equivalent_inertia_mean_kgm2": j_mean,
-        "equivalent_inertia_min_kgm2": float(np.min(j_eq)),
-        "equivalent_inertia_max_kgm2": float(np.max(j_eq)),
-        "energy_fluctuation_J": d_e,
-        "speed_fluctuation_without_flywheel": (
-            float(fw.speed_fluctuation_coefficient(d_e, j_mean, w_mean))
-            if j_mean > 0.0
-            else float("inf")
-        ),
-        "speed_fluctuation": float(coefficient),
-        "flywheel_inertia_kgm2": flywheel,
+        **{k: float(v) for k, v in dyn.items()},
     }
     if loads.stirling is not None:
         s.update(rbs.stirling_summary(loads.stirling, revs))
@@ -441,12 +411,14 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient,
     s.update(td_summary)
     s.update(force_summary)
     return s, {"alpha": alpha, "forces": fo, "pairs": pairs, "contact": forces_cfg["model"],
-               "state": st, "inertia_torque": t_inertia, "steady": steady,
-               "equivalent_inertia": j_eq, "omega_mean": w_mean, "work_rev": work_rev,
-               "energy_fluctuation": d_e, "flywheel": flywheel}  # fmt: skip
+               "state": st, "inertia_torque": curves["inertia_torque"],
+               "steady": curves["steady"], "equivalent_inertia": curves["equivalent_inertia"],
+               "omega_mean": float(curves["omega_mean"]), "work_rev": work_rev,
+               "energy_fluctuation": s["energy_fluctuation_J"],
+               "flywheel": s["flywheel_inertia_kgm2"]}  # fmt: skip
 
 
-_SLUGS = ("blade_pair_1", "blade_pair_2")
+_SLUGS = rs.SLUGS
 
 
 def _machine_columns(params, machine, loads, points, speed, forces_cfg):

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.analysis import flywheel as fw
+from rotorkin.analysis import torque as at
 from rotorkin.drives.rhomboid_cam import kinematics as rc
 from rotorkin.machines import rotary_blade as rb
 
@@ -18,11 +20,15 @@ __all__ = [
     "LAW_KEYS",
     "PEAK_KEYS",
     "GEOMETRY_KEYS",
+    "DYNAMICS_KEYS",
+    "SLUGS",
+    "TIME_KEYS",
     "CURVE_KEYS",
     "law_curves",
     "law_summary",
     "peak_summary",
     "engine_geometry_summary",
+    "dynamics_summary",
 ]
 
 #: Keys of :func:`peak_summary` (sampled on a grid of shaft angles).
@@ -74,6 +80,36 @@ GEOMETRY_KEYS = (
     "compression_ratio_geometric",
     "displacement_cm3_per_rev",
 )
+
+#: Keys of :func:`dynamics_summary`, in order.
+DYNAMICS_KEYS = (
+    "indicated_work_J",
+    "indicated_work_per_period_J",
+    "indicated_power_kW",
+    "mean_torque_Nm",
+    "torque_ripple",
+    "torque_ripple_with_inertia",
+    "shaft_torque_max_Nm",
+    "shaft_torque_min_Nm",
+    "shaft_torque_with_inertia_max_Nm",
+    "shaft_torque_with_inertia_min_Nm",
+    "inertia_torque_peak_Nm",
+    "blade_pair_torque_peak_Nm",
+    "equivalent_inertia_mean_kgm2",
+    "equivalent_inertia_min_kgm2",
+    "equivalent_inertia_max_kgm2",
+    "energy_fluctuation_J",
+    "speed_fluctuation_without_flywheel",
+    "speed_fluctuation",
+    "flywheel_inertia_kgm2",
+)
+
+#: Key stems of the two blade pairs.
+SLUGS = ("blade_pair_1", "blade_pair_2")
+#: Keys of :func:`rotorkin.studies.helpers.time_peaks` for the blade pairs.
+TIME_KEYS = (*(f"{slug}_{what}_peak_rad_per_s{power}" for slug in SLUGS
+               for what, power in (("speed", ""), ("accel", "2"), ("jerk", "3"))),
+             "shaft_speed_mean_rpm")  # fmt: skip
 
 
 #: Keys of :func:`law_curves`, in the order of ``motion.csv``.
@@ -203,3 +239,78 @@ def engine_geometry_summary(machine, psi_lo, psi_hi, psi_travel_per_rev) -> dict
         "compression_ratio_geometric": vol["compression_ratio"],
         "displacement_cm3_per_rev": rb.displacement_per_rev(machine, psi_travel_per_rev) * 1e6,
     }
+
+
+def dynamics_summary(machine, alpha, motion, members, torque, omega, coefficient,
+                     work_period) -> tuple[dict, dict]:  # fmt: skip
+    """Work, torques, inertia and flywheel of the engine over one period (:data:`DYNAMICS_KEYS`).
+
+    For one design or many: with the parameters as columns ``(d, 1)`` against the
+    angles, every curve is ``(..., d, n)`` and every key an array ``(d,)``.
+
+    Parameters
+    ----------
+    machine : rotorkin.machines.rotary_blade.RotaryBlade
+        Its inertias (floats or columns).
+    alpha : ndarray, shape (n,)
+        Output-shaft angles over one period, ends included [rad].
+    motion : rotorkin.core.motion.Motion
+        The blade pairs at ``alpha``.
+    members, torque : ndarray
+        Torques of the loads on the blade pairs (2, ..., n) and on the shaft (..., n) [N m].
+    omega : tuple of array_like
+        ``(omega, omega_dot, ...)`` at ``alpha`` [rad/s, rad/s^2].
+    coefficient : array_like
+        ``machine.speed_fluctuation``, the wanted coefficient of speed fluctuation.
+    work_period : array_like
+        Work of the loads over one period [J].
+
+    Returns
+    -------
+    (summary, curves) : dict, dict
+        The keys, and the curves the figures draw: ``"inertia_torque"`` (what the shaft
+        spends on the inertias at the run speed), ``"with_inertia"`` (the shaft torque
+        less it), ``"steady"`` (less the inertia torque at the constant mean speed),
+        ``"equivalent_inertia"``, ``"omega_mean"``.
+    """
+    alpha = np.asarray(alpha, dtype=float)
+    period = alpha[-1] - alpha[0]
+    js, jm = machine.inertia_shaft, machine.member_inertias
+    dq, d2q = motion.dq, motion.d2q
+    t_inertia = at.inertia_torque(js, jm, dq, d2q, omega[0], omega[1])
+    w = np.broadcast_to(np.asarray(omega[0], dtype=float), np.shape(torque))
+    w_mean = np.mean(w[..., :-1], axis=-1)
+    steady = torque - at.inertia_torque(js, jm, dq, d2q, w_mean[..., None], 0.0)
+    j_eq = at.equivalent_inertia(js, jm, dq)
+    j_mean = np.mean(j_eq[..., :-1], axis=-1)
+    d_e = fw.energy_fluctuation(steady, alpha)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        free = np.where(j_mean > 0.0, fw.speed_fluctuation_coefficient(d_e, j_mean, w_mean),
+                        np.inf)  # fmt: skip
+    work_period = np.asarray(work_period, dtype=float)
+    work_rev = (2.0 * np.pi / period) * work_period
+    with_inertia = torque - t_inertia
+    summary = {
+        "indicated_work_J": work_rev,
+        "indicated_work_per_period_J": work_period,
+        "indicated_power_kW": work_period / np.trapezoid(1.0 / w, alpha, axis=-1) * 1e-3,
+        "mean_torque_Nm": work_rev / (2.0 * np.pi),
+        "torque_ripple": at.torque_ripple(torque),
+        "torque_ripple_with_inertia": at.torque_ripple(with_inertia),
+        "shaft_torque_max_Nm": np.max(torque, axis=-1),
+        "shaft_torque_min_Nm": np.min(torque, axis=-1),
+        "shaft_torque_with_inertia_max_Nm": np.max(with_inertia, axis=-1),
+        "shaft_torque_with_inertia_min_Nm": np.min(with_inertia, axis=-1),
+        "inertia_torque_peak_Nm": np.max(np.abs(t_inertia), axis=-1),
+        "blade_pair_torque_peak_Nm": np.max(np.abs(members), axis=(0, -1)),
+        "equivalent_inertia_mean_kgm2": j_mean,
+        "equivalent_inertia_min_kgm2": np.min(j_eq, axis=-1),
+        "equivalent_inertia_max_kgm2": np.max(j_eq, axis=-1),
+        "energy_fluctuation_J": d_e,
+        "speed_fluctuation_without_flywheel": free,
+        "speed_fluctuation": np.asarray(coefficient, dtype=float),
+        "flywheel_inertia_kgm2": fw.flywheel_inertia(d_e, w_mean, coefficient, j_mean),
+    }
+    curves = {"inertia_torque": t_inertia, "with_inertia": with_inertia, "steady": steady,
+              "equivalent_inertia": j_eq, "omega_mean": w_mean}  # fmt: skip
+    return summary, curves
