@@ -401,7 +401,7 @@ def chamber_angles(pump: VanePump, motion: Motion):
     """
     rel = motion.relative
     z = int(pump.vanes_per_impeller)
-    base = np.pi / z - float(pump.vane_angle)
+    base = np.pi / z - np.asarray(pump.vane_angle, dtype=float)  # a column of designs, too
     mid = pump.relative_angle_mid
     sign = np.tile([1.0, -1.0], z).reshape((2 * z,) + (1,) * np.ndim(rel[0]))
     phi = sign * (rel[0] - mid)[None] + base
@@ -429,10 +429,9 @@ def volume_derivatives_dq(pump: VanePump, motion: Motion):
     """
     shape = np.shape(motion.q)[1:]
     z = int(pump.vanes_per_impeller)
-    k = pump.volume_per_angle
-    a = np.array([[-k, k], [k, -k]])  # (member, chamber kind)
-    table = np.tile(a, (1, z))  # (2, 2 Z)
-    return np.broadcast_to(table.reshape(table.shape + (1,) * len(shape)), (2, 2 * z, *shape))
+    k = np.asarray(pump.volume_per_angle, dtype=float)  # a column of designs, too
+    sign = np.tile([[-1.0, 1.0], [1.0, -1.0]], (1, z))  # (member, chamber): (2, 2 Z)
+    return np.broadcast_to(sign.reshape(sign.shape + (1,) * len(shape)) * k, (2, 2 * z, *shape))
 
 
 def chamber_pressures(ports: PortPressures, dvolume):
@@ -451,7 +450,8 @@ def chamber_pressures(ports: PortPressures, dvolume):
         the shaft torque does not depend on that choice.
     """
     dv = np.asarray(dvolume, dtype=float)
-    return np.where(dv < 0.0, float(ports.discharge_pressure), float(ports.suction_pressure))
+    return np.where(dv < 0.0, np.asarray(ports.discharge_pressure, dtype=float),
+                    np.asarray(ports.suction_pressure, dtype=float))  # fmt: skip
 
 
 # --------------------------------------------------------------------------------------------
@@ -483,15 +483,22 @@ def flow_ripple(flow, time_weights=None):
 
     Parameters
     ----------
-    flow : array_like, shape (n,)
-        Flow [m^3/s] at the samples, both ends of the period included.
-    time_weights : array_like, shape (n,), optional
+    flow : array_like, shape (..., n)
+        Flow [m^3/s] at the samples, both ends of the period included (designs on
+        the leading axes).
+    time_weights : array_like, shape (n,) or (..., n), optional
         ``1/omega`` at the samples, to average over time when the shaft speed
         varies (default: equal weights, constant speed).
+
+    Returns
+    -------
+    float or ndarray, shape (...)
+        NaN where the mean flow is not positive.
     """
     q = np.asarray(flow, dtype=float)
     wts = np.ones_like(q) if time_weights is None else np.asarray(time_weights, dtype=float)
     # trapezoid in the angle with weights dt = dtheta/omega on an even grid
-    mean = np.trapezoid(q * wts) / np.trapezoid(wts)
+    mean = np.trapezoid(q * wts, axis=-1) / np.trapezoid(wts, axis=-1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return float((np.max(q) - np.min(q)) / mean) if mean > 0 else float("nan")
+        ripple = np.where(mean > 0, (np.max(q, axis=-1) - np.min(q, axis=-1)) / mean, np.nan)
+    return _scalar(ripple)

@@ -28,7 +28,6 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import pairs as pr
 from rotorkin.analysis import torque as tq
 from rotorkin.analysis.timing import shaft_speed
@@ -207,6 +206,7 @@ def pump_state(
     speed,
     theta,
     windows: pf.LandWindows | None = None,
+    omega=None,
 ) -> dict:
     """Chambers, pressures, flow and torques of the pump at the input angles ``theta``.
 
@@ -225,6 +225,8 @@ def pump_state(
     windows : LandWindows, optional
         The ports' sealing land (:func:`land_params`): the chambers' trapped
         pressure in the closed windows; None: ideal ports.
+    omega : tuple of ndarray, optional
+        ``shaft_speed(theta, speed, period)`` if already at hand (designs of one period).
 
     Returns
     -------
@@ -242,7 +244,7 @@ def pump_state(
         p = pf.port_pressures(ports, windows, V, dV, theta)
     M = tq.member_torques(p, vp.volume_derivatives_dq(pump, motion))
     shaft = tq.shaft_torque_from_members(M, dq)
-    omega, omega_dot, _ = shaft_speed(theta, speed, period)
+    omega, omega_dot, _ = shaft_speed(theta, speed, period) if omega is None else omega
     js, jm = inertia
     t_in = tq.inertia_torque(js, jm, dq, d2q, omega, omega_dot)
     return {
@@ -290,41 +292,20 @@ def _pump_summary(drive, pump, ports, inertia, speed, coefficient, gaps=None,
     windows = windows or land_params(drive, pump, ports, gaps)
     fine = np.linspace(0.0, period, _PEAK_SAMPLES)
     st = pump_state(drive, pump, ports, inertia, speed, fine, windows)
-    omega_mean = float(np.mean(st["omega"][:-1]))
     # time-averaged flow: volume per period over the time of a period
     dt = 1.0 / st["omega"]
     t_period = float(np.trapezoid(dt, fine))
     flow_mean = vp.displacement(pump) / t_period
-    # flywheel: net torque at the mean speed (member inertia included), J_eq already present
-    dq, d2q, _ = gb.impeller_rates(drive, fine)
-    js, jm = inertia
-    net_const = st["shaft"] - tq.inertia_torque(js, jm, dq, d2q, omega_mean, 0.0)
-    delta_e = float(fw.energy_fluctuation(net_const, fine))
-    j_mean = float(np.trapezoid(st["J_eq"], fine) / period)
-    cs = float(delta_e / (j_mean * omega_mean**2)) if j_mean > 0.0 else float("nan")
+    dyn = closed_forms.dynamics_summary(drive, st, inertia, fine, coefficient)
     flow = pf.pump_flow(pump, ports, gaps, windows, flow_mean, t_period, st["dV"], fine,
                         st["omega"])  # fmt: skip
     out = {
         **closed_forms.pump_summary(drive, pump),
         "flow_mean_l_per_min": flow_mean * _M3_TO_L_PER_MIN,
-        "flow_max_l_per_min": float(np.max(st["flow"])) * _M3_TO_L_PER_MIN,
-        "flow_min_l_per_min": float(np.min(st["flow"])) * _M3_TO_L_PER_MIN,
-        "flow_ripple": vp.flow_ripple(st["flow"], dt),
+        **{k: dyn[k] for k in closed_forms.FLOW_KEYS},
         **pf.flow_keys(flow, ports, windows.land),
         **closed_forms.work_summary(drive, pump, ports, flow_mean),
-        "shaft_torque_min_Nm": float(np.min(st["shaft"])),
-        "shaft_torque_max_Nm": float(np.max(st["shaft"])),
-        "torque_ripple": float(tq.torque_ripple(st["shaft"])),
-        "shaft_torque_with_inertia_min_Nm": float(np.min(st["net"])),
-        "shaft_torque_with_inertia_max_Nm": float(np.max(st["net"])),
-        "torque_ripple_with_inertia": float(tq.torque_ripple(st["net"])),
-        "equivalent_inertia_mean_kgm2": j_mean,
-        "energy_fluctuation_J": delta_e,
-        "speed_fluctuation_without_flywheel": cs,
-        "speed_fluctuation": float(coefficient),
-        "flywheel_inertia_kgm2": float(
-            fw.flywheel_inertia(delta_e, omega_mean, coefficient, j_mean)
-        ),
+        **{k: dyn[k] for k in closed_forms.TORQUE_KEYS},
     }
     motion = gb.motion(drive, fine)
     out.update(time_domain(motion, speed, ("impeller1", "impeller2"), period)[2])

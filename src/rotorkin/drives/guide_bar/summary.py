@@ -11,11 +11,38 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.analysis import flywheel as fw
+from rotorkin.analysis import torque as tq
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar import pump as gb_pump
 from rotorkin.machines import vane_pump as vp
 
-__all__ = ["drive_summary", "pump_summary", "work_summary"]
+__all__ = ["drive_summary", "pump_summary", "work_summary", "dynamics_summary", "FLOW_KEYS",
+           "TORQUE_KEYS", "SLUGS", "TIME_KEYS"]  # fmt: skip
+
+#: Keys of :func:`dynamics_summary` from the geometric flow, in order.
+FLOW_KEYS = ("flow_max_l_per_min", "flow_min_l_per_min", "flow_ripple")
+#: Keys of :func:`dynamics_summary` from the torques and inertias, in order.
+TORQUE_KEYS = (
+    "shaft_torque_min_Nm",
+    "shaft_torque_max_Nm",
+    "torque_ripple",
+    "shaft_torque_with_inertia_min_Nm",
+    "shaft_torque_with_inertia_max_Nm",
+    "torque_ripple_with_inertia",
+    "equivalent_inertia_mean_kgm2",
+    "energy_fluctuation_J",
+    "speed_fluctuation_without_flywheel",
+    "speed_fluctuation",
+    "flywheel_inertia_kgm2",
+)
+#: Key stems of the two impellers.
+SLUGS = ("impeller1", "impeller2")
+#: Keys of :func:`rotorkin.studies.helpers.time_peaks` for the impellers.
+TIME_KEYS = (*(f"{slug}_{what}_peak_rad_per_s{power}" for slug in SLUGS
+               for what, power in (("speed", ""), ("accel", "2"), ("jerk", "3"))),
+             "shaft_speed_mean_rpm")  # fmt: skip
+_M3_TO_L_PER_MIN = 60.0e3
 
 
 def _out(x):
@@ -151,5 +178,56 @@ def work_summary(params: gb.GuideBar, pump: vp.VanePump, ports: vp.PortPressures
         "indicated_work_J": work_period / np.asarray(params.input_gear_ratio, dtype=float),
         "indicated_work_per_period_J": work_period,
         "mean_torque_Nm": work_period / gb.period(params),
+    }
+    return {k: _out(v) for k, v in out.items()}
+
+
+def dynamics_summary(params: gb.GuideBar, state: dict, inertia, theta, coefficient) -> dict:
+    """Flow extremes and ripple, shaft torques, inertia and flywheel over one period.
+
+    :data:`FLOW_KEYS` and :data:`TORQUE_KEYS`, for one design or many: with the
+    parameters as columns ``(d, 1)`` against the angles, every key is an array ``(d,)``.
+
+    Parameters
+    ----------
+    params : GuideBar
+    state : dict
+        :func:`rotorkin.drives.guide_bar.study.pump_state` at ``theta``.
+    inertia : (J_shaft, (J_1, J_2))
+        [kg*m^2], floats or columns.
+    theta : ndarray, shape (n,)
+        Input angles over one period, ends included [rad].
+    coefficient : array_like
+        ``machine.speed_fluctuation``, the wanted coefficient of speed fluctuation.
+    """
+    theta = np.asarray(theta, dtype=float)
+    period = theta[-1] - theta[0]
+    shaft, net = state["shaft"], state["net"]
+    omega = np.broadcast_to(np.asarray(state["omega"], dtype=float), np.shape(shaft))
+    omega_mean = np.mean(omega[..., :-1], axis=-1)
+    # flywheel: net torque at the mean speed (member inertia included), J_eq already present
+    dq, d2q, _ = gb.impeller_rates(params, theta)
+    js, jm = inertia
+    net_const = shaft - tq.inertia_torque(js, jm, dq, d2q, omega_mean[..., None], 0.0)
+    delta_e = fw.energy_fluctuation(net_const, theta)
+    j_mean = np.trapezoid(state["J_eq"], theta, axis=-1) / period
+    with np.errstate(divide="ignore", invalid="ignore"):
+        free = np.where(j_mean > 0.0, delta_e / (j_mean * omega_mean**2), np.nan)
+    flow = state["flow"]
+    out = {
+        "flow_max_l_per_min": np.max(flow, axis=-1) * _M3_TO_L_PER_MIN,
+        "flow_min_l_per_min": np.min(flow, axis=-1) * _M3_TO_L_PER_MIN,
+        "flow_ripple": vp.flow_ripple(flow, 1.0 / np.asarray(state["omega"], dtype=float)),
+        "shaft_torque_min_Nm": np.min(shaft, axis=-1),
+        "shaft_torque_max_Nm": np.max(shaft, axis=-1),
+        "torque_ripple": tq.torque_ripple(shaft),
+        "shaft_torque_with_inertia_min_Nm": np.min(net, axis=-1),
+        "shaft_torque_with_inertia_max_Nm": np.max(net, axis=-1),
+        "torque_ripple_with_inertia": tq.torque_ripple(net),
+        "equivalent_inertia_mean_kgm2": j_mean,
+        "energy_fluctuation_J": delta_e,
+        "speed_fluctuation_without_flywheel": free,
+        "speed_fluctuation": np.asarray(coefficient, dtype=float),
+        "flywheel_inertia_kgm2": fw.flywheel_inertia(delta_e, omega_mean, coefficient, j_mean),
     }
     return {k: _out(v) for k, v in out.items()}

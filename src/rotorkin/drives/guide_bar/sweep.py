@@ -9,19 +9,30 @@ the input torque ``M7 q_1' + M8 q_2'`` (eq. 7, 8) and the peaks of the impellers
 acceleration and jerk coefficients from
 :func:`~rotorkin.drives.guide_bar.kinematics.impeller_rates` (no arctangent per
 sample), the drive's parameters held as (block, 1) columns of a
-:class:`~rotorkin.drives.guide_bar.kinematics.GuideBar`. Admissibility:
-:func:`reasons`, from the same vectorised checks as the dataclasses.
+:class:`~rotorkin.drives.guide_bar.kinematics.GuideBar`. With ideal ports (no
+sealing land, ``machine.port_land = 0``), also sampled: the geometric flow's
+extremes and ripple, the shaft torques with and without the inertias, the
+equivalent inertia, energy fluctuation and flywheel
+(:func:`~rotorkin.drives.guide_bar.summary.dynamics_summary`) and the impellers'
+peaks in time (:func:`~rotorkin.studies.helpers.time_peaks`), from the study's own
+:func:`~rotorkin.drives.guide_bar.study.pump_state` on columns of designs (one call
+per block, gear ratio i12 and number of vanes). Admissibility: :func:`reasons`, from
+the same vectorised checks as the dataclasses.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.batch import Designs, flag, full, run_blocks, sample_grid
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar import pump as gb_pump
+from rotorkin.drives.guide_bar import study
 from rotorkin.drives.guide_bar import summary as closed_forms
+from rotorkin.drives.guide_bar.schema import VanePumpMachine
 from rotorkin.machines import vane_pump as vp
+from rotorkin.studies.helpers import time_peaks
 
 __all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "unsupported", "metric_names", "reasons",
            "metrics", "curves", "period"]  # fmt: skip
@@ -40,6 +51,10 @@ KEYS = frozenset(
         "machine.hub_radius",
         "machine.casing_radius",
         "machine.axial_width",
+        "machine.inertia_shaft",
+        "machine.inertia_impeller_1",
+        "machine.inertia_impeller_2",
+        "machine.speed_fluctuation",
         "loads.impeller_torque_1",
         "loads.impeller_torque_2",
         "loads.suction_pressure",
@@ -92,6 +107,9 @@ _METRICS = (
     "mean_torque_Nm",
 )
 _FLOW = ("flow_mean_l_per_min", "hydraulic_power_W")
+_INERTIAS = ("inertia_shaft", "inertia_impeller_1", "inertia_impeller_2")
+#: Keys of the pump's dynamics (ideal ports; sampled).
+_DYNAMIC = closed_forms.FLOW_KEYS + closed_forms.TORQUE_KEYS + closed_forms.TIME_KEYS
 
 CURVES = (
     "impeller1_angle_deg",
@@ -114,9 +132,19 @@ def unsupported(cfg: dict) -> str | None:
 
 
 def metric_names(cfg: dict) -> tuple[str, ...]:
-    """Summary keys the kernel computes (the mean flow only at a constant shaft speed)."""
+    """Summary keys the kernel computes (the mean flow only at a constant shaft speed, the
+    dynamics with ideal ports)."""
     speed = cfg.get("run", {}).get("speed")
-    return _METRICS + (_FLOW if not isinstance(speed, list) else ())
+    ideal = not (cfg.get("machine") or {}).get("port_land")
+    return (_METRICS + (_FLOW if not isinstance(speed, list) else ())
+            + (_DYNAMIC if ideal else ()))  # fmt: skip
+
+
+def _value(p, key: str):
+    """``p[key]`` as floats, the schema's default where the base config leaves it out."""
+    if p[key] is None:
+        return float(VanePumpMachine().model_dump()[key.split(".", 1)[1]])
+    return p.float(key)
 
 
 def period(p):
@@ -180,6 +208,14 @@ def reasons(p, code: dict) -> np.ndarray:
     ports = vp.ports_inadmissible(p.float("loads.suction_pressure"),
                                   p.float("loads.discharge_pressure"))  # fmt: skip
     mark(ports, vp.PORT_FIELDS, "loads")
+    for k in _INERTIAS:  # the study's order: the inertias, then the wanted C_s
+        flag(
+            r,
+            ~(np.asarray(_value(p, f"machine.{k}")) >= 0.0),
+            code.get(f"machine.{k}", code["other"]),
+        )
+    cs = np.asarray(_value(p, "machine.speed_fluctuation"), dtype=float)
+    flag(r, ~((cs > 0.0) & (cs < 1.0)), code.get("machine.speed_fluctuation", code["other"]))
     return r
 
 
@@ -204,7 +240,56 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
         flow = vp.displacement(pump) / (gb.period(params) / float(speed))  # volume / its time
         val["flow_mean_l_per_min"] = flow * 60.0e3
     val |= closed_forms.work_summary(params, pump, ports, flow)
+    if names & set(_DYNAMIC):
+        val |= _dynamics(p, samples, threads)
     return {name: full(val[name], p.n) for name in names}
+
+
+def _dynamics(p, samples: int, threads) -> dict:
+    """The :data:`_DYNAMIC` keys on ``samples`` input angles per design (ideal ports).
+
+    Designs of one input gear ratio (it sets the period) and one number of vanes (the
+    number of chambers) at a time; the study's
+    :func:`~rotorkin.drives.guide_bar.study.pump_state` and
+    :func:`~rotorkin.drives.guide_bar.summary.dynamics_summary` on (block, 1) columns.
+    """
+    n = p.n
+    cols = {k: full(p.float(k), n) for k in ("drive.lambda", "drive.gear_ratio",
+            "drive.input_gear_ratio", "drive.phase", "loads.suction_pressure",
+            "loads.discharge_pressure")}  # fmt: skip
+    for k in ("hub_radius", "casing_radius", "axial_width", *_INERTIAS, "speed_fluctuation"):
+        cols[k] = full(_value(p, f"machine.{k}"), n)
+    if p["machine.vane_angle"] is not None:
+        cols["vane_angle"] = full(p.float("machine.vane_angle"), n)
+    driver = full(np.asarray(p["drive.driver"]), n, dtype=str)
+    vanes = full(np.asarray(p["machine.vanes_per_impeller"]), n, dtype=np.int64)
+    i12 = cols["drive.input_gear_ratio"]
+    speed = p.cfg["run"]["speed"]
+    out = {k: np.empty(n) for k in _DYNAMIC}
+    for ratio, count in np.unique(np.stack([i12, vanes.astype(float)], axis=-1), axis=0):
+        rows = np.flatnonzero((i12 == ratio) & (vanes == count))
+        theta = sample_grid(gb.input_period(ratio), samples)
+        omega = shaft_speed(theta, speed, gb.input_period(ratio))
+
+        def fn(lo, hi, rows=rows, count=int(count), theta=theta, omega=omega):
+            c = {k: v[rows[lo:hi], None] for k, v in cols.items()}
+            params = gb.GuideBar(c["drive.lambda"], c["drive.gear_ratio"],
+                                 c["drive.input_gear_ratio"], c["drive.phase"],
+                                 driver[rows[lo:hi], None])  # fmt: skip
+            pump = gb_pump.vane_pump(params, count, c.get("vane_angle"), c["hub_radius"],
+                                     c["casing_radius"], c["axial_width"])  # fmt: skip
+            ports = vp.PortPressures(c["loads.suction_pressure"], c["loads.discharge_pressure"])
+            inertia = (c["inertia_shaft"], (c["inertia_impeller_1"], c["inertia_impeller_2"]))
+            st = study.pump_state(params, pump, ports, inertia, speed, theta, omega=omega)
+            val = closed_forms.dynamics_summary(params, st, inertia, theta,
+                                                c["speed_fluctuation"][:, 0])  # fmt: skip
+            val |= time_peaks(gb.motion(params, theta), omega, closed_forms.SLUGS)
+            return {k: np.broadcast_to(val[k], (hi - lo,)) for k in _DYNAMIC}
+
+        res = run_blocks(fn, rows.size, samples, threads)
+        for k in _DYNAMIC:
+            out[k][rows] = res[k]
+    return out
 
 
 def _sampled(p, samples, threads) -> dict:
