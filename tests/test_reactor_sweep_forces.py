@@ -14,14 +14,14 @@ import pytest
 
 from rotorkin.analysis import pairs as pairs_mod
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs
-from rotorkin.core.errors import ParameterError
 from rotorkin.drives import evaluate
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.drives.eccentric_cam import sweep as kernel
 from rotorkin.drives.eccentric_cam.forces import forces_summary
 from rotorkin.drives.eccentric_cam.reactor import opposed_piston, reactor_summary
 from rotorkin.io.config import load_config, validate_config
-from rotorkin.sweep.engine import coverage, evaluate_designs, reason_keys
+from rotorkin.sweep.engine import coverage, evaluate_designs
+from sweep_equality import assert_equal_to_study, assert_reasons_of_study
 
 #: The keys this kernel took over from the study run design by design.
 DYNAMIC = (
@@ -74,29 +74,6 @@ def _sample(n: int, seed: int) -> dict:
     }
 
 
-def _study(p: Designs, i: int):
-    try:
-        return evaluate(p.config(i)).summary
-    except ParameterError as exc:
-        return exc.name
-
-
-def _assert_equal_to_study(p: Designs, got: dict, names) -> int:
-    """Every design's kernel value equals the study's (1e-9 relative); returns designs seen."""
-    seen = 0
-    for i in range(p.n):
-        summary = _study(p, i)
-        if isinstance(summary, str):
-            continue
-        seen += 1
-        for name in names:
-            want = float(summary.get(name, np.nan))  # no key (an edge): no stress, NaN
-            scale = abs(float(summary[ROUND_OFF[name]])) * 1e-9 if name in ROUND_OFF else 0.0
-            np.testing.assert_allclose(got[name][i], want, rtol=1e-9, atol=scale,
-                                       err_msg=f"{name}, design {i}")  # fmt: skip
-    return seen
-
-
 def test_the_kernel_vectorises_every_force_and_torque_key_of_the_study():
     cfg, _ = _base()
     summary = evaluate(cfg).summary
@@ -116,7 +93,7 @@ def test_kernel_equals_the_study_design_by_design(seed):
         warnings.simplefilter("error")  # no design may fall back to the study
         res = evaluate_designs(p, DYNAMIC, threads=2)
     assert np.all(res["reason"] == 0)
-    assert _assert_equal_to_study(p, res["metrics"], DYNAMIC) == n
+    assert assert_equal_to_study(p, res["metrics"], DYNAMIC, ROUND_OFF) == n
     # every follower and an edge without a tip were in the sample
     followers = set(p["drive.follower"])
     assert followers == {"knife_edge", "flat", "roller"}
@@ -145,7 +122,7 @@ def test_kernel_equals_the_study_on_other_bases(sets):
         del table["run.speed"]
     p = Designs(cfg, table, n)
     got = kernel.metrics(p, DYNAMIC, DEFAULT_SAMPLES, 1)
-    assert _assert_equal_to_study(p, got, DYNAMIC) == n
+    assert assert_equal_to_study(p, got, DYNAMIC, ROUND_OFF) == n
 
 
 def test_a_speed_profile_of_the_base_config_goes_through_the_kernel():
@@ -155,7 +132,7 @@ def test_a_speed_profile_of_the_base_config_goes_through_the_kernel():
     n = 4
     p = Designs(cfg, {"drive.eccentricity": np.linspace(0.01, 0.06, n)}, n)
     got = kernel.metrics(p, DYNAMIC, DEFAULT_SAMPLES, 1)
-    assert _assert_equal_to_study(p, got, DYNAMIC) == n
+    assert assert_equal_to_study(p, got, DYNAMIC, ROUND_OFF) == n
     # an accelerating shaft: the inertia torque differs from that at constant speed
     assert np.all(got["shaft_speed_mean_rpm"] != 500.0)
 
@@ -197,16 +174,12 @@ def test_refused_designs_keep_the_studys_reason():
     }
     p = Designs(cfg, table, n)
     res = evaluate_designs(p, DYNAMIC, threads=1)
-    keys = reason_keys("eccentric_cam")
-    for i in range(n):
-        study = _study(p, i)
-        want = study if isinstance(study, str) else "ok"
-        assert keys[res["reason"][i]] == want, i
+    assert_reasons_of_study(p, res["reason"], "eccentric_cam")
     refused = res["reason"] != 0
     assert refused.tolist() == [False, True, True, False, False]
     for name in DYNAMIC:
         assert np.all(np.isnan(res["metrics"][name][refused]))
-    assert _assert_equal_to_study(p, res["metrics"], DYNAMIC) == 3
+    assert assert_equal_to_study(p, res["metrics"], DYNAMIC, ROUND_OFF) == 3
 
 
 def _design(follower="roller"):

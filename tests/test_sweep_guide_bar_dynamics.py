@@ -15,11 +15,11 @@ import numpy as np
 import pytest
 
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs
-from rotorkin.core.errors import ParameterError
 from rotorkin.drives import evaluate
 from rotorkin.drives.guide_bar import sweep as kernel
 from rotorkin.io.config import load_config, validate_config
-from rotorkin.sweep.engine import coverage, evaluate_designs, reason_keys
+from rotorkin.sweep.engine import coverage, evaluate_designs
+from sweep_equality import assert_equal_to_study, assert_refused_as_study
 
 #: The keys the kernel took over from the study run design by design.
 DYNAMIC = (
@@ -63,21 +63,6 @@ def _sample(n: int, seed: int) -> dict:
     }
 
 
-def _assert_equal_to_study(p: Designs, got: dict, names) -> int:
-    """Every design's kernel value equals the study's (1e-9 relative); returns designs seen."""
-    seen = 0
-    for i in range(p.n):
-        try:
-            summary = evaluate(p.config(i)).summary
-        except ParameterError:
-            continue
-        seen += 1
-        for name in names:
-            np.testing.assert_allclose(got[name][i], float(summary[name]), rtol=1e-9, atol=0.0,
-                                       err_msg=f"{name}, design {i}")  # fmt: skip
-    return seen
-
-
 def test_the_kernel_vectorises_the_dynamics_with_ideal_ports():
     cfg, _ = _base()
     summary = evaluate(cfg).summary
@@ -100,7 +85,7 @@ def test_kernel_equals_the_study_design_by_design(seed):
         res = evaluate_designs(p, DYNAMIC, threads=2)
     ok = res["reason"] == 0
     assert ok.sum() >= n // 2
-    assert _assert_equal_to_study(p, res["metrics"], DYNAMIC) == ok.sum()
+    assert assert_equal_to_study(p, res["metrics"], DYNAMIC) == ok.sum()
     # every group of periods and chambers, and both drivers, ran
     assert set(p["drive.input_gear_ratio"][ok]) == {1.0, 2.0}
     assert set(p["machine.vanes_per_impeller"][ok]) == {1, 2}
@@ -116,7 +101,7 @@ def test_a_speed_profile_of_the_base_config_goes_through_the_kernel():
              "drive.input_gear_ratio": np.array([1.0, 2.0, 2.0])}  # fmt: skip
     p = Designs(cfg, table, n)
     got = kernel.metrics(p, DYNAMIC, DEFAULT_SAMPLES, 1)
-    assert _assert_equal_to_study(p, got, DYNAMIC) == n
+    assert assert_equal_to_study(p, got, DYNAMIC) == n
 
 
 def test_time_peaks_are_the_speed_ratio_extremes_times_the_speed():
@@ -165,16 +150,4 @@ def test_refused_designs_keep_the_studys_reason():
     cfg, _ = _base()
     table = {"machine.inertia_impeller_1": np.array([-1e-3, 0.01, 0.02]),
              "drive.lambda": np.array([0.5, 0.5, 1.5])}  # fmt: skip
-    p = Designs(cfg, table, 3)
-    res = evaluate_designs(p, DYNAMIC, threads=1)
-    keys = reason_keys("guide_bar")
-    for i in range(3):
-        try:
-            evaluate(p.config(i))
-            want = "ok"
-        except ParameterError as exc:
-            want = exc.name
-        assert keys[res["reason"][i]] == want
-    assert keys[res["reason"][0]] == "machine.inertia_impeller_1"
-    assert np.isnan(res["metrics"]["flywheel_inertia_kgm2"][0])
-    assert np.isfinite(res["metrics"]["flywheel_inertia_kgm2"][1])
+    assert_refused_as_study(cfg, table, DYNAMIC, "guide_bar", "machine.inertia_impeller_1")

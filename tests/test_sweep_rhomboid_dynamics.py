@@ -16,11 +16,11 @@ import numpy as np
 import pytest
 
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs
-from rotorkin.core.errors import ParameterError
 from rotorkin.drives import evaluate
 from rotorkin.drives.rhomboid_cam import sweep as kernel
 from rotorkin.io.config import load_config, validate_config
-from rotorkin.sweep.engine import coverage, evaluate_designs, reason_keys
+from rotorkin.sweep.engine import coverage, evaluate_designs
+from sweep_equality import assert_equal_to_study, assert_refused_as_study
 
 #: The keys the kernel took over from the study run design by design.
 DYNAMIC = (
@@ -64,21 +64,6 @@ def _sample(n: int, seed: int) -> dict:
     }
 
 
-def _assert_equal_to_study(p: Designs, got: dict, names) -> int:
-    """Every design's kernel value equals the study's (1e-9 relative); returns designs seen."""
-    seen = 0
-    for i in range(p.n):
-        try:
-            summary = evaluate(p.config(i)).summary
-        except ParameterError:
-            continue
-        seen += 1
-        for name in names:
-            np.testing.assert_allclose(got[name][i], float(summary[name]), rtol=1e-9, atol=0.0,
-                                       err_msg=f"{name}, design {i}")  # fmt: skip
-    return seen
-
-
 def test_the_kernel_vectorises_the_dynamics_of_the_linear_model():
     cfg, _ = _base()
     summary = evaluate(cfg).summary
@@ -101,7 +86,7 @@ def test_kernel_equals_the_study_design_by_design(seed):
         res = evaluate_designs(p, DYNAMIC, threads=2)
     ok = res["reason"] == 0
     assert ok.sum() >= n // 2
-    assert _assert_equal_to_study(p, res["metrics"], DYNAMIC) == ok.sum()
+    assert assert_equal_to_study(p, res["metrics"], DYNAMIC) == ok.sum()
     assert set(p["machine.blades_per_pair"][ok]) == {1, 2}  # every group of chambers ran
 
 
@@ -112,7 +97,7 @@ def test_a_speed_profile_of_the_base_config_goes_through_the_kernel():
     n = 3
     p = Designs(cfg, {"drive.psi_min": np.radians([30.0, 40.0, 50.0])}, n)
     got = kernel.metrics(p, DYNAMIC, DEFAULT_SAMPLES, 1)
-    assert _assert_equal_to_study(p, got, DYNAMIC) == n
+    assert assert_equal_to_study(p, got, DYNAMIC) == n
     # an accelerating shaft: its inertia torque is not that of a constant speed
     assert np.all(got["inertia_torque_peak_Nm"] > 0.0)
 
@@ -174,16 +159,4 @@ def test_refused_designs_keep_the_studys_reason():
     cfg, _ = _base()
     table = {"machine.inertia_blade_pair_2": np.array([-1e-3, 0.01, 0.02]),
              "drive.psi_min": np.radians([40.0, 40.0, 95.0])}  # fmt: skip
-    p = Designs(cfg, table, 3)
-    res = evaluate_designs(p, DYNAMIC, threads=1)
-    keys = reason_keys("rhomboid_cam")
-    for i in range(3):
-        try:
-            evaluate(p.config(i))
-            want = "ok"
-        except ParameterError as exc:
-            want = exc.name
-        assert keys[res["reason"][i]] == want
-    assert keys[res["reason"][0]] == "machine.inertia_blade_pair_2"
-    assert np.isnan(res["metrics"]["flywheel_inertia_kgm2"][0])
-    assert np.isfinite(res["metrics"]["flywheel_inertia_kgm2"][1])
+    assert_refused_as_study(cfg, table, DYNAMIC, "rhomboid_cam", "machine.inertia_blade_pair_2")

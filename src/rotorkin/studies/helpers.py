@@ -7,7 +7,8 @@ import numpy as np
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.errors import ParameterError
 
-__all__ = ["build_params", "angle_grid", "time_domain", "time_peaks", "undefined_warnings"]
+__all__ = ["build_params", "angle_grid", "time_domain", "time_peaks", "time_peak_keys",
+           "undefined_warnings"]  # fmt: skip
 
 
 def build_params(cls, section: str, values: dict, aliases: dict | None = None):
@@ -82,6 +83,16 @@ def time_domain(motion, speed, slugs, period):
 _POWER = {"speed": "", "accel": "2", "jerk": "3"}
 
 
+def _peak_key(slug: str, label: str, unit: str) -> str:
+    return f"{slug}_{label}_peak_{unit}_per_s{_POWER[label]}"
+
+
+def time_peak_keys(slugs, unit: str = "rad") -> tuple[str, ...]:
+    """The keys of :func:`time_peaks` for members ``slugs`` moving in ``unit``, in order."""
+    return (*(_peak_key(slug, label, unit) for slug in slugs for label in _POWER),
+            "shaft_speed_mean_rpm")  # fmt: skip
+
+
 def time_peaks(motion, omega, slugs, rates=None) -> dict:
     """Peaks of the members' velocity, acceleration and jerk in time; the mean shaft speed.
 
@@ -108,11 +119,10 @@ def time_peaks(motion, omega, slugs, rates=None) -> dict:
         (the mean over the period's samples, the end left out).
     """
     v, a, j = motion.in_time(*omega) if rates is None else rates
-    u = motion.unit
     out = {}
     for k, slug in enumerate(slugs):
         for label, values in (("speed", v[k]), ("accel", a[k]), ("jerk", j[k])):
-            out[f"{slug}_{label}_peak_{u}_per_s{_POWER[label]}"] = np.max(np.abs(values), axis=-1)
+            out[_peak_key(slug, label, motion.unit)] = np.max(np.abs(values), axis=-1)
     w = np.broadcast_to(np.asarray(omega[0], dtype=float), np.shape(v[0]))
     out["shaft_speed_mean_rpm"] = np.mean(w[..., :-1], axis=-1) * 30.0 / np.pi
     return out

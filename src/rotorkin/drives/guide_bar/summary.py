@@ -16,6 +16,7 @@ from rotorkin.analysis import torque as tq
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar import pump as gb_pump
 from rotorkin.machines import vane_pump as vp
+from rotorkin.studies.helpers import time_peak_keys
 
 __all__ = ["drive_summary", "pump_summary", "work_summary", "dynamics_summary", "FLOW_KEYS",
            "TORQUE_KEYS", "SLUGS", "TIME_KEYS"]  # fmt: skip
@@ -39,9 +40,7 @@ TORQUE_KEYS = (
 #: Key stems of the two impellers.
 SLUGS = ("impeller1", "impeller2")
 #: Keys of :func:`rotorkin.studies.helpers.time_peaks` for the impellers.
-TIME_KEYS = (*(f"{slug}_{what}_peak_rad_per_s{power}" for slug in SLUGS
-               for what, power in (("speed", ""), ("accel", "2"), ("jerk", "3"))),
-             "shaft_speed_mean_rpm")  # fmt: skip
+TIME_KEYS = time_peak_keys(SLUGS)
 _M3_TO_L_PER_MIN = 60.0e3
 
 

@@ -15,6 +15,7 @@ from rotorkin.analysis import flywheel as fw
 from rotorkin.analysis import torque as at
 from rotorkin.drives.rhomboid_cam import kinematics as rc
 from rotorkin.machines import rotary_blade as rb
+from rotorkin.studies.helpers import time_peak_keys
 
 __all__ = [
     "LAW_KEYS",
@@ -107,9 +108,7 @@ DYNAMICS_KEYS = (
 #: Key stems of the two blade pairs.
 SLUGS = ("blade_pair_1", "blade_pair_2")
 #: Keys of :func:`rotorkin.studies.helpers.time_peaks` for the blade pairs.
-TIME_KEYS = (*(f"{slug}_{what}_peak_rad_per_s{power}" for slug in SLUGS
-               for what, power in (("speed", ""), ("accel", "2"), ("jerk", "3"))),
-             "shaft_speed_mean_rpm")  # fmt: skip
+TIME_KEYS = time_peak_keys(SLUGS)
 
 
 #: Keys of :func:`law_curves`, in the order of ``motion.csv``.
