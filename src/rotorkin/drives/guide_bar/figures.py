@@ -430,7 +430,7 @@ def plot_all(params: gb.GuideBar, m7: float, m8: float, outdir: Path, pump=None,
     outdir : Path
     pump, ports : VanePump, PortPressures, optional
     theta, state, summary : optional
-        Input angles, :func:`rotorkin.drives.guide_bar.study.pump_state` on them and
+        Input angles, :func:`rotorkin.drives.guide_bar.pump.pump_state` on them and
         the study's summary; needed with ``pump``.
     pairs, contact : list of Pair, ContactModel, optional
         The pairs at ``theta`` and the contact model: ``forces.png``.

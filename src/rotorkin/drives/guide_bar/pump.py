@@ -15,14 +15,17 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.analysis import torque as tq
+from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.angles import fmt_deg
 from rotorkin.core.errors import ParameterError
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar.schema import VanePumpMachine
+from rotorkin.machines import pump_flow as pf
 from rotorkin.machines import vane_pump as vp
 
-__all__ = ["CHECKS", "relative_angle_extremes", "turning_angles", "default_vane_angle",
-           "inadmissible", "vane_pump", "displacement"]  # fmt: skip
+__all__ = ["CHECKS", "pump_state", "relative_angle_extremes", "turning_angles",
+           "default_vane_angle", "inadmissible", "vane_pump", "displacement"]  # fmt: skip
 
 #: The machine section's defaults (SI), the one source of the pump's defaults.
 _MACHINE = VanePumpMachine().model_dump()
@@ -166,3 +169,67 @@ def displacement(params: gb.GuideBar, pump: vp.VanePump) -> dict:
         "per_impeller_rev": per_period * np.asarray(params.gear_ratio, dtype=float),
     }
     return {k: float(v) if np.ndim(v) == 0 else v for k, v in out.items()}
+
+
+def pump_state(
+    params: gb.GuideBar,
+    pump: vp.VanePump,
+    ports: vp.PortPressures,
+    inertia,
+    speed,
+    theta,
+    windows: pf.LandWindows | None = None,
+    omega=None,
+) -> dict:
+    """Chambers, pressures, flow and torques of the pump at the input angles ``theta``.
+
+    Parameters
+    ----------
+    params : GuideBar
+        The drive of the pump.
+    pump : VanePump
+    ports : PortPressures
+    inertia : (float, (float, float))
+        ``J_shaft`` and the impeller inertias [kg*m^2].
+    speed : float or sequence of float
+        ``run.speed`` [rad/s] (constant or a profile over one period).
+    theta : ndarray, shape (n,)
+        Input angles [rad].
+    windows : LandWindows, optional
+        The ports' sealing land (:func:`land_params`): the chambers' trapped
+        pressure in the closed windows; None: ideal ports.
+    omega : tuple of ndarray, optional
+        ``shaft_speed(theta, speed, period)`` if already at hand (designs of one period).
+
+    Returns
+    -------
+    dict of ndarray
+        ``V``, ``dV``, ``p`` (2 Z, n); ``M`` (2, n); ``shaft``, ``inertia``,
+        ``net``, ``J_eq``, ``flow`` (geometric), ``omega``, ``omega_dot`` (n,).
+    """
+    period = gb.period(params)
+    motion = gb.motion(params, theta)
+    dq, d2q = motion.dq, motion.d2q
+    V, dV = vp.chamber_volumes(pump, motion)
+    if windows is None:
+        p = vp.chamber_pressures(ports, dV)
+    else:
+        p = pf.port_pressures(ports, windows, V, dV, theta)
+    M = tq.member_torques(p, vp.volume_derivatives_dq(pump, motion))
+    shaft = tq.shaft_torque_from_members(M, dq)
+    omega, omega_dot, _ = shaft_speed(theta, speed, period) if omega is None else omega
+    js, jm = inertia
+    t_in = tq.inertia_torque(js, jm, dq, d2q, omega, omega_dot)
+    return {
+        "V": V,
+        "dV": dV,
+        "p": p,
+        "M": M,
+        "shaft": shaft,
+        "inertia": t_in,
+        "net": shaft - t_in,
+        "J_eq": tq.equivalent_inertia(js, jm, dq),
+        "flow": vp.flow_rate(pump, motion, omega),
+        "omega": omega,
+        "omega_dot": omega_dot,
+    }

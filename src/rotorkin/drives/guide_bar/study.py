@@ -29,8 +29,6 @@ from pathlib import Path
 import numpy as np
 
 from rotorkin.analysis import pairs as pr
-from rotorkin.analysis import torque as tq
-from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.errors import ParameterError
 from rotorkin.core.schema import ContactSection, RunSection
 from rotorkin.drives.guide_bar import figures as figures_guide_bar
@@ -38,6 +36,7 @@ from rotorkin.drives.guide_bar import forces as gb_forces
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar import pump as gb_pump
 from rotorkin.drives.guide_bar import summary as closed_forms
+from rotorkin.drives.guide_bar.pump import pump_state
 from rotorkin.drives.guide_bar.schema import GuideBarLoads, VanePumpMachine
 from rotorkin.machines import pump_flow as pf
 from rotorkin.machines import vane_pump as vp
@@ -196,70 +195,6 @@ def _inertias(machine: dict) -> tuple[float, tuple[float, float]]:
     j1 = _nonnegative("machine.inertia_impeller_1", machine["inertia_impeller_1"], "kg*m^2")
     j2 = _nonnegative("machine.inertia_impeller_2", machine["inertia_impeller_2"], "kg*m^2")
     return js, (j1, j2)
-
-
-def pump_state(
-    params: gb.GuideBar,
-    pump: vp.VanePump,
-    ports: vp.PortPressures,
-    inertia,
-    speed,
-    theta,
-    windows: pf.LandWindows | None = None,
-    omega=None,
-) -> dict:
-    """Chambers, pressures, flow and torques of the pump at the input angles ``theta``.
-
-    Parameters
-    ----------
-    params : GuideBar
-        The drive of the pump.
-    pump : VanePump
-    ports : PortPressures
-    inertia : (float, (float, float))
-        ``J_shaft`` and the impeller inertias [kg*m^2].
-    speed : float or sequence of float
-        ``run.speed`` [rad/s] (constant or a profile over one period).
-    theta : ndarray, shape (n,)
-        Input angles [rad].
-    windows : LandWindows, optional
-        The ports' sealing land (:func:`land_params`): the chambers' trapped
-        pressure in the closed windows; None: ideal ports.
-    omega : tuple of ndarray, optional
-        ``shaft_speed(theta, speed, period)`` if already at hand (designs of one period).
-
-    Returns
-    -------
-    dict of ndarray
-        ``V``, ``dV``, ``p`` (2 Z, n); ``M`` (2, n); ``shaft``, ``inertia``,
-        ``net``, ``J_eq``, ``flow`` (geometric), ``omega``, ``omega_dot`` (n,).
-    """
-    period = gb.period(params)
-    motion = gb.motion(params, theta)
-    dq, d2q = motion.dq, motion.d2q
-    V, dV = vp.chamber_volumes(pump, motion)
-    if windows is None:
-        p = vp.chamber_pressures(ports, dV)
-    else:
-        p = pf.port_pressures(ports, windows, V, dV, theta)
-    M = tq.member_torques(p, vp.volume_derivatives_dq(pump, motion))
-    shaft = tq.shaft_torque_from_members(M, dq)
-    omega, omega_dot, _ = shaft_speed(theta, speed, period) if omega is None else omega
-    js, jm = inertia
-    t_in = tq.inertia_torque(js, jm, dq, d2q, omega, omega_dot)
-    return {
-        "V": V,
-        "dV": dV,
-        "p": p,
-        "M": M,
-        "shaft": shaft,
-        "inertia": t_in,
-        "net": shaft - t_in,
-        "J_eq": tq.equivalent_inertia(js, jm, dq),
-        "flow": vp.flow_rate(pump, motion, omega),
-        "omega": omega,
-        "omega_dot": omega_dot,
-    }
 
 
 def gap_params(machine: dict, loads: dict) -> pf.Gaps:

@@ -191,7 +191,7 @@ def dynamics_summary(params: gb.GuideBar, state: dict, inertia, theta, coefficie
     ----------
     params : GuideBar
     state : dict
-        :func:`rotorkin.drives.guide_bar.study.pump_state` at ``theta``.
+        :func:`rotorkin.drives.guide_bar.pump.pump_state` at ``theta``.
     inertia : (J_shaft, (J_1, J_2))
         [kg*m^2], floats or columns.
     theta : ndarray, shape (n,)

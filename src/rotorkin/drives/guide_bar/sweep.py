@@ -15,7 +15,7 @@ extremes and ripple, the shaft torques with and without the inertias, the
 equivalent inertia, energy fluctuation and flywheel
 (:func:`~rotorkin.drives.guide_bar.summary.dynamics_summary`) and the impellers'
 peaks in time (:func:`~rotorkin.studies.helpers.time_peaks`), from the study's own
-:func:`~rotorkin.drives.guide_bar.study.pump_state` on columns of designs (one call
+:func:`~rotorkin.drives.guide_bar.pump.pump_state` on columns of designs (one call
 per block, gear ratio i12 and number of vanes). Admissibility: :func:`reasons`, from
 the same vectorised checks as the dataclasses.
 """
@@ -28,7 +28,6 @@ from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.batch import Designs, flag, full, run_blocks, sample_grid
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar import pump as gb_pump
-from rotorkin.drives.guide_bar import study
 from rotorkin.drives.guide_bar import summary as closed_forms
 from rotorkin.drives.guide_bar.schema import VanePumpMachine
 from rotorkin.machines import vane_pump as vp
@@ -250,7 +249,7 @@ def _dynamics(p, samples: int, threads) -> dict:
 
     Designs of one input gear ratio (it sets the period) and one number of vanes (the
     number of chambers) at a time; the study's
-    :func:`~rotorkin.drives.guide_bar.study.pump_state` and
+    :func:`~rotorkin.drives.guide_bar.pump.pump_state` and
     :func:`~rotorkin.drives.guide_bar.summary.dynamics_summary` on (block, 1) columns.
     """
     n = p.n
@@ -280,7 +279,7 @@ def _dynamics(p, samples: int, threads) -> dict:
                                      c["casing_radius"], c["axial_width"])  # fmt: skip
             ports = vp.PortPressures(c["loads.suction_pressure"], c["loads.discharge_pressure"])
             inertia = (c["inertia_shaft"], (c["inertia_impeller_1"], c["inertia_impeller_2"]))
-            st = study.pump_state(params, pump, ports, inertia, speed, theta, omega=omega)
+            st = gb_pump.pump_state(params, pump, ports, inertia, speed, theta, omega=omega)
             val = closed_forms.dynamics_summary(params, st, inertia, theta,
                                                 c["speed_fluctuation"][:, 0])  # fmt: skip
             val |= time_peaks(gb.motion(params, theta), omega, closed_forms.SLUGS)

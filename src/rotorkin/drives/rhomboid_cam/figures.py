@@ -509,7 +509,7 @@ def plot_machine(params, machine, loads, state, curves, summary, outdir: Path) -
     Parameters
     ----------
     state : callable
-        ``state(alpha) -> rotorkin.drives.rhomboid_cam.study.State``.
+        ``state(alpha) -> rotorkin.drives.rhomboid_cam.engine.State``.
     curves : dict
         The study's fine samples over one period (``alpha``, ``state``,
         ``inertia_torque``, ``steady``, ``equivalent_inertia``; ``forces``, ``pairs``,

@@ -14,7 +14,7 @@ engine's work, power, shaft torques with and without the inertias, equivalent
 inertia, energy fluctuation and flywheel
 (:func:`~rotorkin.drives.rhomboid_cam.summary.dynamics_summary`) and the blade
 pairs' peaks in time (:func:`~rotorkin.studies.helpers.time_peaks`), from the
-study's own :func:`~rotorkin.drives.rhomboid_cam.study.machine_state` on
+study's own :func:`~rotorkin.drives.rhomboid_cam.engine.machine_state` on
 columns of designs (one call per block and number of blades).
 
 Every formula is the drive's (:mod:`rotorkin.drives.rhomboid_cam.kinematics`) or the
@@ -29,8 +29,8 @@ import numpy as np
 
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.batch import flag, full, run_blocks, sample_grid
+from rotorkin.drives.rhomboid_cam import engine
 from rotorkin.drives.rhomboid_cam import kinematics as rc
-from rotorkin.drives.rhomboid_cam import study
 from rotorkin.drives.rhomboid_cam import summary as rs
 from rotorkin.drives.rhomboid_cam.schema import RotaryBladeMachine
 from rotorkin.machines import rotary_blade as rb
@@ -166,7 +166,7 @@ def _dynamics(p, samples: int, threads) -> dict:
     """The :data:`_DYNAMIC` keys on ``samples`` shaft angles per design (linear model).
 
     Designs of one number of blades at a time (it sets the number of chambers); the
-    study's :func:`~rotorkin.drives.rhomboid_cam.study.machine_state` and
+    study's :func:`~rotorkin.drives.rhomboid_cam.engine.machine_state` and
     :func:`~rotorkin.drives.rhomboid_cam.summary.dynamics_summary` on (block, 1) columns.
     """
     n = p.n
@@ -187,7 +187,7 @@ def _dynamics(p, samples: int, threads) -> dict:
             machine = rb.RotaryBlade(**{k: c[k] for k in (*_MACHINE[:4], *_INERTIAS)},
                                      blades_per_pair=count)  # fmt: skip
             high, low = c["loads.torque_high"], c["loads.torque_low"]
-            st = study.machine_state(params, machine, study.Loads("linear", high, low), alpha)
+            st = engine.machine_state(params, machine, engine.Loads("linear", high, low), alpha)
             work = rc.indicator_work(c["drive.psi_min"][:, 0], (), (), high[:, 0], low[:, 0])
             val, _ = rs.dynamics_summary(machine, alpha, st.motion, st.members, st.torque,
                                          omega, c["speed_fluctuation"][:, 0], work)  # fmt: skip
