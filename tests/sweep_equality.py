@@ -58,3 +58,24 @@ def assert_refused_as_study(cfg: dict, table: dict, names, drive_type: str, firs
     assert reason_keys(drive_type)[res["reason"][0]] == first
     assert all(np.isnan(res["metrics"][m][0]) for m in names)
     assert all(np.isfinite(res["metrics"][m][1]) for m in names)
+
+
+def assert_kernel_is_study(cfg: dict, table: dict, names):
+    """Designs ``table`` through the sweep engine with no design falling back to the study
+    (a fallback warning fails), at least half of them admissible, every admissible one's
+    values the study's (:func:`assert_equal_to_study`). Returns the designs and the mask of
+    the admissible ones."""
+    import warnings
+
+    from rotorkin.core.batch import Designs
+    from rotorkin.sweep.engine import evaluate_designs
+
+    n = len(next(iter(table.values())))
+    p = Designs(cfg, table, n)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        res = evaluate_designs(p, names, threads=2)
+    ok = res["reason"] == 0
+    assert ok.sum() >= n // 2
+    assert assert_equal_to_study(p, res["metrics"], names) == ok.sum()
+    return p, ok

@@ -205,7 +205,8 @@ def pump_state(
     -------
     dict of ndarray
         ``V``, ``dV``, ``p`` (2 Z, n); ``M`` (2, n); ``shaft``, ``inertia``,
-        ``net``, ``J_eq``, ``flow`` (geometric), ``omega``, ``omega_dot`` (n,).
+        ``net``, ``J_eq``, ``flow`` (geometric), ``omega``, ``omega_dot`` (n,);
+        ``motion``, the impellers' :class:`~rotorkin.core.motion.Motion` at ``theta``.
     """
     period = gb.period(params)
     motion = gb.motion(params, theta)
@@ -232,4 +233,5 @@ def pump_state(
         "flow": vp.flow_rate(pump, motion, omega),
         "omega": omega,
         "omega_dot": omega_dot,
+        "motion": motion,
     }

@@ -242,8 +242,7 @@ def _pump_summary(drive, pump, ports, inertia, speed, coefficient, gaps=None,
         **closed_forms.work_summary(drive, pump, ports, flow_mean),
         **{k: dyn[k] for k in closed_forms.TORQUE_KEYS},
     }
-    motion = gb.motion(drive, fine)
-    out.update(time_domain(motion, speed, ("impeller1", "impeller2"), period)[2])
+    out.update(time_domain(st["motion"], speed, closed_forms.SLUGS, period)[2])
     return out
 
 

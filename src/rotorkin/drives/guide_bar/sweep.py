@@ -282,7 +282,7 @@ def _dynamics(p, samples: int, threads) -> dict:
             st = gb_pump.pump_state(params, pump, ports, inertia, speed, theta, omega=omega)
             val = closed_forms.dynamics_summary(params, st, inertia, theta,
                                                 c["speed_fluctuation"][:, 0])  # fmt: skip
-            val |= time_peaks(gb.motion(params, theta), omega, closed_forms.SLUGS)
+            val |= time_peaks(st["motion"], omega, closed_forms.SLUGS)
             return {k: np.broadcast_to(val[k], (hi - lo,)) for k in _DYNAMIC}
 
         res = run_blocks(fn, rows.size, samples, threads)
