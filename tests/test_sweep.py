@@ -175,6 +175,31 @@ def test_bad_specs_raise_one_line(vary, words):
     assert "\n" not in str(info.value)
 
 
+@pytest.mark.parametrize("bad", ["95 deg", "-5 deg", "0.1 deg"])
+@pytest.mark.parametrize("where", [0, 3, 7])
+def test_a_list_names_its_value_outside_the_schema_wherever_it_stands(bad, where):
+    # outside the schema's bounds, first, inside or last: refused in the schema's words
+    from rotorkin.sweep.spec import parse_vary
+
+    _, raw, _ = load_config(None, "wobble-cam-engine")
+    items = [f"{20 + 3 * i} deg" for i in range(8)]
+    items[where] = bad
+    with pytest.raises(ConfigError, match=f"plate_tilt = {bad} is not admissible") as info:
+        parse_vary("drive.plate_tilt=" + ",".join(items), raw)
+    assert "\n" not in str(info.value)
+
+
+def test_a_long_list_is_parsed_as_its_values_one_by_one():
+    from rotorkin.sweep.spec import parse_vary
+
+    _, raw, _ = load_config(None, "wobble-cam-engine")
+    items = [f"{10 + 0.5 * i:.1f} deg" for i in range(100)] + ["0.9 rad", "0.5 deg"]
+    got = parse_vary("drive.plate_tilt=" + ",".join(items), raw).values
+    each = [load_config(None, "wobble-cam-engine", [f"drive.plate_tilt={t}"])[0]["drive"]
+            ["plate_tilt"] for t in items]  # fmt: skip
+    assert got == tuple(each)
+
+
 @pytest.mark.parametrize(
     ("args", "words"),
     [
