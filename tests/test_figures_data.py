@@ -77,3 +77,39 @@ def test_figures_draw_the_model_inside_their_axes(example, tmp_path):
             assert inside.mean() > 0.5, f"{path.name}: a line is drawn mostly off its axes"
             matched += _is_column(x, y, result.columns)
     assert matched >= 1, "no figure line is a column of motion.csv"
+
+
+def test_the_sweep_overview_draws_the_metrics_the_sweep_moves(tmp_path):
+    # an impeller's inertia moves the flywheel and the torques with inertia, not the
+    # pump's geometry, which comes first in the metrics' order
+    from rotorkin.report.figures_sweep import fig_overview
+    from rotorkin.sweep import run_sweep
+
+    _, raw, _ = load_config(None, "guide-bar-pump")
+    ds = run_sweep(raw, ["machine.inertia_impeller_1=0.001kg*m^2:0.01kg*m^2:4"],
+                   samples=361, progress=False)  # fmt: skip
+    metrics = [m for m in ds.data_vars if ds[m].dims == ds["reason"].dims and m != "reason"]
+    spread = {m: float(np.ptp(ds[m].values)) for m in metrics if ds[m].dtype.kind == "f"}
+    moving = [m for m in metrics if spread.get(m, 0.0) > 1e-9 * np.abs(ds[m].values).max()]
+    assert 0 < len(moving) < len(metrics) and metrics[0] not in moving
+    with recording() as figs:
+        fig_overview(ds, metrics, tmp_path / "overview.png")
+    ((_, fig),) = figs
+    drawn = [ax.get_ylabel().split(" [")[0] for ax in fig.axes if ax.get_visible()]
+    assert drawn == moving[:6]
+    for ax in fig.axes[: len(drawn)]:
+        (line,) = ax.get_lines()
+        assert np.ptp(line.get_ydata()) > 0
+
+
+def test_the_sweep_overview_of_a_sweep_that_moves_nothing_still_draws(tmp_path):
+    from rotorkin.report.figures_sweep import fig_overview
+    from rotorkin.sweep import run_sweep
+
+    _, raw, _ = load_config(None, "guide-bar-pump")
+    ds = run_sweep(raw, ["machine.inertia_impeller_1=0.001kg*m^2:0.01kg*m^2:3"],
+                   metrics=["displacement_cm3_per_rev"], samples=361, progress=False)  # fmt: skip
+    with recording() as figs:
+        fig_overview(ds, ["displacement_cm3_per_rev"], tmp_path / "overview.png")
+    ((_, fig),) = figs
+    assert [ax.get_ylabel().split(" [")[0] for ax in fig.axes] == ["displacement_cm3_per_rev"]

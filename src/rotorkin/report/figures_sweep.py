@@ -45,8 +45,10 @@ def plot_recipe(recipe: Recipe, ds, outdir: Path) -> list[Path]:
 def fig_overview(ds, metrics, path: Path) -> Path | None:
     """Up to six metrics against the first swept key, one line per value of the second.
 
-    Further swept keys are held at their first value. None when the first key is
-    not numeric or there is nothing to draw. ``ds`` is a sweep's
+    The first six metrics (in ``metrics``' order) that change over the drawn designs;
+    the first six unchanged ones only when none changes. Further swept keys are held
+    at their first value. None when the first key is not numeric or there is nothing
+    to draw. ``ds`` is a sweep's
     :class:`~rotorkin.sweep.result.SweepResult` or :class:`xarray.Dataset` (only
     ``ds[name].values``, ``.dims`` and ``.attrs`` are read).
     """
@@ -54,12 +56,21 @@ def fig_overview(ds, metrics, path: Path) -> Path | None:
     if not dims or ds[dims[0]].values.dtype == object:
         return None
     held_at = (slice(None),) * min(2, len(dims)) + (0,) * (len(dims) - 2)
-    curves = {}
+    moving, flat = {}, {}
     for m in metrics:
-        if m in ds and len(curves) < 6:
-            y = np.asarray(ds[m].values)[held_at]  # a view: the first two dims, others held
-            if np.any(np.isfinite(y)):
-                curves[m] = y
+        if m not in ds or len(moving) == 6:
+            continue
+        y = np.asarray(ds[m].values)[held_at]  # a view: the first two dims, others held
+        y = y.astype(float) if y.dtype.kind in "iub" else y
+        finite = y[np.isfinite(y)] if y.dtype.kind == "f" else np.array([])
+        if finite.size == 0:
+            continue
+        if np.ptp(finite) > 1e-9 * np.max(np.abs(finite)):
+            moving[m] = y
+        elif len(flat) < 6:
+            flat[m] = y
+    # the metrics the swept keys move; the first unchanged ones only when none moves
+    curves = moving or flat
     if not curves:
         return None
     plt = _plt()
