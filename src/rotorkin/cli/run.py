@@ -36,6 +36,7 @@ from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import REGISTRY, evaluate
 from rotorkin.io.config import example_names, example_path, glossary, load_config, read_toml
 from rotorkin.io.output import check_out, write_outputs
+from rotorkin.render.figures import import_ahead
 
 __all__ = ["register"]
 
@@ -93,6 +94,8 @@ def register(app) -> None:
             outdir = out if out is not None else Path("rotorkin-out") / name
             check_out(outdir)  # before any work
             step("evaluating the design")
+            if figures:
+                import_ahead()
             with _frozen():
                 result = evaluate(cfg)
             if strict:

@@ -10,7 +10,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from rotorkin.drives.wobble_cam import grooves as gr
 from rotorkin.drives.wobble_cam import kinematics as wc
@@ -102,6 +101,8 @@ def groove_crossings(
     nxt = (idx // n) * n + (idx % n + 1) % n
     mid = 0.5 * (pts + pts[nxt])
     reach = float(np.max(np.linalg.norm(pts[nxt] - pts, axis=1)))
+    from scipy.spatial import cKDTree  # a tenth of a second to import: when used
+
     pairs = cKDTree(mid).query_pairs(1.01 * reach, output_type="ndarray")
     if len(pairs) == 0:
         return []
@@ -169,6 +170,8 @@ def groove_separation(drive: wc.WobbleCam, samples: int = 2048):
     theta = np.linspace(0.0, period, samples, endpoint=False)
     g = gr.groove_derivatives(drive, theta)[0]
     best = (np.inf, (), ())
+    from scipy.spatial import cKDTree  # a tenth of a second to import: when used
+
     for ii, i in enumerate(rollers):
         tree = cKDTree(g[i].T)
         for j in rollers[ii + 1 :]:

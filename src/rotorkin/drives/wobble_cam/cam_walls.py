@@ -35,7 +35,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from rotorkin.core.errors import RotorkinError
 from rotorkin.drives.wobble_cam import kinematics as wc
@@ -113,6 +112,8 @@ class _Channels:
         t = np.arange(SCAN) * (self.period / SCAN)
         g, d1, _ = groove_derivatives(drive, t)
         self.axes = np.moveaxis(g[rollers], 1, 2).reshape(-1, 3) / r
+        from scipy.spatial import cKDTree  # a tenth of a second to import: when used
+
         self.tree = cKDTree(self.axes)
         self.owner = np.repeat(np.array(rollers), SCAN)
         # arc length along every roller's centre-line (on the sphere r) at the samples
