@@ -41,6 +41,7 @@ axis; leading axes are designs (any shape, broadcast). SI units throughout.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -370,8 +371,8 @@ def _adiabatic_run(x0, vc, ve, dvc, dve, k, h, record):
 
     for i in range(steps):
         k1, p0, fl = _adiabatic_rates(tc, te, *at(2 * i), k)
-        if record:
-            out.append((p0, tc, te, *acc, *fl))
+        if record:  # the designs themselves (not their bumped copies beside them)
+            out.append(tuple(x[0] for x in (p0, tc, te, *acc, *fl)))
         k2, _, _ = _adiabatic_rates(tc + 0.5 * h * k1[0], te + 0.5 * h * k1[1], *at(2 * i + 1), k)
         k3, _, _ = _adiabatic_rates(tc + 0.5 * h * k2[0], te + 0.5 * h * k2[1], *at(2 * i + 1), k)
         k4, _, _ = _adiabatic_rates(tc + h * k3[0], te + h * k3[1], *at(2 * i + 2), k)
@@ -382,7 +383,7 @@ def _adiabatic_run(x0, vc, ve, dvc, dve, k, h, record):
         acc = [a + d for a, d in zip(acc, inc[2:], strict=True)]
     if record:
         _, p0, fl = _adiabatic_rates(tc, te, *at(2 * steps), k)
-        out.append((p0, tc, te, *acc, *fl))
+        out.append(tuple(x[0] for x in (p0, tc, te, *acc, *fl)))
     return (tc, te), out
 
 
@@ -437,24 +438,41 @@ def adiabatic_cycle(gas, vc, ve, dvc, dve, vk, vr, vh, tk, th, gamma=1.4, r_gas=
     dead, _ = _dead(vk, vr, vh, tk, th)
     shape = np.broadcast_shapes(vc.shape[:-1], np.shape(gas), vk.shape, tk.shape, th.shape,
                                 g.shape)  # fmt: skip
-    # designs x {itself, +dT_c, +dT_e}: the Jacobian of the cycle map in one run
-    k3 = tuple(np.broadcast_to(np.asarray(x, dtype=float), shape)[None]
+    size = math.prod(shape)
+    # every design on one flat axis, beside {itself, +dT_c, +dT_e}: the Jacobian of the
+    # cycle map in one run; a design leaves the run once periodic, so that its cycle is
+    # the one it has alone (the others' iterations do not move it)
+    k3 = tuple(np.broadcast_to(np.asarray(x, dtype=float), shape).reshape(1, size)
                for x in (gas, vk, vr, vh, tk, th, g, dead[..., 0]))  # fmt: skip
-    v3 = tuple(np.broadcast_to(x, shape + x.shape[-1:])[None] for x in (vc, ve, dvc, dve))
+    v3 = tuple(np.broadcast_to(x, shape + x.shape[-1:]).reshape(1, size, -1)
+               for x in (vc, ve, dvc, dve))  # fmt: skip
     delta = 1e-3
-    x = np.stack([np.broadcast_to(tk, shape), np.broadcast_to(th, shape)]).astype(float)
-    bump = np.zeros((2, 3) + (1,) * len(shape))
+    x = np.stack([k3[4][0], k3[5][0]])  # (2, size): start at T_k, T_h
+    bump = np.zeros((2, 3, 1))
     bump[0, 1], bump[1, 2] = delta, delta
+    cols = np.empty((12, size, steps + 1))
+    residual = np.empty(size)
+    active = np.arange(size)
     cycles = 0
     for _ in range(max_iterations):
         cycles += 1
         start = x[:, None] + bump
-        end, rec = _adiabatic_run((start[0], start[1]), *v3, k3, h, True)
-        f = np.stack(end) - start  # (2, 3, ...)
-        residual = np.abs(f[0, 0]) + np.abs(f[1, 0])
-        if np.all(residual <= tolerance):
+        end, rec = _adiabatic_run((start[0], start[1]), *(v[:, active] for v in v3),
+                                  tuple(k[:, active] for k in k3), h, True)  # fmt: skip
+        f = np.stack(end) - start  # (2, 3, active)
+        res = np.abs(f[0, 0]) + np.abs(f[1, 0])
+        done = res <= tolerance
+        if done.any():
+            rows = active[done]
+            residual[rows] = res[done]
+            for j in range(12):
+                cols[j][rows] = np.stack([r[j][done] for r in rec], axis=-1)
+            keep = ~done
+            active, x, f, start, end = (active[keep], x[:, keep], f[..., keep],
+                                        start[..., keep], [e[:, keep] for e in end])  # fmt: skip
+        if active.size == 0:
             break
-        jac = (f[:, 1:] - f[:, :1]) / delta  # (2 eqs, 2 vars, ...)
+        jac = (f[:, 1:] - f[:, :1]) / delta  # (2 eqs, 2 vars, active)
         det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
         with np.errstate(divide="ignore", invalid="ignore"):
             dx0 = -(jac[1, 1] * f[0, 0] - jac[0, 1] * f[1, 0]) / det
@@ -466,9 +484,10 @@ def adiabatic_cycle(gas, vc, ve, dvc, dve, vk, vr, vh, tk, th, gamma=1.4, r_gas=
     else:
         raise RuntimeError(
             f"ideal adiabatic cycle not periodic to {tolerance:g} K after "
-            f"{max_iterations} cycles (residual {np.max(residual):.3g} K)"
+            f"{max_iterations} cycles (residual {np.max(res):.3g} K)"
         )
-    cols = [np.stack([r[j][0] for r in rec], axis=-1) for j in range(12)]
+    cols = cols.reshape((12, *shape, steps + 1))
+    residual = residual.reshape(shape)
     p, tc, te, qk, qr, qh, wc, we, *flows = cols
     theta = np.linspace(0.0, period, steps + 1)
     return _finish(theta, p, tc, te, (qk, qr, qh), (wc, we), flows, r_gas,

@@ -466,9 +466,13 @@ def volume_gradient(machine: RotaryBlade, ndim: int = 0) -> np.ndarray:
     Returns
     -------
     ndarray, shape (2, 2B) + (1,) * ndim
+        For a machine of column fields ``(m, 1)`` (many designs) the columns' shape
+        takes the first of the trailing axes: ``(2, 2B, m, 1) + (1,) * (ndim - 2)``.
     """
-    g = sector_constant(machine) * chamber_signs(machine)
-    return np.stack([g, -g]).reshape((2, -1) + (1,) * ndim)
+    k = np.asarray(sector_constant(machine), dtype=float)
+    signs = chamber_signs(machine)
+    g = signs.reshape(signs.shape + (1,) * k.ndim) * k
+    return np.stack([g, -g]).reshape((2, signs.size) + k.shape + (1,) * (ndim - k.ndim))
 
 
 def class_volume_range(machine: RotaryBlade, psi_lo, psi_hi):

@@ -10,6 +10,7 @@ D. M. Berchowitz, *Stirling Cycle Engine Analysis*, 1984: Schmidt or ideal adiab
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -32,12 +33,16 @@ __all__ = [
     "STIRLING_CHECKS",
     "STIRLING_STEPS",
     "StirlingLoads",
+    "StirlingColumns",
     "dead_volumes",
     "cold_set_lag",
     "StirlingSolution",
     "stirling_solution",
+    "select",
     "stirling_state",
     "stirling_summary",
+    "stirling_numbers",
+    "NUMBER_KEYS",
 ]
 
 
@@ -118,23 +123,56 @@ class StirlingLoads:
                 object.__setattr__(self, name, float(v))
 
 
-def dead_volumes(loads: StirlingLoads, swept_volume: float) -> tuple[float, float, float]:
-    """``(V_k, V_r, V_h)`` of a circuit [m^3]: the loads' or the default fractions."""
+@dataclass(frozen=True)
+class StirlingColumns:
+    """The loads of :class:`StirlingLoads` for many designs at once: arrays ``(m,)``.
+
+    The same fields (floats or arrays of designs; a dead volume None takes its default
+    fraction of each design's swept volume), one pressure model and one gas for all.
+    Not checked here: the caller has checked every design as :class:`StirlingLoads`
+    does (a sweep's kernel, whose config schema bounds every field).
+    """
+
+    charge_pressure: np.ndarray
+    hot_temperature: np.ndarray
+    cold_temperature: np.ndarray
+    pressure_model: str = "adiabatic"
+    gas: str = "air"
+    phase_angle: np.ndarray | float = 0.5 * np.pi
+    heater_volume: np.ndarray | float | None = None
+    regenerator_volume: np.ndarray | float | None = None
+    cooler_volume: np.ndarray | float | None = None
+    regenerator_effectiveness: np.ndarray | float = 1.0
+
+
+def dead_volumes(loads: StirlingLoads, swept_volume) -> tuple:
+    """``(V_k, V_r, V_h)`` of a circuit [m^3]: the loads' or the default fractions.
+
+    ``swept_volume`` and the loads' volumes: floats, or arrays of designs (see
+    :func:`stirling_solution`).
+    """
     out = []
     for name in ("cooler_volume", "regenerator_volume", "heater_volume"):
         v = getattr(loads, name)
-        out.append(DEAD_VOLUME_FRACTIONS[name] * float(swept_volume) if v is None else v)
-    return tuple(out)
+        swept = np.asarray(swept_volume, dtype=float)
+        out.append(DEAD_VOLUME_FRACTIONS[name] * swept if v is None else v)
+    return tuple(_plain(v) for v in out)
 
 
-def cold_set_lag(phase_angle: float, period: float, cycles_per_period: int) -> float:
+def _plain(v):
+    """A 0-d array as a float; arrays of designs as they are."""
+    return float(v) if np.ndim(v) == 0 else v
+
+
+def cold_set_lag(phase_angle, period: float, cycles_per_period: int):
     """Shaft angle by which the cold set lags the hot set [rad].
 
     ``phase_angle`` of a chamber's volume cycle, whose length in shaft angle is
     ``period / cycles_per_period`` (exact for a law that sweeps each chamber once up
-    and once down per cycle).
+    and once down per cycle). A float, or an array for an array of phase angles.
     """
-    return float(phase_angle) * float(period) / (_TWO_PI * max(int(cycles_per_period), 1))
+    lag = np.asarray(phase_angle, dtype=float) * float(period)
+    return _plain(lag / (_TWO_PI * max(int(cycles_per_period), 1)))
 
 
 @dataclass(frozen=True)
@@ -168,6 +206,22 @@ class StirlingSolution:
     cycle: object
 
 
+def select(sol: StirlingSolution, rows) -> StirlingSolution:
+    """The solution of some of its designs (a solution of :class:`StirlingColumns`).
+
+    ``rows``: a slice or indices of the designs (the axis after the circuits').
+    """
+    pick = lambda v: v if v is None or np.ndim(v) == 0 else np.asarray(v)[rows]  # noqa: E731
+    loads = dataclasses.replace(sol.loads, **{
+        f.name: pick(getattr(sol.loads, f.name)) for f in dataclasses.fields(sol.loads)
+        if f.name not in ("pressure_model", "gas")})  # fmt: skip
+    cycle = dataclasses.replace(sol.cycle, **{
+        f.name: getattr(sol.cycle, f.name)[:, rows] for f in dataclasses.fields(sol.cycle)
+        if np.ndim(getattr(sol.cycle, f.name)) >= 2})  # fmt: skip
+    return dataclasses.replace(sol, loads=loads, lag=pick(sol.lag), gas=sol.gas[:, rows],
+                               dead=tuple(pick(v) for v in sol.dead), cycle=cycle)  # fmt: skip
+
+
 def _largest(x) -> np.ndarray:
     """Largest value of periodic samples along the last axis, refined by a parabola."""
     x = np.asarray(x, dtype=float)[..., :-1]
@@ -186,24 +240,29 @@ def stirling_solution(machine: RotaryBlade, loads: StirlingLoads, motion, period
                       steps: int = STIRLING_STEPS) -> StirlingSolution:  # fmt: skip
     """Solve the ``2B`` circuits of the engine over one period of the drive's law.
 
+    One design, or columns of designs: the machine's fields and the drive's parameters
+    behind ``motion`` as ``(m, 1)`` columns and the loads' numbers as ``(m,)`` arrays
+    (:class:`StirlingColumns`); the circuits then come first, ``(2B, m)``, and every
+    design's cycle is the one it has alone.
+
     Parameters
     ----------
     machine : RotaryBlade
-    loads : StirlingLoads
+    loads : StirlingLoads or StirlingColumns
     motion : callable
         ``motion(theta) -> Motion`` of the blade pairs (as mounted), any shape of theta.
     period : float
         Period of the law in shaft angle [rad].
     cycles_per_period : int
         Volume cycles of a chamber per period (for the lag).
-    swept_volume : float
+    swept_volume : float or ndarray (m,)
         A chamber's swept volume [m^3] (for the default dead volumes).
     steps : int
         RK4 steps per period (the volumes are sampled at ``2 steps + 1`` angles).
     """
     lag = cold_set_lag(loads.phase_angle, period, cycles_per_period)
     theta = np.linspace(0.0, period, 2 * steps + 1)
-    hot, cold = motion(theta), motion(theta - lag)
+    hot, cold = motion(theta), motion(theta - (lag if np.ndim(lag) == 0 else lag[:, None]))
     ve, vc = chamber_volumes(machine, hot.q), chamber_volumes(machine, cold.q)
     dve = chamber_volume_derivative(machine, hot.dq)
     dvc = chamber_volume_derivative(machine, cold.dq)
@@ -241,10 +300,14 @@ def stirling_state(machine: RotaryBlade, sol: StirlingSolution, hot, cold) -> di
     loads = sol.loads
     if loads.pressure_model == "schmidt":
         vk, vr, vh = sol.dead
-        flat = (ve.shape[0], -1)
-        p = sa.schmidt_pressure(sol.gas, vc.reshape(flat), ve.reshape(flat), vk, vr, vh,
-                                loads.cold_temperature, loads.hot_temperature)  # fmt: skip
-        p = p.reshape(ve.shape)
+        if np.ndim(sol.gas) == 1:  # one design: the circuits against any shape of angles
+            flat = (ve.shape[0], -1)
+            p = sa.schmidt_pressure(sol.gas, vc.reshape(flat), ve.reshape(flat), vk, vr, vh,
+                                    loads.cold_temperature, loads.hot_temperature)  # fmt: skip
+            p = p.reshape(ve.shape)
+        else:  # (2B, m) circuits of designs against (2B, m, n) volumes
+            p = sa.schmidt_pressure(sol.gas, vc, ve, vk, vr, vh, loads.cold_temperature,
+                                    loads.hot_temperature)  # fmt: skip
     else:
         p = sa.periodic_pressure(sol.cycle, hot.theta, sol.period)
     return {
@@ -254,8 +317,55 @@ def stirling_state(machine: RotaryBlade, sol: StirlingSolution, hot, cold) -> di
     }  # fmt: skip
 
 
+#: Numeric keys of :func:`stirling_summary` (:func:`stirling_numbers`), in its order.
+NUMBER_KEYS = ("phase_angle_deg", "cold_set_lag_deg", "circuits", "heater_volume_cm3",
+               "regenerator_volume_cm3", "cooler_volume_cm3", "regenerator_effectiveness",
+               "charge_pressure_bar", "gas_mass_g", "indicated_work_J", "heat_in_J_per_rev",
+               "heat_out_J_per_rev", "regenerator_heat_J_per_rev", "indicated_efficiency",
+               "carnot_efficiency", "peak_pressure_bar", "mean_pressure_bar",
+               "hot_temperature_K", "cold_temperature_K", "periodic_residual_K")  # fmt: skip
+
+
+def stirling_numbers(sol: StirlingSolution, periods_per_rev: float) -> dict:
+    """The numbers of :func:`stirling_summary` (:data:`NUMBER_KEYS`), summed over the circuits.
+
+    Floats for one design; arrays ``(m,)`` for a solution of columns of designs
+    (the circuits on the first axis).
+    """
+    c, ld = sol.cycle, sol.loads
+    k = float(periods_per_rev)
+    work, heat_in = np.sum(c.work, axis=0) * k, np.sum(c.heat_in, axis=0) * k
+    vk, vr, vh = sol.dead
+    angles = (0, -1)  # circuits and samples
+    with np.errstate(divide="ignore", invalid="ignore"):
+        efficiency = np.where(heat_in > 0.0, work / heat_in, np.nan)
+    out = {
+        "phase_angle_deg": np.degrees(ld.phase_angle),
+        "cold_set_lag_deg": np.degrees(sol.lag),
+        "circuits": np.shape(sol.gas)[0],
+        "heater_volume_cm3": vh * 1e6,
+        "regenerator_volume_cm3": vr * 1e6,
+        "cooler_volume_cm3": vk * 1e6,
+        "regenerator_effectiveness": ld.regenerator_effectiveness,
+        "charge_pressure_bar": ld.charge_pressure * 1e-5,
+        "gas_mass_g": np.sum(sol.gas, axis=0) / sol.r_gas * 1e3,
+        "indicated_work_J": work,
+        "heat_in_J_per_rev": heat_in,
+        "heat_out_J_per_rev": np.sum(c.heat_out, axis=0) * k,
+        "regenerator_heat_J_per_rev": np.sum(c.regenerator_heat, axis=0) * k,
+        "indicated_efficiency": efficiency,
+        "carnot_efficiency": 1.0 - ld.cold_temperature / ld.hot_temperature,
+        "peak_pressure_bar": np.max(c.pressure, axis=angles) * 1e-5,
+        "mean_pressure_bar": np.mean(c.pressure[..., :-1], axis=angles) * 1e-5,
+        "hot_temperature_K": ld.hot_temperature,
+        "cold_temperature_K": ld.cold_temperature,
+        "periodic_residual_K": np.max(c.residual, axis=0),
+    }
+    return {key: out[key] for key in NUMBER_KEYS}
+
+
 def stirling_summary(sol: StirlingSolution, periods_per_rev: float) -> dict:
-    """Per-revolution numbers of the Stirling models, summed over the circuits.
+    """Per-revolution numbers of the Stirling models of one design, summed over the circuits.
 
     Returns
     -------
@@ -263,33 +373,9 @@ def stirling_summary(sol: StirlingSolution, periods_per_rev: float) -> dict:
         ``indicated_work_J``, ``heat_in_J_per_rev``, ``heat_out_J_per_rev``,
         ``regenerator_heat_J_per_rev``, ``indicated_efficiency``,
         ``carnot_efficiency``, ``peak_pressure_bar``, ``mean_pressure_bar``,
-        ``gas_mass_g``, the loads and the dead volumes, ``periodic_residual_K``.
+        ``gas_mass_g``, the loads and the dead volumes, ``periodic_residual_K``
+        (:func:`stirling_numbers`), the model and the gas.
     """
-    c, ld = sol.cycle, sol.loads
-    k = float(periods_per_rev)
-    work, heat_in = float(np.sum(c.work)) * k, float(np.sum(c.heat_in)) * k
-    vk, vr, vh = sol.dead
-    return {
-        "pressure_model": ld.pressure_model,
-        "gas": ld.gas,
-        "phase_angle_deg": float(np.degrees(ld.phase_angle)),
-        "cold_set_lag_deg": float(np.degrees(sol.lag)),
-        "circuits": int(np.size(sol.gas)),
-        "heater_volume_cm3": vh * 1e6,
-        "regenerator_volume_cm3": vr * 1e6,
-        "cooler_volume_cm3": vk * 1e6,
-        "regenerator_effectiveness": ld.regenerator_effectiveness,
-        "charge_pressure_bar": ld.charge_pressure * 1e-5,
-        "gas_mass_g": float(np.sum(sol.gas)) / sol.r_gas * 1e3,
-        "indicated_work_J": work,
-        "heat_in_J_per_rev": heat_in,
-        "heat_out_J_per_rev": float(np.sum(c.heat_out)) * k,
-        "regenerator_heat_J_per_rev": float(np.sum(c.regenerator_heat)) * k,
-        "indicated_efficiency": work / heat_in if heat_in > 0.0 else float("nan"),
-        "carnot_efficiency": 1.0 - ld.cold_temperature / ld.hot_temperature,
-        "peak_pressure_bar": float(np.max(c.pressure)) * 1e-5,
-        "mean_pressure_bar": float(np.mean(c.pressure[..., :-1])) * 1e-5,
-        "hot_temperature_K": ld.hot_temperature,
-        "cold_temperature_K": ld.cold_temperature,
-        "periodic_residual_K": float(np.max(c.residual)),
-    }
+    numbers = stirling_numbers(sol, periods_per_rev)
+    numbers = {k: int(v) if k == "circuits" else float(v) for k, v in numbers.items()}
+    return {"pressure_model": sol.loads.pressure_model, "gas": sol.loads.gas, **numbers}

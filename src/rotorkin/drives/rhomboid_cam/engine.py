@@ -74,7 +74,9 @@ def machine_state(params, machine, loads: Loads, alpha, stroke=None) -> State:
     pressure = None
     if loads.stirling is not None:
         sol = loads.stirling
-        st = rbs.stirling_state(machine, sol, mo, rc.motion(params, alpha - sol.lag))
+        lag = sol.lag if np.ndim(sol.lag) == 0 else sol.lag[:, None]  # designs' lags (m,)
+        cold = rc.motion(params, alpha - lag)
+        st = rbs.stirling_state(machine, sol, mo, cold)
         return State(mo, stroke, volume, dvolume, st["pressure"], st["members"], st["shaft"],
                      st["volume_cold"], st["dvolume_cold"])  # fmt: skip
     if loads.model == "linear":
