@@ -15,7 +15,12 @@ inertia, energy fluctuation and flywheel
 (:func:`~rotorkin.drives.rhomboid_cam.summary.dynamics_summary`) and the blade
 pairs' peaks in time (:func:`~rotorkin.studies.helpers.time_peaks`), from the
 study's own :func:`~rotorkin.drives.rhomboid_cam.engine.machine_state` on
-columns of designs (one call per block and number of blades).
+columns of designs (one call per block and number of blades). Under the Stirling
+models (adiabatic, schmidt) the same keys and the models' own (heat in and out, gas
+mass, pressures, efficiencies): the circuits of up to :data:`STIRLING_BLOCK` designs
+of one number of blades and one gas solved in one run
+(:func:`~rotorkin.machines.rotary_blade_stirling.stirling_solution` on columns;
+each design's cycle is the one it has alone).
 
 Every formula is the drive's (:mod:`rotorkin.drives.rhomboid_cam.kinematics`) or the
 machine's (:mod:`rotorkin.machines.rotary_blade`), called with arrays of parameters:
@@ -24,6 +29,8 @@ the kernel only gathers the designs' values; the summary keys and curves are bui
 """
 
 from __future__ import annotations
+
+import functools
 
 import numpy as np
 
@@ -34,6 +41,7 @@ from rotorkin.drives.rhomboid_cam import kinematics as rc
 from rotorkin.drives.rhomboid_cam import summary as rs
 from rotorkin.drives.rhomboid_cam.schema import RotaryBladeMachine
 from rotorkin.machines import rotary_blade as rb
+from rotorkin.machines import rotary_blade_stirling as rbs
 from rotorkin.studies.helpers import time_peaks
 
 __all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "unsupported", "metric_names", "reasons",
@@ -56,6 +64,7 @@ KEYS = frozenset(
         "machine.inertia_blade_pair_1",
         "machine.inertia_blade_pair_2",
         "machine.speed_fluctuation",
+        *(f"loads.{k}" for k in rbs.STIRLING_CHECKS if k != "pressure_model"),
     }
 )
 
@@ -66,8 +75,18 @@ ANGLE = ("alpha_deg", "Output-shaft angle alpha: polar angle of diagonal OA, fro
 
 _MACHINE = ("blade_thickness", "inner_radius", "outer_radius", "axial_width", "blades_per_pair")
 _INERTIAS = ("inertia_shaft", "inertia_blade_pair_1", "inertia_blade_pair_2")
-#: Keys of the engine's dynamics (linear torque model only; sampled).
+#: Keys of the engine's dynamics (linear torque model and Stirling models; sampled).
 _DYNAMIC = rs.DYNAMICS_KEYS + rs.TIME_KEYS
+#: Keys of the Stirling models (adiabatic, schmidt): their circuits' cycle per design.
+_STIRLING = tuple(k for k in rbs.NUMBER_KEYS if k != "indicated_work_J") + (
+    "pressure_max_bar", "pressure_min_bar")  # fmt: skip
+#: The loads' fields of the Stirling models the kernel reads per design.
+_GAS = ("charge_pressure", "hot_temperature", "cold_temperature", "phase_angle",
+        "regenerator_effectiveness")  # fmt: skip
+_DEAD = ("heater_volume", "regenerator_volume", "cooler_volume")
+#: Designs per solve of a Stirling model's circuits (the ideal adiabatic cycle's cost is
+#: numpy's per-call overhead up to a few hundred designs; ~0.4 MB per design and circuit).
+STIRLING_BLOCK = 128
 
 
 def unsupported(cfg: dict) -> str | None:
@@ -78,13 +97,26 @@ def unsupported(cfg: dict) -> str | None:
     return None
 
 
+def _model(cfg: dict) -> str:
+    """The base config's pressure model (``linear``: the paper's torque model, eq. 29)."""
+    return (cfg.get("loads") or {}).get("pressure_model") or "linear"
+
+
 def _linear(cfg: dict) -> bool:
     """The base config's loads follow the linear torque model (eq. 29)."""
-    return (cfg.get("loads") or {}).get("pressure_model", "linear") in (None, "linear")
+    return _model(cfg) == "linear"
+
+
+def _stirling(cfg: dict) -> bool:
+    """The base config's loads are a Stirling model (adiabatic or schmidt)."""
+    return _model(cfg) in ("adiabatic", "schmidt")
 
 
 def metric_names(cfg: dict) -> tuple[str, ...]:
-    """Summary keys the kernel computes (the dynamics under the linear torque model)."""
+    """Summary keys the kernel computes (the dynamics under the linear torque model and
+    the Stirling models, and the Stirling models' cycle)."""
+    if _stirling(cfg):
+        return _METRICS + _DYNAMIC + _STIRLING
     return _METRICS + (_DYNAMIC if _linear(cfg) else ())
 
 
@@ -155,49 +187,104 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
     revs = 2.0 * np.pi / period(p)  # periods per output-shaft revolution
     travel = revs * rc.psi_total_variation(pm)
     val.update(rs.engine_geometry_summary(_machine(p), lo, hi, travel))
+    if _stirling(p.cfg):  # the hot and the cold set: twice one set's displacement
+        val["displacement_cm3_per_rev"] = 2.0 * val["displacement_cm3_per_rev"]
     if names & set(rs.PEAK_KEYS):
         val.update(_sampled(full(L, n), full(pm, n), samples, threads))
-    if names & set(_DYNAMIC):
+    if names & set(_DYNAMIC + _STIRLING):
         val.update(_dynamics(p, samples, threads))
     return {name: full(val[name], n) for name in names}
 
 
 def _dynamics(p, samples: int, threads) -> dict:
-    """The :data:`_DYNAMIC` keys on ``samples`` shaft angles per design (linear model).
+    """The :data:`_DYNAMIC` keys on ``samples`` shaft angles per design, and under a
+    Stirling model its :data:`_STIRLING` keys.
 
-    Designs of one number of blades at a time (it sets the number of chambers); the
-    study's :func:`~rotorkin.drives.rhomboid_cam.engine.machine_state` and
-    :func:`~rotorkin.drives.rhomboid_cam.summary.dynamics_summary` on (block, 1) columns.
+    Designs of one number of blades (it sets the number of chambers) and one gas at a
+    time; the study's :func:`~rotorkin.drives.rhomboid_cam.engine.machine_state` and
+    :func:`~rotorkin.drives.rhomboid_cam.summary.dynamics_summary` on (block, 1)
+    columns; a Stirling model's circuits by
+    :func:`~rotorkin.machines.rotary_blade_stirling.stirling_solution` on the block's
+    columns (every design's cycle as it is alone).
     """
     n = p.n
+    stirling = _stirling(p.cfg)
+    keys = _DYNAMIC + (_STIRLING if stirling else ())
     alpha = sample_grid(rc.period(p), samples)
     omega = shaft_speed(alpha, p.cfg["run"]["speed"], rc.period(p))
     cols = {k: full(p.float(k), n) for k in ("drive.link_length", "drive.psi_min",
                                              "loads.torque_high", "loads.torque_low")}  # fmt: skip
     for k in (*_MACHINE[:4], *_INERTIAS, "speed_fluctuation"):
         cols[k] = full(_value(p, f"machine.{k}"), n)
-    blades = full(np.asarray(p["machine.blades_per_pair"]), n, dtype=np.int64)
-    out = {k: np.empty(n) for k in _DYNAMIC}
-    for count in np.unique(blades):
-        rows = np.flatnonzero(blades == count)
+    groups = [full(np.asarray(p["machine.blades_per_pair"]), n, dtype=np.int64)]
+    if stirling:
+        for k in _GAS + tuple(k for k in _DEAD if p[f"loads.{k}"] is not None):
+            cols[k] = full(p.float(f"loads.{k}"), n)
+        groups.append(full(np.asarray(p["loads.gas"], dtype=object), n, dtype=object))
+    # the stationary points of the first-harmonic law: the same for every psi_min
+    turning = len(rc.psi_stationary_points(float(cols["drive.psi_min"][0]), (), ())) - 1
+    out = {k: np.empty(n) for k in keys}
+    kinds = list(zip(*groups, strict=True))
+    for kind in dict.fromkeys(kinds):
+        rows = np.flatnonzero([k == kind for k in kinds])
+        count, gas = int(kind[0]), kind[-1]
+        # a Stirling model's circuits for many designs per solve (its cost is nearly that
+        # of one design up to a few hundred); the fine grid's state in smaller blocks
+        step = STIRLING_BLOCK if stirling else rows.size
+        for first in range(0, rows.size, step):
+            part = rows[first : first + step]
+            sol = None
+            if stirling:
+                sol = _circuits(p, *_design({k: v[part, None] for k, v in cols.items()}, count),
+                                gas, turning)  # fmt: skip
 
-        def fn(lo, hi, rows=rows, count=int(count)):
-            c = {k: v[rows[lo:hi], None] for k, v in cols.items()}
-            params = rc.RhomboidCam(c["drive.link_length"], c["drive.psi_min"])
-            machine = rb.RotaryBlade(**{k: c[k] for k in (*_MACHINE[:4], *_INERTIAS)},
-                                     blades_per_pair=count)  # fmt: skip
-            high, low = c["loads.torque_high"], c["loads.torque_low"]
-            st = engine.machine_state(params, machine, engine.Loads("linear", high, low), alpha)
-            work = rc.indicator_work(c["drive.psi_min"][:, 0], (), (), high[:, 0], low[:, 0])
-            val, _ = rs.dynamics_summary(machine, alpha, st.motion, st.members, st.torque,
-                                         omega, c["speed_fluctuation"][:, 0], work)  # fmt: skip
-            val.update(time_peaks(st.motion, omega, rs.SLUGS))
-            return {k: np.broadcast_to(val[k], (hi - lo,)) for k in _DYNAMIC}
+            def fn(lo, hi, part=part, sol=sol, count=count):
+                c = {k: v[part[lo:hi], None] for k, v in cols.items()}
+                params, machine, c = _design(c, count)
+                high, low = c["loads.torque_high"], c["loads.torque_low"]
+                if sol is not None:
+                    block = rbs.select(sol, slice(lo, hi))
+                    loads = engine.Loads(_model(p.cfg), high, low, block.loads, None, block)
+                    work = np.sum(block.cycle.work, axis=0)
+                else:
+                    loads = engine.Loads("linear", high, low)
+                    work = rc.indicator_work(c["drive.psi_min"][:, 0], (), (), high[:, 0],
+                                             low[:, 0])  # fmt: skip
+                st = engine.machine_state(params, machine, loads, alpha)
+                val, _ = rs.dynamics_summary(machine, alpha, st.motion, st.members, st.torque,
+                                             omega, c["speed_fluctuation"][:, 0], work)  # fmt: skip
+                val.update(time_peaks(st.motion, omega, rs.SLUGS))
+                if sol is not None:
+                    numbers = rbs.stirling_numbers(block, 2.0 * np.pi / rc.period(params))
+                    val.update({k: v for k, v in numbers.items() if k != "indicated_work_J"})
+                    val["pressure_max_bar"] = np.max(st.pressure, axis=(0, -1)) * 1e-5
+                    val["pressure_min_bar"] = np.min(st.pressure, axis=(0, -1)) * 1e-5
+                return {k: np.broadcast_to(val[k], (hi - lo,)) for k in keys}
 
-        res = run_blocks(fn, rows.size, samples, threads)
-        for k in _DYNAMIC:
-            out[k][rows] = res[k]
+            res = run_blocks(fn, part.size, samples, threads)
+            for k in keys:
+                out[k][part] = res[k]
     return out
+
+
+def _design(c: dict, count: int):
+    """The drive's parameters and the machine of columns ``c`` (``(m, 1)`` arrays)."""
+    params = rc.RhomboidCam(c["drive.link_length"], c["drive.psi_min"])
+    machine = rb.RotaryBlade(**{k: c[k] for k in (*_MACHINE[:4], *_INERTIAS)},
+                             blades_per_pair=count)  # fmt: skip
+    return params, machine, c
+
+
+def _circuits(p, params, machine, c, gas, turning):
+    """The Stirling circuits of a block of designs (columns ``c``; one gas)."""
+    dead = {k: c[k][:, 0] if k in c else None for k in _DEAD}
+    loads = rbs.StirlingColumns(**{k: c[k][:, 0] for k in _GAS}, **dead,
+                                pressure_model=_model(p.cfg), gas=gas)  # fmt: skip
+    lo, _, hi, _ = rc.psi_extremes(c["drive.psi_min"])
+    v_min, v_max = rb.class_volume_range(machine, lo, hi)
+    swept = np.max(v_max - v_min, axis=0)[:, 0]
+    motion = functools.partial(rc.motion, params)
+    return rbs.stirling_solution(machine, loads, motion, rc.period(params), turning // 2, swept)
 
 
 def _sampled(L, psi_min, samples, threads) -> dict:
