@@ -152,9 +152,9 @@ def dead_volumes(loads: StirlingLoads, swept_volume) -> tuple:
     :func:`stirling_solution`).
     """
     out = []
+    swept = np.asarray(swept_volume, dtype=float)
     for name in ("cooler_volume", "regenerator_volume", "heater_volume"):
         v = getattr(loads, name)
-        swept = np.asarray(swept_volume, dtype=float)
         out.append(DEAD_VOLUME_FRACTIONS[name] * swept if v is None else v)
     return tuple(_plain(v) for v in out)
 

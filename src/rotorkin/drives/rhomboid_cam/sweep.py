@@ -216,18 +216,21 @@ def _dynamics(p, samples: int, threads) -> dict:
                                              "loads.torque_high", "loads.torque_low")}  # fmt: skip
     for k in (*_MACHINE[:4], *_INERTIAS, "speed_fluctuation"):
         cols[k] = full(_value(p, f"machine.{k}"), n)
-    groups = [full(np.asarray(p["machine.blades_per_pair"]), n, dtype=np.int64)]
+    blades = full(np.asarray(p["machine.blades_per_pair"]), n, dtype=np.int64)
+    gases = np.array([None])
+    gas_of = np.zeros(n, dtype=np.int64)
     if stirling:
         for k in _GAS + tuple(k for k in _DEAD if p[f"loads.{k}"] is not None):
             cols[k] = full(p.float(f"loads.{k}"), n)
-        groups.append(full(np.asarray(p["loads.gas"], dtype=object), n, dtype=object))
+        gas = full(np.asarray(p["loads.gas"], dtype=object), n, dtype=object)
+        gases, gas_of = np.unique(gas.astype(str), return_inverse=True)
     # the stationary points of the first-harmonic law: the same for every psi_min
     turning = len(rc.psi_stationary_points(float(cols["drive.psi_min"][0]), (), ())) - 1
     out = {k: np.empty(n) for k in keys}
-    kinds = list(zip(*groups, strict=True))
-    for kind in dict.fromkeys(kinds):
-        rows = np.flatnonzero([k == kind for k in kinds])
-        count, gas = int(kind[0]), kind[-1]
+    kinds = np.stack([blades, gas_of.reshape(-1)], axis=-1)
+    for count, g in np.unique(kinds, axis=0):
+        rows = np.flatnonzero((blades == count) & (gas_of.reshape(-1) == g))
+        count, gas = int(count), str(gases[g])
         # a Stirling model's circuits for many designs per solve (its cost is nearly that
         # of one design up to a few hundred); the fine grid's state in smaller blocks
         step = STIRLING_BLOCK if stirling else rows.size
