@@ -96,6 +96,35 @@ def test_console_script_entry_point_in_a_subprocess(tmp_path):
     assert "65.5" in done.stderr  # the limit is said
 
 
+_CONSOLE = """
+import atexit, sys
+atexit.register(lambda: print("exit handler ran", flush=True))
+sys.argv = ["rotorkin", *sys.argv[1:]]
+from rotorkin.cli import console_main
+console_main()
+print("not reached")
+"""
+
+
+@pytest.mark.parametrize(
+    ("args", "code"), [(["examples"], 0), (["run", "--set", "run.points=2"], 2)]
+)
+def test_console_script_leaves_with_the_code_its_output_and_exit_handlers(tmp_path, args, code):
+    # the console script ends the process itself once the command returned: the exit
+    # code is main's, everything printed reaches a pipe, registered exit handlers run
+    done = subprocess.run([sys.executable, "-c", _CONSOLE, *args], capture_output=True,
+                          text=True, cwd=tmp_path, check=False)  # fmt: skip
+    assert done.returncode == code
+    assert done.stdout.endswith("exit handler ran\n")
+    assert "not reached" not in done.stdout
+    if code == 0:
+        for name in example_names():
+            assert name in done.stdout
+    else:
+        assert done.stderr.startswith("rotorkin: error: run.points = 2")
+        assert done.stderr.count("\n") == 1
+
+
 def test_examples_and_keys_commands(capsys):
     assert main(["examples"]) == 0
     listed = capsys.readouterr().out

@@ -1,7 +1,5 @@
 """``python -m rotorkin.cli``: the same as the ``rotorkin`` command."""
 
-import sys
+from rotorkin.cli import console_main
 
-from rotorkin.cli import main
-
-sys.exit(main())
+console_main()
