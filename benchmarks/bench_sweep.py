@@ -148,7 +148,8 @@ def timed(owner, name, label):
 
     setattr(owner, name, wrapper)
 
-from rotorkin.cli import main
+import atexit
+import rotorkin.cli as cli
 import rotorkin.cli.sweep
 import rotorkin.report.figures_sweep as figures
 import rotorkin.sweep as sweep
@@ -161,10 +162,18 @@ timed(engine, "check_spec_values", "spec_checks")
 timed(sweep, "check_spec_values", "spec_checks")
 timed(figures, "fig_overview", "overview_figure")
 timed(SweepResult, "to_netcdf", "write_netcdf")
-code = main(sys.argv[1:])
-parts["in_process_s"] = time.perf_counter() - t0
-parts["peak_rss_MiB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-print(json.dumps({"code": code, **parts}))
+command = cli.main
+
+def main(argv=None):
+    parts["code"] = command(argv)
+    parts["in_process_s"] = time.perf_counter() - t0
+    parts["peak_rss_MiB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    return parts["code"]
+
+cli.main = main
+# the console script's own ending (exit handlers, then the process ends): the report last
+atexit.register(lambda: print(json.dumps(parts), flush=True))
+cli.console_main()
 """
 
 

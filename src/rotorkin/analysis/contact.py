@@ -63,7 +63,6 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
-from scipy.special import elliprd, elliprf
 
 from rotorkin.core.errors import ParameterError
 
@@ -235,6 +234,8 @@ def _minor_ratio(ratio, iterations: int = 64):
     ``ratio`` (for small q it grows like ``1 / (q^2 (ln(4 / q) - 1))``).
     NaN ratios give NaN.
     """
+    from scipy.special import elliprd  # 0.1 s to import: only point contacts need it
+
     ratio = np.asarray(ratio, dtype=float)
     good = np.isfinite(ratio) & (ratio >= 1.0)
     target = np.where(good, ratio, 1.0)
@@ -266,6 +267,8 @@ def point_contact(
     :func:`effective_radius`; a direction flat on both bodies is a line
     contact, :func:`line_contact`). Raises ``ValueError`` for a negative force.
     """
+    from scipy.special import elliprd, elliprf  # 0.1 s to import: here, not at import
+
     force = _check_force(force)
     e_star = effective_modulus(m1, m2)
     rx = _hertz_radius(rx1, rx2)

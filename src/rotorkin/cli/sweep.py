@@ -35,6 +35,7 @@ from rotorkin.core.errors import ConfigError
 from rotorkin.drives import REGISTRY, spec_of
 from rotorkin.io.config import apply_sets, load_config
 from rotorkin.io.output import check_out, staged_output
+from rotorkin.render.figures import import_ahead
 from rotorkin.report import figures_sweep as fs
 from rotorkin.sweep import build_spec, compute
 from rotorkin.sweep.checks import skipped as skipped_checks
@@ -138,6 +139,7 @@ def register(app) -> None:
             raise ConfigError("give at least one --vary KEY=START:STOP:N (or --paper-figures)")
         outdir = out if out is not None else Path("rotorkin-out") / f"{name}-sweep"
         check_out(outdir)
+        import_ahead()  # pyplot, for the figures, while the sweep is checked and computed
         specs = []  # (recipe or None, spec), all validated before anything runs
         if vary:
             specs.append(
