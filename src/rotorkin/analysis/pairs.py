@@ -32,7 +32,8 @@ import numpy as np
 
 from rotorkin.analysis import contact as hz
 
-__all__ = ["KINDS", "Pair", "ContactModel", "stress", "friction_torque", "summary", "columns"]
+__all__ = ["KINDS", "NUMBER_KEYS", "Pair", "ContactModel", "stress", "friction_torque", "summary",
+           "columns"]  # fmt: skip
 
 #: The kinds of pair, each with its friction coefficient ``contact.friction_<kind>``.
 KINDS = ("rolling", "sliding", "mesh", "bearing")
@@ -122,6 +123,20 @@ def stress(pair: Pair, model: ContactModel) -> np.ndarray | None:
 def friction_torque(pairs, model: ContactModel) -> np.ndarray:
     """Torque friction takes from the shaft, ``sum c N |s|`` [N m] (always resisting)."""
     return sum(model.coefficient(p.kind) * np.abs(p.force) * np.abs(p.slip) for p in pairs)
+
+
+#: The numeric keys of :func:`summary` (with contact pairs that have a geometry, and
+#: bearings); the names of the peaks' pairs are text.
+NUMBER_KEYS = (
+    "peak_contact_force_N",
+    "peak_contact_stress_MPa",
+    "peak_contact_stress_at_deg",
+    "contact_safety_factor",
+    "peak_bearing_load_N",
+    "friction_loss_J_per_rev",
+    "friction_loss_W",
+    "mechanical_efficiency",
+)
 
 
 def summary(pairs, theta, work_per_turn, model: ContactModel, omega, batch: bool = False) -> dict:

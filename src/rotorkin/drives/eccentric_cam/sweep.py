@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.analysis import pairs as ap
 from rotorkin.analysis.pairs import KINDS, ContactModel
 from rotorkin.analysis.timing import SPEED_MAX, SPEED_MIN
 from rotorkin.core.batch import flag, full, run_blocks, sample_grid
@@ -128,14 +129,7 @@ _TIME = (
 )  # fmt: skip
 #: Contact, bearing, friction, efficiency and the drive's own force keys (:func:`forces_summary`).
 _FORCES = (
-    "peak_contact_force_N",
-    "peak_contact_stress_MPa",
-    "peak_contact_stress_at_deg",
-    "contact_safety_factor",
-    "peak_bearing_load_N",
-    "friction_loss_J_per_rev",
-    "friction_loss_W",
-    "mechanical_efficiency",
+    *ap.NUMBER_KEYS,
     "work_through_drive_J",
     "follower_force_peak_N",
     "follower_force_min_N",

@@ -51,6 +51,7 @@ __all__ = [
     "pitch_radius_of_curvature",
     "pressure_angles",
     "profile_check",
+    "radius_of_curvature",
     "roller_alphas",
     "roller_radius_limit",
 ]
@@ -88,7 +89,12 @@ def pitch_radius_of_curvature(link_length, psi_min, a, b, alpha):
     ``1 / kappa`` with ``kappa`` of
     :func:`rotorkin.drives.rhomboid_cam.kinematics.profile_curvature`.
     """
-    k = rc.profile_curvature(link_length, psi_min, a, b, alpha)
+    return radius_of_curvature(rc.profile_curvature(link_length, psi_min, a, b, alpha))
+
+
+def radius_of_curvature(kappa):
+    """``1 / kappa`` [m], infinite where the curvature ``kappa`` is 0 (a straight piece)."""
+    k = np.asarray(kappa, dtype=float)
     with np.errstate(divide="ignore"):
         return np.where(k == 0.0, np.inf, 1.0 / np.where(k == 0.0, 1.0, k))
 

@@ -89,3 +89,16 @@ def machine_state(params, machine, loads: Loads, alpha, stroke=None) -> State:
         members = rb.gas_member_torques(machine, pressure)
     torque = at.shaft_torque_from_members(members, mo.dq)
     return State(mo, stroke, volume, dvolume, pressure, members, torque)
+
+
+def drive_torque(machine, state: State, omega):
+    """``D_i = J_i qdd_i - M_i``: what the drive must put on blade pair ``i`` [N m].
+
+    ``qdd_i = q_i'' w^2 + q_i' w_dot`` at the shaft speed ``omega = (w, w_dot, ...)``;
+    shape ``(2, n)``, or ``(2, m, n)`` for a machine of ``(m, 1)`` columns of designs.
+    """
+    mo = state.motion
+    J = np.asarray(machine.member_inertias, dtype=float)
+    J = J.reshape(J.shape + (1,) * (np.ndim(mo.d2q) - J.ndim))
+    qdd = mo.d2q * omega[0] ** 2 + mo.dq * omega[1]
+    return J * qdd - state.members

@@ -65,10 +65,10 @@ four stated assumptions:
 
 With these, the equilibrium of vertex blocks A and B (four equations) gives the link
 tensions ``S_AB``, ``S_BC``, the loaded roller force and ``g`` at every angle (a 4 x 4
-solve per angle, vectorised). Power check: the rollers do no work on the fixed cam
-(rolling) and the guides are normal to the blocks' sliding, so the shaft torque
-``-sum rho_k G_k`` equals ``-sum_i D_i q_i'``, the virtual-work torque with the blade
-pairs' inertia.
+system per angle, solved by elimination, vectorised). Power check: the rollers do no
+work on the fixed cam (rolling) and the guides are normal to the blocks' sliding, so
+the shaft torque ``-sum rho_k G_k`` equals ``-sum_i D_i q_i'``, the virtual-work torque
+with the blade pairs' inertia.
 
 Neglected: the masses of links, rollers, blocks and arms (no config keys; the
 centrifugal force of a 50 g roller at 100 mm and 1500 rpm is about 120 N, a tenth of
@@ -97,10 +97,14 @@ from rotorkin.core.errors import ParameterError
 from rotorkin.drives.rhomboid_cam import cam
 from rotorkin.drives.rhomboid_cam import kinematics as rc
 
-__all__ = ["LINKS", "Forces", "check_roller", "solve", "pairs", "blade_hub_force"]
+__all__ = ["LINKS", "Forces", "check_roller", "solve", "pairs", "blade_hub_force",
+           "machine_pairs", "force_summary", "SUMMARY_KEYS"]  # fmt: skip
 
 #: The links of the rhombus, each from its first vertex to its second.
 LINKS = ("AB", "BC", "CD", "DA")
+#: The keys of :func:`force_summary`.
+SUMMARY_KEYS = ("peak_roller_force_N", "peak_guide_force_N", "peak_link_force_N",
+                "peak_link_bending_Nm", "peak_arm_force_N", "roller_pair_BD_share")  # fmt: skip
 #: Blade pair holding each link's midpoint.
 _ARM_OF_LINK = (1, 2, 1, 2)
 
@@ -154,16 +158,24 @@ def _to_fixed(v, alpha, axis):
     return np.moveaxis(v[0][None] * ea + v[1][None] * eb, 0, axis)
 
 
+def _rollers(alpha, ndim: int):
+    """:func:`~.cam.roller_alphas` ``(4, n)``, as ``(4, 1, n)`` against designs ``(m, n)``."""
+    ak = cam.roller_alphas(alpha)
+    return ak.reshape((4,) + (1,) * (ndim - alpha.ndim) + alpha.shape)
+
+
 def solve(params: rc.RhomboidCam, alpha, drive_torque) -> Forces:
     """Forces in every pair at the shaft angles ``alpha`` (module docstring).
 
     Parameters
     ----------
     params : RhomboidCam
-        One design.
+        One design; or designs, ``link_length`` and ``psi_min`` columns ``(m, 1)`` of
+        the first-harmonic law: every result then has a designs axis before the angles'
+        (``roller`` ``(4, m, n)``, ``loaded`` ``(m, n)``, ...).
     alpha : array_like, shape (n,)
         Output-shaft angles [rad].
-    drive_torque : array_like, shape (2, n)
+    drive_torque : array_like, shape (2, n) or (2, m, n)
         ``D_i``, the torque the drive puts on blade pair ``i`` [N m] (counter-clockwise).
 
     Returns
@@ -171,38 +183,44 @@ def solve(params: rc.RhomboidCam, alpha, drive_torque) -> Forces:
     Forces
     """
     alpha = np.asarray(alpha, dtype=float)
-    D = np.broadcast_to(np.asarray(drive_torque, dtype=float), (2,) + alpha.shape)
-    L = float(params.link_length)  # 2l
+    L = np.asarray(params.link_length, dtype=float)  # 2l
     law = (params.psi_min, params.a, params.b)
     psi = rc.psi_law(*law, alpha)[0]
+    D = np.broadcast_to(np.asarray(drive_torque, dtype=float), (2,) + psi.shape)
     c, s = np.cos(0.5 * psi), np.sin(0.5 * psi)
-    rho, drho = rc.profile_radius(L, *law, cam.roller_alphas(alpha))[:2]  # (4, n)
+    rho, drho = rc.profile_radius(L, *law, _rollers(alpha, psi.ndim))[:2]  # (4, [m,] n)
     h = np.hypot(rho, drho)
-    zero = np.zeros_like(c)
     # shaft frame (e_A, e_B): normals at A (e_r = e_A, e_t = e_B) and B (e_r = e_B, e_t = -e_A)
     n_a = np.stack([rho[0], -drho[0]]) / h[0]
     n_b = np.stack([drho[1], rho[1]]) / h[1]
-    t_a, t_b = np.stack([zero, zero + 1.0]), np.stack([zero - 1.0, zero])
     u_ab, u_bc = np.stack([-c, s]), np.stack([-c, -s])  # link directions A -> B, B -> C
     u1, u2 = np.stack([-s, c]), np.stack([s, c])  # e(phi_i + pi/2) in the shaft frame
     f_ab = -(D[0] / L) * u1  # arm force on link AB (D_1 / 2l at each of arm 1's two pins)
     f_bc = (D[1] / L) * u2  # arm force on link BC
-    # vertex blocks A and B in equilibrium:
+    # vertex blocks A and B in equilibrium (t_A = e_B, t_B = -e_A):
     #   A: f_ab/2 + S1 u_ab - f_bc/2 + S2 u_bc + N_A n_A + g rho_A t_A = 0
     #   B: f_ab/2 - S1 u_ab + f_bc/2 + S2 u_bc + N_B n_B + g rho_B t_B = 0
-    rhs = -np.concatenate([0.5 * (f_ab - f_bc), 0.5 * (f_ab + f_bc)])  # (4, n)
-    cols_common = [np.concatenate([u_ab, -u_ab]), np.concatenate([u_bc, u_bc]),
-                   np.concatenate([rho[0] * t_a, rho[1] * t_b])]  # fmt: skip
-    z2 = np.zeros_like(n_a)
-    solutions = []
-    for n_col in (np.concatenate([n_a, z2]), np.concatenate([z2, n_b])):
-        m = np.stack([*cols_common, n_col], axis=-1)  # (4, n, 4): rows, angles, unknowns
-        m = np.moveaxis(m, 0, -2)  # (n, 4, 4)
-        solutions.append(np.linalg.solve(m, np.moveaxis(rhs, 0, -1)[..., None])[..., 0])
-    x_a, x_b = solutions  # (n, 4): S1, S2, g, N
-    use_b = x_a[..., 3] < 0.0
-    x = np.where(use_b[..., None], x_b, x_a)
-    s1, s2, g, n_load = np.moveaxis(x, -1, 0)
+    # with N_A = 0 or N_B = 0. In P = S1 + S2, Q = S1 - S2 the four rows read
+    #   -c P + N_A n_A,x = r1    s Q + rho_A g + N_A n_A,y = r2
+    #   -s P + N_B n_B,y = r4    c Q - rho_B g + N_B n_B,x = r3
+    # (r: the arm forces' rows): with A loaded the e_B row of B gives P, the e_A row of A
+    # gives N_A; with B loaded the e_A row of A gives P, the e_B row of B gives N_B; then
+    # Q and g from the other two rows (determinant s rho_B + c rho_A > 0: 0 < psi < pi).
+    r1, r2 = -0.5 * (f_ab - f_bc)
+    r3, r4 = -0.5 * (f_ab + f_bc)
+    p_a = -r4 / s
+    n_on_a = (r1 + c * p_a) / n_a[0]
+    use_b = n_on_a < 0.0  # the cam can only push: then B and D carry the load
+    p_b = -r1 / c
+    n_on_b = (r4 + s * p_b) / n_b[1]
+    p_sum = np.where(use_b, p_b, p_a)
+    n_load = np.where(use_b, n_on_b, n_on_a)
+    row2 = np.where(use_b, r2, r2 - n_a[1] * n_on_a)
+    row3 = np.where(use_b, r3 - n_b[0] * n_on_b, r3)
+    det = s * rho[1] + c * rho[0]
+    q_diff = (rho[1] * row2 + rho[0] * row3) / det
+    g = (c * row2 - s * row3) / det
+    s1, s2 = 0.5 * (p_sum + q_diff), 0.5 * (p_sum - q_diff)
     n_load = np.maximum(n_load, 0.0)  # -0.0 and rounding at the switch
     na = np.where(use_b, 0.0, n_load)
     nb = np.where(use_b, n_load, 0.0)
@@ -245,7 +263,7 @@ def blade_hub_force(member_torque, blades_per_pair, inner_radius, outer_radius):
     m = np.abs(np.asarray(member_torque, dtype=float))
     if int(blades_per_pair) >= 2:
         return np.zeros_like(m)
-    return m / (0.5 * (float(inner_radius) + float(outer_radius)))
+    return m / (0.5 * (np.asarray(inner_radius, dtype=float) + outer_radius))
 
 
 def check_roller(roller_radius, name="cam.roller_radius") -> float:
@@ -291,12 +309,13 @@ def pairs(params: rc.RhomboidCam, alpha, drive_torque, roller_radius, bearing_ra
     rb = float(bearing_radius)
     f = solve(params, alpha, drive_torque) if forces is None else forces
     L, law = params.link_length, (params.psi_min, params.a, params.b)
-    ak = cam.roller_alphas(alpha)
-    rho, drho = rc.profile_radius(L, *law, ak)[:2]
-    speed = np.hypot(rho, drho)  # roller centre's speed per rad of shaft
-    kappa = rc.profile_curvature(L, *law, ak)
-    r_cam = cam.pitch_radius_of_curvature(L, *law, ak) - r  # cam surface, + convex
     dpsi = rc.psi_law(*law, alpha)[1]
+    ak = _rollers(alpha, np.ndim(dpsi))
+    radius = rc.profile_radius(L, *law, ak)
+    rho, drho = radius[:2]
+    speed = np.hypot(rho, drho)  # roller centre's speed per rad of shaft
+    kappa = rc.polar_curvature(*radius[:3])
+    r_cam = cam.radius_of_curvature(kappa) - r  # cam surface, + convex
     out = []
     for k, v in enumerate(cam.ROLLERS):
         out.append(Pair(
@@ -342,3 +361,34 @@ def pairs(params: rc.RhomboidCam, alpha, drive_torque, roller_radius, bearing_ra
             "blades per pair)",
         ))  # fmt: skip
     return out
+
+
+def machine_pairs(params, machine, alpha, member_torque, drive_torque, roller_radius,
+                  bearing_radius) -> tuple[list[Pair], Forces]:  # fmt: skip
+    """The converter's pairs (:func:`pairs`) and forces (:func:`solve`) in a machine.
+
+    ``member_torque``: the machine's torques on the blade pairs ``M_i`` (the hubs' load,
+    :func:`blade_hub_force`), ``drive_torque`` the drive's ``D_i``; one design, or
+    designs as :func:`solve` takes them (``params``, ``machine`` of ``(m, 1)`` columns).
+    """
+    fo = solve(params, alpha, drive_torque)
+    hub = blade_hub_force(member_torque, machine.blades_per_pair, machine.inner_radius,
+                          machine.outer_radius)  # fmt: skip
+    return pairs(params, alpha, drive_torque, roller_radius, bearing_radius, hub, forces=fo), fo
+
+
+def force_summary(fo: Forces) -> dict:
+    """The converter's own summary keys (``docs/drives/rhomboid_cam.md``) from :func:`solve`.
+
+    Each the peak (or share) over the rollers, links and angles: a 0-d array of one
+    design, an array ``(m,)`` of designs.
+    """
+    values = (
+        np.max(fo.roller, axis=(0, -1)),
+        np.max(np.abs(fo.guide), axis=(0, -1)),
+        np.max(np.abs(fo.tension), axis=(0, 1, -1)),
+        np.max(fo.bending, axis=(0, -1)),
+        np.max(np.hypot(fo.arm[:, 0], fo.arm[:, 1]), axis=(0, -1)),
+        np.mean(fo.loaded[..., :-1], axis=-1),
+    )
+    return dict(zip(SUMMARY_KEYS, values, strict=True))

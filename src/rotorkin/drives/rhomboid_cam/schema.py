@@ -115,3 +115,14 @@ class RhomboidConfig(Section):
     limits: LimitsSection = Field(default_factory=LimitsSection)
     export: ExportSection = Field(default_factory=ExportSection)
     run: Run = Field(default_factory=Run)
+
+
+def with_defaults(cfg: dict) -> dict:
+    """``cfg`` with the machine, loads, run, cam and contact keys it lacks filled from the
+    schema (the study's and the sweep kernel's view of a validated config)."""
+    out = dict(cfg)
+    for name, model in (("machine", RotaryBladeMachine), ("loads", RhomboidLoads),
+                        ("run", RunSection), ("cam", PlanarCamSection),
+                        ("contact", ContactSection)):  # fmt: skip
+        out[name] = {**model().model_dump(), **cfg.get(name, {})}
+    return out

@@ -40,17 +40,14 @@ import numpy as np
 from rotorkin.analysis import pairs as ap
 from rotorkin.analysis import torque as at
 from rotorkin.core.errors import ParameterError
-from rotorkin.core.schema import ContactSection, RunSection
+from rotorkin.core.schema import ContactSection
+from rotorkin.drives.rhomboid_cam import engine
 from rotorkin.drives.rhomboid_cam import figures as figures_rhomboid_cam
 from rotorkin.drives.rhomboid_cam import forces as rf
 from rotorkin.drives.rhomboid_cam import kinematics as rc
 from rotorkin.drives.rhomboid_cam import summary as rs
 from rotorkin.drives.rhomboid_cam.engine import Loads, State, machine_state
-from rotorkin.drives.rhomboid_cam.schema import (
-    PlanarCamSection,
-    RhomboidLoads,
-    RotaryBladeMachine,
-)
+from rotorkin.drives.rhomboid_cam.schema import with_defaults
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.machines import rotary_blade_stirling as rbs
 from rotorkin.render.figures import draw
@@ -237,39 +234,6 @@ def _machine_setup(cfg, params):
     return machine, loads, (lo, hi, v_min, v_max)
 
 
-def _drive_torque(machine, st, omega):
-    """``D_i = J_i qdd_i - M_i``: what the drive must put on blade pair ``i`` [N m], (2, n).
-
-    ``qdd_i = q_i'' w^2 + q_i' w_dot`` at the shaft speed ``omega = (w, w_dot, ...)``.
-    """
-    mo = st.motion
-    J = np.asarray(machine.member_inertias, dtype=float)[:, None]
-    qdd = mo.d2q * omega[0] ** 2 + mo.dq * omega[1]
-    return J * qdd - st.members
-
-
-def _pairs(params, machine, loads, forces_cfg, alpha, st, drive_torque):
-    """The converter's pairs and forces at ``alpha`` (:mod:`~.forces`)."""
-    fo = rf.solve(params, alpha, drive_torque)
-    hub = rf.blade_hub_force(st.members, machine.blades_per_pair, machine.inner_radius,
-                             machine.outer_radius)  # fmt: skip
-    found = rf.pairs(params, alpha, drive_torque, forces_cfg["roller_radius"],
-                     forces_cfg["bearing_radius"], hub, forces=fo)  # fmt: skip
-    return found, fo
-
-
-def _force_summary(fo) -> dict:
-    """The converter's own keys (``docs/drives/rhomboid_cam.md``) from :func:`~.forces.solve`."""
-    return {
-        "peak_roller_force_N": float(np.max(fo.roller)),
-        "peak_guide_force_N": float(np.max(np.abs(fo.guide))),
-        "peak_link_force_N": float(np.max(np.abs(fo.tension))),
-        "peak_link_bending_Nm": float(np.max(fo.bending)),
-        "peak_arm_force_N": float(np.max(np.hypot(fo.arm[:, 0], fo.arm[:, 1]))),
-        "roller_pair_BD_share": float(np.mean(fo.loaded[:-1])),
-    }
-
-
 def _force_columns(fo, alpha) -> tuple[dict, dict]:
     cols, docs = {}, {}
     for j, name in enumerate(rf.LINKS):
@@ -309,11 +273,19 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient,
     dyn, curves = rs.dynamics_summary(machine, alpha, mo, st.members, st.torque, omega,
                                       coefficient, work_period)  # fmt: skip
     work_rev = float(dyn["indicated_work_J"])
-    drive_torque = _drive_torque(machine, st, omega)
-    pairs, fo = _pairs(params, machine, loads, forces_cfg, alpha, st, drive_torque)
+    drive_torque = engine.drive_torque(machine, st, omega)
+    pairs, fo = rf.machine_pairs(
+        params,
+        machine,
+        alpha,
+        st.members,
+        drive_torque,
+        forces_cfg["roller_radius"],
+        forces_cfg["bearing_radius"],
+    )
     force_summary = {
         **ap.summary(pairs, alpha, work_rev, forces_cfg["model"], omega[0]),
-        **_force_summary(fo),
+        **{k: float(v) for k, v in rf.force_summary(fo).items()},
     }
     geometry = rs.engine_geometry_summary(machine, lo, hi, revs * rc.psi_total_variation(*law))
     s = {
@@ -405,7 +377,7 @@ def _machine_columns(params, machine, loads, points, speed, forces_cfg):
     )
     out["equivalent_inertia_kgm2"] = at.equivalent_inertia(machine.inertia_shaft, J, mo.dq)
     out_docs["equivalent_inertia_kgm2"] = "J_eq = J_shaft + J_1 phi_1'^2 + J_2 phi_2'^2."
-    drive_torque = _drive_torque(machine, st, omega)
+    drive_torque = engine.drive_torque(machine, st, omega)
     for i in (0, 1):
         key = f"blade_pair_{i + 1}_drive_torque_Nm"
         out[key] = drive_torque[i]
@@ -413,7 +385,15 @@ def _machine_columns(params, machine, loads, points, speed, forces_cfg):
             f"Torque the converter must put on blade pair {i + 1} at the run speed, "
             f"D = J qdd - M (counter-clockwise +): what its pairs carry."
         )
-    pairs, fo = _pairs(params, machine, loads, forces_cfg, alpha, st, drive_torque)
+    pairs, fo = rf.machine_pairs(
+        params,
+        machine,
+        alpha,
+        st.members,
+        drive_torque,
+        forces_cfg["roller_radius"],
+        forces_cfg["bearing_radius"],
+    )
     pcols, pdocs = ap.columns(pairs, forces_cfg["model"], st.torque)
     fcols, fdocs = _force_columns(fo, alpha)
     out.update(pcols)
@@ -423,16 +403,6 @@ def _machine_columns(params, machine, loads, points, speed, forces_cfg):
     out.update(cols)
     out_docs.update(docs)
     return out, out_docs
-
-
-def _defaults(cfg: dict) -> dict:
-    """``cfg`` with the machine, loads and run keys it lacks filled from the config schema."""
-    out = dict(cfg)
-    for name, model in (("machine", RotaryBladeMachine), ("loads", RhomboidLoads),
-                        ("run", RunSection), ("cam", PlanarCamSection),
-                        ("contact", ContactSection)):  # fmt: skip
-        out[name] = {**model().model_dump(), **cfg.get(name, {})}
-    return out
 
 
 def drive_params(cfg: dict) -> rc.RhomboidCam:
@@ -486,7 +456,7 @@ def evaluate(cfg: dict) -> StudyResult:
         Summary keys: see :data:`HEADLINE`, ``docs/drives/rhomboid_cam.md`` and
         ``docs/machines/rotary_blade.md``.
     """
-    cfg = _defaults(cfg)
+    cfg = with_defaults(cfg)
     params = drive_params(cfg)
     outside = check_linear_range(cfg, params)
     forces_cfg = {

@@ -15,7 +15,10 @@ inertia, energy fluctuation and flywheel
 (:func:`~rotorkin.drives.rhomboid_cam.summary.dynamics_summary`) and the blade
 pairs' peaks in time (:func:`~rotorkin.studies.helpers.time_peaks`), from the
 study's own :func:`~rotorkin.drives.rhomboid_cam.engine.machine_state` on
-columns of designs (one call per block and number of blades). Under the Stirling
+columns of designs (one call per block and number of blades); and the converter's
+forces (:func:`~rotorkin.drives.rhomboid_cam.forces.machine_pairs` on the same
+columns), its pairs' contact stresses, bearing loads, friction and efficiency
+(:func:`rotorkin.analysis.pairs.summary`). Under the Stirling
 models (adiabatic, schmidt) the same keys and the models' own (heat in and out, gas
 mass, pressures, efficiencies): the circuits of up to :data:`STIRLING_BLOCK` designs
 of one number of blades and one gas solved in one run
@@ -34,12 +37,14 @@ import functools
 
 import numpy as np
 
+from rotorkin.analysis import pairs as ap
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.batch import flag, full, run_blocks, sample_grid
 from rotorkin.drives.rhomboid_cam import engine
+from rotorkin.drives.rhomboid_cam import forces as rf
 from rotorkin.drives.rhomboid_cam import kinematics as rc
 from rotorkin.drives.rhomboid_cam import summary as rs
-from rotorkin.drives.rhomboid_cam.schema import RotaryBladeMachine
+from rotorkin.drives.rhomboid_cam.schema import RotaryBladeMachine, with_defaults
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.machines import rotary_blade_stirling as rbs
 from rotorkin.studies.helpers import time_peaks
@@ -75,8 +80,9 @@ ANGLE = ("alpha_deg", "Output-shaft angle alpha: polar angle of diagonal OA, fro
 
 _MACHINE = ("blade_thickness", "inner_radius", "outer_radius", "axial_width", "blades_per_pair")
 _INERTIAS = ("inertia_shaft", "inertia_blade_pair_1", "inertia_blade_pair_2")
-#: Keys of the engine's dynamics (linear torque model and Stirling models; sampled).
-_DYNAMIC = rs.DYNAMICS_KEYS + rs.TIME_KEYS
+#: Keys of the engine's dynamics, its pairs' contact, bearing and friction and the
+#: converter's forces (linear torque model and Stirling models; sampled).
+_DYNAMIC = rs.DYNAMICS_KEYS + rs.TIME_KEYS + ap.NUMBER_KEYS + rf.SUMMARY_KEYS
 #: Keys of the Stirling models (adiabatic, schmidt): their circuits' cycle per design.
 _STIRLING = tuple(k for k in rbs.NUMBER_KEYS if k != "indicated_work_J") + (
     "pressure_max_bar", "pressure_min_bar")  # fmt: skip
@@ -212,6 +218,12 @@ def _dynamics(p, samples: int, threads) -> dict:
     keys = _DYNAMIC + (_STIRLING if stirling else ())
     alpha = sample_grid(rc.period(p), samples)
     omega = shaft_speed(alpha, p.cfg["run"]["speed"], rc.period(p))
+    cfg = with_defaults(p.cfg)  # the pairs' keys, the same for every design
+    contact = (
+        rf.check_roller(cfg["cam"]["roller_radius"]),
+        float(cfg["contact"]["bearing_radius"]),
+    )
+    model = ap.ContactModel.from_config(cfg)
     cols = {k: full(p.float(k), n) for k in ("drive.link_length", "drive.psi_min",
                                              "loads.torque_high", "loads.torque_low")}  # fmt: skip
     for k in (*_MACHINE[:4], *_INERTIAS, "speed_fluctuation"):
@@ -257,6 +269,11 @@ def _dynamics(p, samples: int, threads) -> dict:
                 val, _ = rs.dynamics_summary(machine, alpha, st.motion, st.members, st.torque,
                                              omega, c["speed_fluctuation"][:, 0], work)  # fmt: skip
                 val.update(time_peaks(st.motion, omega, rs.SLUGS))
+                drive = engine.drive_torque(machine, st, omega)
+                found, fo = rf.machine_pairs(params, machine, alpha, st.members, drive, *contact)
+                val.update(ap.summary(found, alpha, val["indicated_work_J"], model, omega[0],
+                                      batch=True))  # fmt: skip
+                val.update(rf.force_summary(fo))
                 if sol is not None:
                     numbers = rbs.stirling_numbers(block, 2.0 * np.pi / rc.period(params))
                     val.update({k: v for k, v in numbers.items() if k != "indicated_work_J"})
