@@ -1,14 +1,16 @@
-"""Benchmark: rotary-blade Stirling engines swept with their circuits' cycle per design.
+"""Benchmark: rotary-blade engines swept with their dynamics, forces and gas cycle per design.
 
-    python benchmarks/bench_stirling.py                        # 512 adiabatic, 1000 Schmidt
-    python benchmarks/bench_stirling.py --adiabatic 128 --schmidt 200    # quick look
+    python benchmarks/bench_stirling.py             # 512 adiabatic, 1000 Schmidt, 1000 linear
+    python benchmarks/bench_stirling.py --adiabatic 128 --schmidt 200 --linear 200   # quick
     python benchmarks/bench_stirling.py --help
 
 The designs: the ``rhomboid-engine`` example with ``loads.pressure_model`` adiabatic or
 schmidt, its charge pressure (2 ... 40 bar) and the cold set's phase angle (60 ... 120
-deg) drawn at random. Each design gets every metric the kernel computes for the model
-(:func:`rotorkin.drives.rhomboid_cam.sweep.metric_names`: the law, the machine, the
-dynamics on 20 001 shaft angles and the Stirling model's cycle), through
+deg) drawn at random; and under the paper's linear torque model, psi_min (30 ... 50
+deg) and the high torque (100 ... 300 N m). Each design gets every metric the kernel
+computes for the model (:func:`rotorkin.drives.rhomboid_cam.sweep.metric_names`: the
+law, the machine, the dynamics, the converter's forces and its pairs' contact stresses
+and friction on 20 001 shaft angles, and a Stirling model's cycle), through
 :func:`rotorkin.sweep.engine.evaluate_designs` on ``--threads`` threads.
 
 Yardstick, like for like: the first ``--studies`` designs (default 3) each through the
@@ -39,8 +41,12 @@ def _case(model: str, n: int, studies: int, threads: int) -> dict:
 
     cfg, _, _ = load_config(example="rhomboid-engine", sets=[f"loads.pressure_model={model}"])
     rng = np.random.default_rng(1)
-    table = {"loads.charge_pressure": rng.uniform(2e5, 40e5, n),
-             "loads.phase_angle": np.radians(rng.uniform(60.0, 120.0, n))}  # fmt: skip
+    if model == "linear":
+        table = {"drive.psi_min": np.radians(rng.uniform(30.0, 50.0, n)),
+                 "loads.torque_high": rng.uniform(100.0, 300.0, n)}  # fmt: skip
+    else:
+        table = {"loads.charge_pressure": rng.uniform(2e5, 40e5, n),
+                 "loads.phase_angle": np.radians(rng.uniform(60.0, 120.0, n))}  # fmt: skip
     p = Designs(cfg, table, n)
     names = list(kernel.metric_names(cfg))
     start, cpu = time.perf_counter(), time.process_time()
@@ -65,6 +71,8 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--adiabatic", type=int, default=512, help="designs of the adiabatic model")
     ap.add_argument("--schmidt", type=int, default=1000, help="designs of the Schmidt model")
+    ap.add_argument("--linear", type=int, default=1000,
+                    help="designs of the linear torque model")  # fmt: skip
     ap.add_argument("--studies", type=int, default=3, help="designs through the study")
     ap.add_argument("--threads", type=int, default=2, help="kernel threads")
     ap.add_argument("--out", default=str(Path(__file__).parent / "results" / "stirling.json"))
@@ -72,7 +80,8 @@ def main() -> None:
     info = machine()
     cases = [
         _case(m, n, args.studies, args.threads)
-        for m, n in (("adiabatic", args.adiabatic), ("schmidt", args.schmidt))
+        for m, n in (("adiabatic", args.adiabatic), ("schmidt", args.schmidt),
+                     ("linear", args.linear))  # fmt: skip
         if n > 0
     ]
     print(f"{info['cpu']} ({', '.join(info['vector_isa']) or 'no AVX'}), numpy "
