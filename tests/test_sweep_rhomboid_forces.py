@@ -24,6 +24,7 @@ from rotorkin.io.config import load_config
 from rotorkin.machines import rotary_blade as rb
 from rotorkin.sweep.engine import coverage
 from sweep_equality import assert_kernel_is_study
+from test_sweep_rhomboid_dynamics import _sample  # designs over law, loads, blades, inertias
 
 #: The pairs' keys and the converter's own, as the study gives them.
 FORCES = ap.NUMBER_KEYS + rf.SUMMARY_KEYS
@@ -32,22 +33,6 @@ FORCES = ap.NUMBER_KEYS + rf.SUMMARY_KEYS
 def _base(sets=()):
     cfg, _, _ = load_config(example="rhomboid-engine", sets=list(sets))
     return cfg
-
-
-def _sample(n: int, seed: int) -> dict:
-    """Designs over the law, the loads, the blades and the inertias."""
-    rng = np.random.default_rng(seed)
-    return {
-        "drive.link_length": rng.uniform(0.08, 0.3, n),
-        "drive.psi_min": np.radians(rng.uniform(25.0, 60.0, n)),
-        "loads.torque_high": rng.uniform(20.0, 400.0, n),
-        "loads.torque_low": rng.uniform(0.0, 100.0, n),
-        "machine.blades_per_pair": rng.choice([1, 2], n),
-        "machine.inner_radius": rng.uniform(0.01, 0.05, n),
-        "machine.outer_radius": rng.uniform(0.06, 0.2, n),
-        "machine.inertia_blade_pair_1": rng.uniform(0.0, 0.02, n),
-        "machine.inertia_blade_pair_2": rng.uniform(0.0, 0.02, n),
-    }
 
 
 def test_the_forces_are_vectorised_under_every_pressure_model_with_a_kernel():

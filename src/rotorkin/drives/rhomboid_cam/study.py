@@ -234,6 +234,12 @@ def _machine_setup(cfg, params):
     return machine, loads, (lo, hi, v_min, v_max)
 
 
+def _pairs(params, machine, forces_cfg, alpha, st, drive_torque):
+    """The converter's pairs and forces at ``alpha`` (:func:`~.forces.machine_pairs`)."""
+    return rf.machine_pairs(params, machine, alpha, st.members, drive_torque,
+                            forces_cfg["roller_radius"], forces_cfg["bearing_radius"])  # fmt: skip
+
+
 def _force_columns(fo, alpha) -> tuple[dict, dict]:
     cols, docs = {}, {}
     for j, name in enumerate(rf.LINKS):
@@ -274,15 +280,7 @@ def _machine_summary(params, machine, loads, extremes, speed, coefficient,
                                       coefficient, work_period)  # fmt: skip
     work_rev = float(dyn["indicated_work_J"])
     drive_torque = engine.drive_torque(machine, st, omega)
-    pairs, fo = rf.machine_pairs(
-        params,
-        machine,
-        alpha,
-        st.members,
-        drive_torque,
-        forces_cfg["roller_radius"],
-        forces_cfg["bearing_radius"],
-    )
+    pairs, fo = _pairs(params, machine, forces_cfg, alpha, st, drive_torque)
     force_summary = {
         **ap.summary(pairs, alpha, work_rev, forces_cfg["model"], omega[0]),
         **{k: float(v) for k, v in rf.force_summary(fo).items()},
@@ -385,15 +383,7 @@ def _machine_columns(params, machine, loads, points, speed, forces_cfg):
             f"Torque the converter must put on blade pair {i + 1} at the run speed, "
             f"D = J qdd - M (counter-clockwise +): what its pairs carry."
         )
-    pairs, fo = rf.machine_pairs(
-        params,
-        machine,
-        alpha,
-        st.members,
-        drive_torque,
-        forces_cfg["roller_radius"],
-        forces_cfg["bearing_radius"],
-    )
+    pairs, fo = _pairs(params, machine, forces_cfg, alpha, st, drive_torque)
     pcols, pdocs = ap.columns(pairs, forces_cfg["model"], st.torque)
     fcols, fdocs = _force_columns(fo, alpha)
     out.update(pcols)
