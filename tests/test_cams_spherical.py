@@ -356,6 +356,28 @@ def test_separation_against_brute_force(example):
     assert rollers[0] != rollers[1]
 
 
+@pytest.mark.parametrize("tilt, axis", [(30.0, 60.0), (60.0, 100.0), (40.0, 70.0)])
+def test_separation_of_grooves_running_side_by_side(tilt, axis):
+    """Grooves that never cross, closest where they run parallel: Newton from the
+    closest samples lands on the closest approach a dense search finds (not on a
+    farther point where Gauss-Newton's singular step throws it)."""
+    from scipy.spatial.distance import cdist
+
+    phi, alpha = np.radians(tilt), np.radians(axis)
+    drive = wc.WobbleCam(phi, alpha, -2.0, R)
+    ex = Explicit(phi=phi, alpha=alpha)
+    t = np.linspace(0, 2 * np.pi, 6000, endpoint=False)
+    d = min(
+        cdist(ex.groove(t, i), ex.groove(t, j)).min() for i in range(4) for j in range(i + 1, 4)
+    )
+    sep, rollers, theta = sph.groove_separation(drive)
+    assert d > 0.02  # no crossing
+    assert sep <= d + 1e-12 and sep == pytest.approx(d, abs=2e-6)
+    # the two points found are that far apart on the explicit grooves
+    gap = np.linalg.norm(ex.groove(theta[0], rollers[0]) - ex.groove(theta[1], rollers[1]))
+    assert gap == pytest.approx(sep, rel=1e-12)
+
+
 def test_summary(example):
     drive, cam = example
     s = sph.summary(drive, cam)
@@ -493,16 +515,16 @@ def test_pressure_angle_peaks(example):
 
 
 def _near_others_listed(ch, roller):
-    """The samples near another branch, from the k-d tree's lists of neighbours (every
-    neighbour taken one by one): the reference of the counting in ``near_others``."""
+    """The samples near another branch, every axis sample measured against every sample
+    one by one (no grid): the reference of the search in ``near_others``."""
     from rotorkin.drives.wobble_cam.cam_walls import SCAN
 
     i, shift = ch.curve[roller]
     own = ch.axes[ch.owner == i]
     reach = 2.0 * np.sin(np.arcsin(min(1.0, 1.05 * ch.h / ch.lam_in))) + 2 * ch.pad
     out = np.zeros(SCAN, dtype=bool)
-    for j, hits in enumerate(ch.tree.query_ball_point(np.roll(own, -shift, axis=0), reach)):
-        hits = np.asarray(hits, dtype=int)
+    for j, p in enumerate(np.roll(own, -shift, axis=0)):
+        hits = np.flatnonzero(np.linalg.norm(p - ch.axes, axis=1) <= reach)
         gap = np.abs(ch.arc[i][hits % SCAN] - ch.arc[i][(j + shift) % SCAN])
         gap = np.minimum(gap, ch.length[i] - gap)
         out[j] = bool(np.any((ch.owner[hits] != i) | (gap > 2.5 * ch.h)))
@@ -511,8 +533,8 @@ def _near_others_listed(ch, roller):
 
 @pytest.mark.parametrize("tilt", [45.0, 30.0, 60.0])
 def test_near_others_counts_what_the_neighbour_lists_find(example, tilt):
-    """Counting neighbours (all within reach less the own stretch of groove) flags the
-    same samples as looking at every neighbour; never fewer."""
+    """The grid's search (all within reach less the own stretch of groove) flags the
+    same samples as measuring every axis sample."""
     from rotorkin.drives.wobble_cam import cam_walls
 
     drive, cam = example
@@ -524,7 +546,6 @@ def test_near_others_counts_what_the_neighbour_lists_find(example, tilt):
         pistons_per_rotor=drive.pistons_per_rotor,
     )
     ch = cam_walls._Channels(drive, cam)
-    ch.lam_in = cam.roller_span[0]
     for roller in range(4):
         want = _near_others_listed(ch, roller)
         got = ch.near_others(roller)

@@ -64,10 +64,10 @@ def test_run_imports_only_the_running_drive_and_no_costly_library(kind, tmp_path
     assert _drive_packages(modules) == {kind}
     assert (tmp_path / "out" / "summary.json").is_file()
     # what one design does not need (0.1-0.5 s each to import): the units of its config
-    # from the table, no optimiser, no compiled loops for one study's evaluations
+    # from the table, no optimiser, no compiled loops for one study's evaluations, no
+    # k-d tree (the spherical cam's groove searches run on a grid in numpy)
     costly = ("pint", "numba", "scipy.optimize", "scipy.spatial", "dask", "xarray")
-    assert [m for m in costly if m in modules] == ([] if kind != "wobble_cam" else
-                                                   ["scipy.spatial"])  # fmt: skip
+    assert [m for m in costly if m in modules] == []
 
 
 def test_registry_keeps_order_and_loads_on_access():

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rotorkin.core.nearby import PointGrid, closest_pair
 from rotorkin.drives.wobble_cam import grooves as gr
 from rotorkin.drives.wobble_cam import kinematics as wc
 
@@ -101,9 +102,7 @@ def groove_crossings(
     nxt = (idx // n) * n + (idx % n + 1) % n
     mid = 0.5 * (pts + pts[nxt])
     reach = float(np.max(np.linalg.norm(pts[nxt] - pts, axis=1)))
-    from scipy.spatial import cKDTree  # a tenth of a second to import: when used
-
-    pairs = cKDTree(mid).query_pairs(1.01 * reach, output_type="ndarray")
+    pairs = PointGrid(mid, 1.01 * reach).close_pairs(1.01 * reach)
     if len(pairs) == 0:
         return []
     a, b = pairs[:, 0], pairs[:, 1]
@@ -157,8 +156,50 @@ def groove_crossings(
     return sorted(out.values(), key=lambda x: (x.rollers, x.theta))
 
 
+def _closest_approach(drive, i, j, t1, t2, limit):
+    """Newton on ``|g_i(t1) - g_j(t2)|^2 / 2`` from a nearby pair of samples.
+
+    The full Hessian (curvature terms kept: at the closest approach of two grooves
+    running side by side the tangents are parallel, and Gauss-Newton's ``J^T J`` is
+    singular there), each step at most ``limit`` and halved until the distance does not
+    grow. Returns ``(t1, t2, distance)``.
+    """
+
+    def at(u, v):
+        gi, di, si = (x[i, :, 0] for x in gr.groove_derivatives(drive, np.array([u])))
+        gj, dj, sj = (x[j, :, 0] for x in gr.groove_derivatives(drive, np.array([v])))
+        return gi - gj, di, si, dj, sj
+
+    r, di, si, dj, sj = at(t1, t2)
+    dist = float(np.linalg.norm(r))
+    for _ in range(60):
+        grad = np.array([di @ r, -(dj @ r)])
+        hess = np.array([[di @ di + si @ r, -(di @ dj)], [-(di @ dj), dj @ dj - sj @ r]])
+        if hess[0, 0] > 0 and np.linalg.det(hess) > 0:
+            step = -np.linalg.solve(hess, grad)
+        else:  # not yet in the bowl: down the gradient
+            step = -grad / (di @ di + dj @ dj)
+        step = np.clip(step, -limit, limit)
+        for _ in range(40):
+            new = at(t1 + step[0], t2 + step[1])
+            if np.linalg.norm(new[0]) <= dist:
+                break
+            step = 0.5 * step
+        else:
+            break  # no step shortens it: the closest approach, to rounding
+        t1, t2 = t1 + step[0], t2 + step[1]
+        r, di, si, dj, sj = new
+        dist = float(np.linalg.norm(r))
+        if np.max(np.abs(step)) < 1e-13:
+            break
+    return t1, t2, dist
+
+
 def groove_separation(drive: wc.WobbleCam, samples: int = 2048):
     """Closest approach of the centre-lines of two different grooves.
+
+    Every pair of samples of the two grooves is measured; the closest pair is refined
+    by Newton on the squared distance (:func:`_closest_approach`).
 
     Returns
     -------
@@ -170,17 +211,10 @@ def groove_separation(drive: wc.WobbleCam, samples: int = 2048):
     theta = np.linspace(0.0, period, samples, endpoint=False)
     g = gr.groove_derivatives(drive, theta)[0]
     best = (np.inf, (), ())
-    from scipy.spatial import cKDTree  # a tenth of a second to import: when used
-
     for ii, i in enumerate(rollers):
-        tree = cKDTree(g[i].T)
         for j in rollers[ii + 1 :]:
-            dist, k = tree.query(g[j].T)
-            q = int(np.argmin(dist))
-            # Gauss-Newton on g_i - g_j converges to the closest approach
-            t1, t2, res, *_ = _newton_crossing(
-                drive, np.array([i]), np.array([j]), theta[k[q]][None], theta[q][None]
-            )
-            if res[0] < best[0]:
-                best = (float(res[0]), (i, j), (float(t1[0] % period), float(t2[0] % period)))
+            k, q, _ = closest_pair(g[i].T, g[j].T)
+            t1, t2, dist = _closest_approach(drive, i, j, theta[k], theta[q], period / samples)
+            if dist < best[0]:
+                best = (dist, (i, j), (float(t1 % period), float(t2 % period)))
     return best

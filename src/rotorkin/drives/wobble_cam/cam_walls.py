@@ -17,7 +17,7 @@ the centre-line: a point p lies in some channel where
 The contact line touches its own channel (``= h`` at ``theta' = theta``, and no closer
 nearby while the roller does not undercut), so wall ``s`` is missing at theta exactly
 where a point of its contact line is strictly inside a channel. Computed here on
-:data:`CONTACT_POINTS` points of the line: every groove's axes sampled into a k-d tree,
+:data:`CONTACT_POINTS` points of the line: every groove's axes sampled into a grid of cells,
 the candidates near a point refined by Newton on ``p . g(theta')``; the shaft angles
 scanned on :data:`SCAN` samples per groove period and every end of a gap refined by
 bisection. In angular terms the contact line and the channel scale alike with the
@@ -37,6 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorkin.core.errors import RotorkinError
+from rotorkin.core.nearby import PointGrid
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam.grooves import (
     distinct_grooves,
@@ -55,7 +56,7 @@ __all__ = [
 
 #: Points on a contact line (between the roller's end faces) that are tested.
 CONTACT_POINTS = 5
-#: Shaft-angle samples per groove period of the scan (and of the axes in the k-d tree).
+#: Shaft-angle samples per groove period of the scan (and of the axes searched).
 SCAN = 2048
 #: Newton steps on a candidate axis.
 _NEWTON = 6
@@ -102,19 +103,17 @@ def contact_radii(cam, count: int = CONTACT_POINTS) -> np.ndarray:
 
 
 class _Channels:
-    """Every distinct groove's axes, sampled into a k-d tree, and the rollers' own curves."""
+    """Every distinct groove's axes, sampled into a grid of cells, and the rollers' own curves."""
 
     def __init__(self, drive, cam):
         self.drive, self.h = drive, cam.groove_half_width
+        self.lam_in = cam.roller_span[0]
         self.period = groove_period(drive)
         r = drive.sphere_radius
         rollers = distinct_grooves(drive)
         t = np.arange(SCAN) * (self.period / SCAN)
         g, d1, _ = groove_derivatives(drive, t)
         self.axes = np.moveaxis(g[rollers], 1, 2).reshape(-1, 3) / r
-        from scipy.spatial import cKDTree  # a tenth of a second to import: when used
-
-        self.tree = cKDTree(self.axes)
         self.owner = np.repeat(np.array(rollers), SCAN)
         # arc length along every roller's centre-line (on the sphere r) at the samples
         speed = np.linalg.norm(d1, axis=1)  # (4, N)
@@ -133,35 +132,29 @@ class _Channels:
         # largest angle between neighbouring axis samples: every search reaches that further
         self.pad = 1.01 * float(np.max(speed)) * (self.period / SCAN) / r
         self.eps = 1e-9 * r
+        # chords of the searches: near_others', and inside's (its points lie beyond lam_in)
+        self.reach = 2.0 * np.sin(np.arcsin(min(1.0, 1.05 * self.h / self.lam_in))) + 2 * self.pad
+        self.grid = PointGrid(self.axes, self.reach)
+        self.reach_in = 2.0 * np.sin(0.5 * np.arcsin(min(1.0, self.h / self.lam_in))) + self.pad
+        self.grid_in = PointGrid(self.axes, self.reach_in)
 
     def near_others(self, roller):
         """Samples of ``roller``'s centre-line within 2 h of another branch (bool, (SCAN,)).
 
         Another branch is another groove, or the roller's own groove more than 2.5 h away
-        along it (where a figure-eight crosses itself). Counted, not listed: the axis
-        samples within reach of each sample (the k-d tree's count) less those of its own
-        stretch of groove (a window of samples either side, measured directly, at a reach
-        smaller by 1e-12 so that a sample on the edge of the ball counts as another
-        branch: a sample taken for near is only checked, never missed).
+        along it (where a figure-eight crosses itself): every axis sample within reach of
+        a sample (on the unit sphere), less those of its own stretch of groove.
         """
         i, shift = self.curve[roller]
         own = self.axes[self.owner == i]  # the roller's own curve, shifted by ``shift``
-        reach = 2.0 * np.sin(np.arcsin(min(1.0, 1.05 * self.h / self.lam_in))) + 2 * self.pad
         at = (np.arange(SCAN) + shift) % SCAN  # the sample of curve i each point sits at
-        total = self.tree.query_ball_point(own[at], reach, return_length=True)
-        arc, length = self.arc[i], self.length[i]
-        spacing = float(np.min(np.diff(arc)))
-        half = min(SCAN // 2, int(np.ceil(2.5 * self.h / spacing)) + 1)
-        offsets = np.arange(-half, half + 1) if 2 * half < SCAN else np.arange(SCAN) - half
-        m = (at[:, None] + offsets[None, :]) % SCAN  # (SCAN, window)
-        gap = np.abs(arc[m] - arc[at][:, None])
-        gap = np.minimum(gap, length - gap)
-        # unit vectors: |a - b|^2 = 2 - 2 a.b (its rounding ~1e-16, far inside the margin)
-        x, y, z = own.T
-        dot = x[m] * x[at][:, None] + y[m] * y[at][:, None] + z[m] * z[at][:, None]
-        inner = (2.0 - 2.0 * dot) <= (reach * (1.0 - 1e-12)) ** 2
-        mine = np.count_nonzero(inner & (gap <= 2.5 * self.h), axis=1)
-        return total > mine
+        arc, length, h = self.arc[i], self.length[i], self.h
+
+        def own_stretch(rows, cand):
+            gap = np.abs(arc[cand % SCAN][None, :] - arc[at[rows]][:, None])
+            return (self.owner[cand] == i)[None, :] & (np.minimum(gap, length - gap) <= 2.5 * h)
+
+        return self.grid.count_within(own[at], self.reach, skip=own_stretch) > 0
 
     def inside(self, points):
         """Whether each point (n, 3) [m] lies strictly inside some channel (bool, (n,)).
@@ -173,9 +166,7 @@ class _Channels:
         """
         rad = np.linalg.norm(points, axis=1)
         reach = 2.0 * np.sin(0.5 * np.arcsin(np.minimum(self.h / rad, 1.0))) + self.pad
-        chord, near = self.tree.query(
-            points / rad[:, None], k=1, distance_upper_bound=float(np.max(reach, initial=0.0))
-        )
+        chord, near = self.grid_in.nearest(points / rad[:, None], float(np.max(reach, initial=0.0)))
         out = np.zeros(len(points), dtype=bool)
         idx = np.flatnonzero(chord <= reach)
         if not len(idx):
@@ -235,7 +226,6 @@ def wall_gaps(drive: wc.WobbleCam, cam, crossings=None) -> list[WallGap]:
         Sorted by roller, wall and start.
     """
     channels = _Channels(drive, cam)
-    channels.lam_in = cam.roller_span[0]
     period = channels.period
     step = period / SCAN
     theta = (np.arange(SCAN) + 0.5) * step
