@@ -126,17 +126,80 @@ def _done(fig, path: Path) -> None:
         _RECORDED.append((Path(path), fig))
 
 
-#: zlib level of the PNG files: 1 writes a run's figures in about half the time of
-#: the default 6, the files about 7 % larger.
+#: zlib level of the PNG files (1: fastest).
 PNG_COMPRESS_LEVEL = 1
 
 
 def _write(fig, path, dpi: int) -> None:
-    """``fig.savefig(path, dpi=dpi)``, a PNG at :data:`PNG_COMPRESS_LEVEL`."""
+    """``fig.savefig(path, dpi=dpi)``; a PNG written by :func:`png_bytes`.
+
+    matplotlib renders the figure into an RGBA buffer (``format="rgba"``); the PNG is
+    encoded here: RGB where every pixel is opaque (a quarter less to compress), rows
+    unfiltered, zlib at :data:`PNG_COMPRESS_LEVEL`. Pillow's encoder tries every row
+    filter on every row: twice the time for files ~15 % larger on these flat-coloured
+    plots. Where the figure is drawn at another resolution than it is written at, or
+    the buffer is not its size (a ``savefig.bbox = tight`` in a matplotlibrc),
+    matplotlib writes the PNG itself.
+    """
+    if Path(path).suffix.lower() != ".png" or fig.dpi != dpi:
+        fig.savefig(path, dpi=dpi, **_png_options(path))
+        return
+    import io
+
+    import numpy as np
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="rgba", dpi=dpi)
+    width, height = fig.canvas.get_width_height(physical=True)
+    raw = buf.getbuffer()
+    if len(raw) != width * height * 4:
+        fig.savefig(path, dpi=dpi, **_png_options(path))
+        return
+    rgba = np.frombuffer(raw, dtype=np.uint8).reshape(height, width, 4)
+    Path(path).write_bytes(png_bytes(rgba, software=f"matplotlib {_mpl_version()}"))
+
+
+def _png_options(path) -> dict:
+    """``savefig``'s options of a file matplotlib writes: a PNG at our zlib level."""
     if Path(path).suffix.lower() == ".png":
-        fig.savefig(path, dpi=dpi, pil_kwargs={"compress_level": PNG_COMPRESS_LEVEL})
-    else:
-        fig.savefig(path, dpi=dpi)
+        return {"pil_kwargs": {"compress_level": PNG_COMPRESS_LEVEL}}
+    return {}
+
+
+def _mpl_version() -> str:
+    import matplotlib
+
+    return matplotlib.__version__
+
+
+def png_bytes(rgba, software: str = "") -> bytes:
+    """A PNG file of an 8-bit RGBA image ``(height, width, 4)``, as bytes.
+
+    Colour type 2 (RGB) where every alpha is 255, else 6 (RGBA); every row unfiltered
+    (filter type 0), the image data in one zlib stream at :data:`PNG_COMPRESS_LEVEL`,
+    a ``Software`` text chunk if given.
+    """
+    import struct
+    import zlib
+
+    import numpy as np
+
+    rgba = np.asarray(rgba, dtype=np.uint8)
+    height, width = rgba.shape[:2]
+    pixels, colour = (rgba[..., :3], 2) if bool(np.all(rgba[..., 3] == 255)) else (rgba, 6)
+    rows = np.zeros((height, 1 + width * pixels.shape[2]), dtype=np.uint8)
+    rows[:, 1:] = pixels.reshape(height, -1)
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
+
+    head = struct.pack(">IIBBBBB", width, height, 8, colour, 0, 0, 0)
+    text = chunk(b"tEXt", b"Software\0" + software.encode("latin-1")) if software else b""
+    return b"".join([
+        b"\x89PNG\r\n\x1a\n", chunk(b"IHDR", head), text,
+        chunk(b"IDAT", zlib.compress(rows.data, PNG_COMPRESS_LEVEL)), chunk(b"IEND", b""),
+    ])  # fmt: skip
 
 
 def _laid_out(fig) -> None:
