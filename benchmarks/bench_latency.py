@@ -4,7 +4,8 @@ Each case is a fresh process started the way a user starts ``rotorkin`` (the con
 script's two lines, ``python -c``), timed from the outside: its wall time and the CPU
 time of the process and its children (the figure workers). Every case runs once per
 round, the order rotated from round to round, after a warm-up round that is not kept
-(files in the page cache, ``__pycache__`` written): what is reported is the best of
+(files in the page cache, ``__pycache__`` written: :func:`_common.user_env`): what is
+reported is the best of
 the warm rounds, the run least disturbed by the neighbours' load.
 
 Cases:
@@ -45,7 +46,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from _common import git_commit, load, machine, write_json  # noqa: E402
+from _common import git_commit, load, machine, user_env, write_json  # noqa: E402
 
 DEFAULT_OUT = HERE / "results" / "latency.json"
 COMMAND = "python benchmarks/bench_latency.py"
@@ -54,7 +55,7 @@ TARGET_RUN = 1.5
 #: Wall time of ``rotorkin --help`` [s].
 TARGET_HELP = 0.1
 #: The console script, as ``python -c`` (``rotorkin`` itself is these two lines).
-SCRIPT = "import sys; from rotorkin.cli import main; sys.exit(main())"
+SCRIPT = "import sys; from rotorkin.cli import console_main; sys.exit(console_main())"
 FLOOR = "import numpy, matplotlib.pyplot"
 
 
@@ -97,7 +98,7 @@ def _once(argv, env, folder: Path) -> tuple[float, float, int]:
 def run(examples, rounds: int, serial: bool) -> dict:
     """Time every case in ``rounds`` warm rounds (after one warm-up round)."""
     table = cases(examples, serial)
-    base_env = {**os.environ, "MPLBACKEND": "Agg"}
+    base_env = user_env(MPLBACKEND="Agg")
     names = list(table)
     walls = {n: [] for n in names}
     cpus = {n: [] for n in names}

@@ -66,7 +66,6 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import json
-import os
 import subprocess
 import sys
 import time
@@ -75,7 +74,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import load, machine, peak_rss, wobble_vary, write_json  # noqa: E402
+from _common import load, machine, peak_rss, user_env, wobble_vary, write_json  # noqa: E402
 
 from rotorkin.core.batch import DEFAULT_SAMPLES  # noqa: E402
 
@@ -182,7 +181,7 @@ def _cli(args: list[str], folder: Path, env: dict | None = None) -> dict:
     t0 = time.perf_counter()
     proc = subprocess.run([sys.executable, "-c", _CLI_CHILD, "sweep", *args, "-q", "--out",
                            str(folder)], capture_output=True, text=True,
-                          env={**os.environ, **(env or {})})  # fmt: skip
+                          env=user_env(**(env or {})))  # fmt: skip
     wall = time.perf_counter() - t0
     if proc.returncode:
         raise RuntimeError(proc.stderr)
