@@ -378,15 +378,18 @@ def test_cli_refuses_in_one_line(capsys, tmp_path):
     assert not (tmp_path / "out").exists()
 
 
-def test_cli_refuses_roller_radius_zero(capsys, tmp_path):
-    code = main(["run", "-e", "rhomboid-engine", "--set", "cam.roller_radius=0 mm", "-q",
+@pytest.mark.parametrize("radius, shown", [("0 mm", "0 mm"), ("1e-300 m", "1e-297 mm")])
+def test_cli_refuses_roller_radius_zero(capsys, tmp_path, radius, shown):
+    """0, and a radius so small that the roller's spin overflows, are refused."""
+    code = main(["run", "-e", "rhomboid-engine", "--set", f"cam.roller_radius={radius}", "-q",
                  "--out", str(tmp_path / "out")])  # fmt: skip
     err = capsys.readouterr().err.strip()
     assert code == 2 and len(err.splitlines()) == 1
     assert err.endswith(
-        "cam.roller_radius = 0 mm is not admissible: roller_radius > 0 mm for the contact "
-        "forces (a roller's Hertz stress and spin need its radius)"
+        f"cam.roller_radius = {shown} is not admissible: roller_radius >= 0.001 mm for the "
+        "contact forces (a roller's Hertz stress and spin need its radius)"
     )
+    assert not (tmp_path / "out").exists()
 
 
 def test_sweep_flags_the_range_like_the_study():

@@ -266,15 +266,21 @@ def blade_hub_force(member_torque, blades_per_pair, inner_radius, outer_radius):
     return m / (0.5 * (np.asarray(inner_radius, dtype=float) + outer_radius))
 
 
+#: The smallest roller radius the forces take [m]: a roller spins at its rolling speed
+#: over its radius, and a radius near 0 leaves the spin and the pin's friction without
+#: meaning (1 um; a denormal radius overflowed them).
+ROLLER_RADIUS_MIN = 1e-6
+
+
 def check_roller(roller_radius, name="cam.roller_radius") -> float:
-    """The roller radius [m] the forces need: > 0 (a roller's contact stress and spin)."""
+    """The roller radius [m] the forces need: >= 1 um (a roller's contact stress and spin)."""
     r = float(roller_radius)
-    if not (np.isfinite(r) and r > 0.0):
+    if not (np.isfinite(r) and r >= ROLLER_RADIUS_MIN):
         raise ParameterError(
             name,
             fmt_mm(r),
-            "roller_radius > 0 mm for the contact forces (a roller's Hertz stress and spin "
-            "need its radius)",
+            "roller_radius >= 0.001 mm for the contact forces (a roller's Hertz stress and "
+            "spin need its radius)",
         )
     return r
 
