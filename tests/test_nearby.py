@@ -102,3 +102,7 @@ def test_radius_above_the_cell_and_empty_input_are_refused():
         PointGrid(np.zeros((0, 3)), 1.0)
     # coincident points: every one counted
     assert grid.count_within(np.zeros((2, 3)), 0.5).tolist() == [3, 3]
+    # far and non-finite queries have no neighbour (no warning, no wrapped cell number)
+    far = np.array([[1e300, 0, 0], [np.nan, 0, 0], [-np.inf, 1, 1], [0.1, 0, 0]])
+    assert grid.count_within(far, 0.5).tolist() == [0, 0, 0, 3]
+    assert grid.nearest(far, 0.5)[1].tolist() == [3, 3, 3, 0]

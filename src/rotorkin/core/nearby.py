@@ -6,8 +6,9 @@ sorts the queries by cell, and measures every query of a cell against every poin
 the 27 cells around it in one matrix product: the loop runs over occupied cells, never
 over points or queries, and no compiled tree is needed.
 
-Made for points along curves (a cam's grooves sampled at a few thousand points), where
-a cell holds few points; the candidates a search tests grow with the points per cell.
+Made for points along curves (a cam's grooves sampled at a few thousand points): a
+search measures each query against the points within about 1.5 cells of it, so its cost
+grows with the cell against the distances asked for.
 """
 
 from __future__ import annotations
@@ -51,7 +52,10 @@ class PointGrid:
         self._squares = np.einsum("ij,ij->i", self.points, self.points)
 
     def _cells(self, xyz):
-        return np.floor(xyz / self.cell).astype(np.int64)
+        """Integer cell coordinates (far or non-finite points clipped: no cell of the grid)."""
+        with np.errstate(invalid="ignore"):
+            return np.clip(np.nan_to_num(np.floor(xyz / self.cell), nan=-(2.0**60)),
+                           -(2.0**60), 2.0**60).astype(np.int64)  # fmt: skip
 
     def _key(self, ijk):
         """Each cell's number, -1 outside the grid (no point there)."""
