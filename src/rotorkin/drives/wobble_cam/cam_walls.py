@@ -17,8 +17,9 @@ the centre-line: a point p lies in some channel where
 The contact line touches its own channel (``= h`` at ``theta' = theta``, and no closer
 nearby while the roller does not undercut), so wall ``s`` is missing at theta exactly
 where a point of its contact line is strictly inside a channel. Computed here on
-:data:`CONTACT_POINTS` points of the line: every groove's axes sampled into a grid of cells,
-the candidates near a point refined by Newton on ``p . g(theta')``; the shaft angles
+:data:`CONTACT_POINTS` points of the line: every groove's axes sampled into a grid of
+cells (:class:`rotorkin.core.nearby.PointGrid`), a point tested against its nearest
+axis sample (within ``r (pad/2)^2`` of the nearest axis); the shaft angles
 scanned on :data:`SCAN` samples per groove period and every end of a gap refined by
 bisection. In angular terms the contact line and the channel scale alike with the
 radius (both ``atan(h / lambda)`` seen from the centre), so a gap is longest at the
@@ -58,8 +59,6 @@ __all__ = [
 CONTACT_POINTS = 5
 #: Shaft-angle samples per groove period of the scan (and of the axes searched).
 SCAN = 2048
-#: Newton steps on a candidate axis.
-_NEWTON = 6
 #: Bisection steps on each end of a gap.
 _BISECT = 36
 
