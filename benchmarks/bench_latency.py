@@ -5,8 +5,8 @@ script's two lines, ``python -c``), timed from the outside: its wall time and th
 time of the process and its children (the figure workers). Every case runs once per
 round, the order rotated from round to round, after a warm-up round that is not kept
 (files in the page cache, ``__pycache__`` written: :func:`_common.user_env`): what is
-reported is the best of
-the warm rounds, the run least disturbed by the neighbours' load.
+reported is the best of the warm rounds, the run least disturbed by the neighbours'
+load.
 
 Cases:
 

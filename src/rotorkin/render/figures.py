@@ -36,6 +36,7 @@ __all__ = [
     "BASELINE",
     "SYNTHESIZED",
     "pyplot",
+    "png_bytes",
     "save",
     "save_in",
     "fixed_layout",
