@@ -5,7 +5,8 @@ Independent checks: every cycle metric of random designs from the wobble-cam swe
 (blocks of designs on threads, compiled or numpy) against the study of each design alone
 (:func:`rotorkin.drives.evaluate`, its own kinematics and turning points); the compiled
 Runge-Kutta loop against the numpy operations on arrays of chambers; the gas tables against
-linear interpolation (:func:`numpy.interp`) of Cantera's tables.
+linear interpolation (:func:`numpy.interp`) of their 1 K nodes, and those nodes against
+Cantera's GRI-Mech 3.0 mixture.
 """
 
 from __future__ import annotations
@@ -153,9 +154,35 @@ def test_a_chamber_without_a_cycle_gives_nan_on_both_paths():
     np.testing.assert_array_equal(np.isfinite(out[0]), np.isfinite(out[1]))
 
 
+@pytest.mark.parametrize(("phi", "hc"), [(1.0, 1.87), (0.7, 2.0), (1.3, 1.0)])
+def test_the_gas_nodes_are_canteras(phi, hc):
+    """rotorkin's NASA polynomials against Cantera's GRI-Mech 3.0 mixture (the same data,
+    evaluated by another code): the coefficients and molar masses, then c_v and R of air
+    and of the burnt gas on every node from 200 to 5000 K (both ranges of the polynomials,
+    and below Cantera's 300 K bound for N2 and Ar), and the sensible energy against
+    Cantera's internal energy (the trapezoid rule on a 1 K grid: 1e-7 of its span)."""
+    import cantera as ct
+
+    sol = ct.Solution("gri30.yaml", transport_model=None)
+    for name, (molar_mass, t_mid, low, high) in gs.NASA7.items():
+        coeffs = sol.species(name).thermo.coeffs
+        assert coeffs[0] == t_mid and tuple(coeffs[8:13]) == low and tuple(coeffs[1:6]) == high
+        assert sol.molecular_weights[sol.species_index(name)] == pytest.approx(
+            molar_mass, rel=1e-15
+        )
+    for comp in (gs.AIR, gs.burnt_composition(phi, hc)):
+        t, r, cv, u = gs._tables(tuple(sorted(comp.items())))
+        states = ct.SolutionArray(sol, len(t))
+        states.TPX = t, 1.0e5, comp
+        np.testing.assert_allclose(cv, states.cv_mass, rtol=1e-13)
+        assert r == pytest.approx(ct.gas_constant / states.mean_molecular_weight[0], rel=1e-14)
+        exact = states.int_energy_mass - np.interp(298.15, t, states.int_energy_mass)
+        np.testing.assert_allclose(u, exact, rtol=0, atol=1e-7 * np.ptp(exact))
+
+
 @pytest.mark.parametrize("residual", [0.0, 0.05, 0.3])
-def test_the_gas_tables_are_linear_interpolation_of_cantera(residual):
-    """The tables (one index per temperature) against numpy.interp of Cantera's 1 K tables,
+def test_the_gas_tables_are_linear_interpolation_of_their_nodes(residual):
+    """The tables (one index per temperature) against numpy.interp of the 1 K nodes,
     inside the range, between the nodes, beyond both ends and at NaN."""
     gas = gs.NasaGas(residual_fraction=residual)
     tab = gas.tables()

@@ -65,6 +65,38 @@ def test_peaks_name_their_pair_and_bearings_apart():
     assert s["contact_safety_factor"] == pytest.approx(1.5e9 / (s["peak_contact_stress_MPa"] * 1e6))
 
 
+@pytest.mark.parametrize("rounding", [-1e-13, 0.0, 1e-13, 5e-10])
+def test_mirrored_pairs_peaking_together_name_the_first(rounding):
+    """Two pairs whose peaks differ by rounding (a symmetric drive) name the first pair and
+    its own peak angle, whichever rounding made larger; a second pair larger by more than
+    the tie (1e-9; stress goes as the root of force) is named; the same one design and
+    batch (a NaN design names its NaN)."""
+    first = 100.0 * (1.5 + np.sin(THETA))
+    second = 100.0 * (1.5 + np.sin(THETA - np.pi)) * (1.0 + rounding)
+    pairs = [
+        pp.Pair("roller 1", "r1", "rolling", first, 0 * THETA, ("line", 0.01, np.inf)),
+        pp.Pair("roller 2", "r2", "rolling", second, 0 * THETA, ("line", 0.01, np.inf)),
+    ]
+    s = pp.summary(pairs, THETA, 1.0, _model(), np.ones_like(THETA))
+    assert s["peak_contact_force_pair"] == s["peak_contact_stress_pair"] == "roller 1"
+    assert s["peak_contact_stress_at_deg"] == pytest.approx(90.0, abs=0.2)
+    bigger = [pairs[0], pp.Pair("roller 2", "r2", "rolling", second * (1 + 1e-8), 0 * THETA,
+                                ("line", 0.01, np.inf))]  # fmt: skip
+    s = pp.summary(bigger, THETA, 1.0, _model(), np.ones_like(THETA))
+    assert s["peak_contact_force_pair"] == s["peak_contact_stress_pair"] == "roller 2"
+    assert s["peak_contact_stress_at_deg"] == pytest.approx(270.0, abs=0.2)
+    # batch: designs (3, n): tied, second larger, second NaN everywhere
+    f1 = np.stack([first, first, first])
+    f2 = np.stack([second, second * (1 + 1e-8), np.full_like(second, np.nan)])
+    batch = [
+        pp.Pair("roller 1", "r1", "rolling", f1, 0 * f1, ("line", 0.01, np.inf)),
+        pp.Pair("roller 2", "r2", "rolling", f2, 0 * f2, ("line", 0.01, np.inf)),
+    ]
+    model = pp.ContactModel(**{**vars(_model()), "allowable_stress": np.full((3, 1), 1.5e9)})
+    b = pp.summary(batch, THETA, np.ones((3, 1)), model, np.ones((3, THETA.size)), batch=True)
+    assert list(b["peak_contact_force_pair"]) == ["roller 1", "roller 2", "roller 2"]
+
+
 def test_unknown_kind_is_a_programming_error():
     with pytest.raises(ValueError):
         pp.Pair("x", "x", "magic", THETA, THETA)

@@ -316,6 +316,14 @@ def test_gas_pushing_a_rotor_forward_is_met_by_its_rail_and_the_loaded_wall():
         w = np.take_along_axis(walls[j], loaded[j][None, None, :], axis=0)[0]
         push = f.groove_force[j] * np.sum(n[j] * (g[j] - w), axis=0)
         assert np.all(push[np.abs(f.groove_force[j]) > 1e-9] > 0)
+    # motion.csv names that wall (+1 the +n wall, -1 the -n wall), and none where the force
+    # is a zero's rounding (it passes through zero at two of these angles, ~1e-13 N)
+    cols = fo.columns(f)[0]
+    for j, slug in enumerate(("1", "1p", "2", "2p")):
+        rounding = np.abs(f.groove_force[j]) < 1e-9 * np.max(np.abs(f.groove_force[j]))
+        expected = np.where(rounding, 0.0, np.where(loaded[j] == 1, -1.0, 1.0))
+        np.testing.assert_array_equal(cols[f"groove{slug}_loaded_wall"], expected)
+    assert np.any(np.abs(f.groove_force[0]) < 1e-9)
     # opposite rollers: equal and opposite groove forces, equal rail forces
     np.testing.assert_allclose(f.groove_force[1], -f.groove_force[0], atol=1e-9)
     np.testing.assert_allclose(f.rail_force[1], f.rail_force[0])

@@ -7,7 +7,8 @@ volume ``c_v(T, x)`` and the sensible internal energy ``u(T, x)`` (zero at 298.1
 * :class:`ConstantGas` -- one ratio of specific heats ``gamma`` for both
   (``c_v = R / (gamma - 1)``); the ideal-gas cycles' assumption.
 * :class:`NasaGas` -- the species' NASA 7-coefficient polynomials (GRI-Mech 3.0
-  thermodynamic data) evaluated by Cantera (the ``thermo`` extra) for
+  thermodynamic data, :data:`NASA7`, the values Cantera's ``gri30.yaml`` holds; the
+  tests check the tables against Cantera's, the ``thermo`` extra) for
 
   - the unburnt charge: dry air (molar O2 20.95 %, N2 78.09 %, Ar 0.93 %, 0.03 % CO2
     counted as Ar) and the residual burnt gas; the fuel vapour (about 6 % of the mass
@@ -28,31 +29,30 @@ Both give :class:`GasTables`: ``c_v`` of the unburnt and of the burnt gas and
 single-zone cycle needs at every Runge-Kutta stage).
 
 J. B. Heywood, *Internal Combustion Engine Fundamentals*, 2nd ed., 2018, ch. 4.
+G. P. Smith et al., GRI-Mech 3.0, http://combustion.berkeley.edu/gri-mech/ (thermodynamic
+data of the species).
 """
 
 from __future__ import annotations
 
-import sys
 from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-
-from rotorkin.core.errors import ParameterError
 
 __all__ = [
     "ConstantGas",
     "NasaGas",
     "R_UNIVERSAL",
     "R_AIR",
-    "cantera_available",
+    "NASA7",
     "burnt_composition",
     "GasTables",
     "table_index",
 ]
 
-#: Universal gas constant [J/(mol K)].
-R_UNIVERSAL = 8.314462618
+#: Universal gas constant [J/(mol K)] (Boltzmann times Avogadro, exact in SI since 2019).
+R_UNIVERSAL = 8.31446261815324
 #: Gas constant of dry air [J/(kg K)] (molar mass 28.965 g/mol).
 R_AIR = R_UNIVERSAL / 28.965e-3
 #: Dry air, molar fractions (the 0.03 % CO2 counted as argon).
@@ -119,18 +119,6 @@ def table_index(lo, inv_step, nodes, t):
     return j, s - j
 
 
-def cantera_available() -> bool:
-    """Whether Cantera (the ``thermo`` extra) is installed (found, not imported: 0.1 s)."""
-    import importlib.util
-
-    if sys.modules.get("cantera") is not None:
-        return True
-    try:
-        return importlib.util.find_spec("cantera") is not None
-    except (ImportError, ValueError):
-        return False
-
-
 @dataclass(frozen=True)
 class ConstantGas:
     """Ideal gas of one ratio of specific heats, unburnt and burnt alike.
@@ -194,33 +182,57 @@ def burnt_composition(equivalence_ratio: float, hc_ratio: float) -> dict:
     }
 
 
-@lru_cache(maxsize=1)
-def _thermo():
-    """GRI-Mech 3.0 without its transport model (thermodynamic properties only: a few ms
-    to load instead of 30-50 ms), loaded once for every mixture."""
-    import cantera as ct
+#: NASA 7-coefficient polynomials of the species of air and of the burnt gas (GRI-Mech
+#: 3.0): ``species -> (molar mass [g/mol], T_mid [K], low, high)``, ``low`` for
+#: ``T <= T_mid``; ``c_p / R = a0 + a1 T + a2 T^2 + a3 T^3 + a4 T^4`` (``a5``, ``a6``,
+#: the enthalpy and entropy constants, are not needed for sensible energies). Molar
+#: masses from the atomic weights C 12.011, H 1.008, N 14.007, O 15.999, Ar 39.95.
+NASA7 = {
+    "O2": (31.998, 1000.0,
+           (3.78245636, -0.00299673416, 9.84730201e-06, -9.68129509e-09, 3.24372837e-12),
+           (3.28253784, 0.00148308754, -7.57966669e-07, 2.09470555e-10, -2.16717794e-14)),
+    "N2": (28.014, 1000.0,
+           (3.298677, 0.0014082404, -3.963222e-06, 5.641515e-09, -2.444854e-12),
+           (2.92664, 0.0014879768, -5.68476e-07, 1.0097038e-10, -6.753351e-15)),
+    "AR": (39.95, 1000.0, (2.5, 0.0, 0.0, 0.0, 0.0), (2.5, 0.0, 0.0, 0.0, 0.0)),
+    "CO2": (44.009, 1000.0,
+            (2.35677352, 0.00898459677, -7.12356269e-06, 2.45919022e-09, -1.43699548e-13),
+            (3.85746029, 0.00441437026, -2.21481404e-06, 5.23490188e-10, -4.72084164e-14)),
+    "H2O": (18.015, 1000.0,
+            (4.19864056, -0.0020364341, 6.52040211e-06, -5.48797062e-09, 1.77197817e-12),
+            (3.03399249, 0.00217691804, -1.64072518e-07, -9.7041987e-11, 1.68200992e-14)),
+}  # fmt: skip
 
-    return ct.Solution("gri30.yaml", transport_model=None)
+
+def _cp_over_r(species: str, t) -> np.ndarray:
+    """``c_p / R`` of one species at temperatures ``t`` [K] (:data:`NASA7`)."""
+    _, t_mid, low, high = NASA7[species]
+    t = np.asarray(t, dtype=float)
+    a = np.where(t <= t_mid, np.asarray(low)[:, None], np.asarray(high)[:, None])
+    return a[0] + t * (a[1] + t * (a[2] + t * (a[3] + t * a[4])))
 
 
 @lru_cache(maxsize=32)
 def _tables(composition: tuple) -> tuple:
-    """``(T, R, c_v(T), u(T))`` of a mixture given as ((species, moles), ...), by Cantera."""
-    import cantera as ct
+    """``(T, R, c_v(T), u(T))`` of an ideal-gas mixture given as ((species, moles), ...).
 
-    gas = _thermo()
+    ``c_p`` of the mixture is the mole-weighted sum of the species' (:data:`NASA7`),
+    ``c_v = c_p - R`` per mole, divided by the mean molar mass per kilogram.
+    """
     t = np.arange(_T_LO, _T_HI + 0.5, 1.0)
-    states = ct.SolutionArray(gas, len(t))
-    states.TPX = t, 1.0e5, dict(composition)
-    cv = np.asarray(states.cv_mass, dtype=float)
+    names = [name for name, _ in composition]
+    moles = np.array([n for _, n in composition], dtype=float)
+    x = moles / moles.sum()
+    molar_mass = float(np.dot(x, [NASA7[name][0] for name in names])) * 1e-3  # kg/mol
+    cp_r = sum(xk * _cp_over_r(name, t) for name, xk in zip(names, x, strict=True))
+    cv = R_UNIVERSAL * (cp_r - 1.0) / molar_mass
     u = np.concatenate([[0.0], np.cumsum(0.5 * (cv[1:] + cv[:-1]) * np.diff(t))])
     u = u - np.interp(_T_REF, t, u)
-    r = R_UNIVERSAL / (float(states.mean_molecular_weight[0]) * 1e-3)
-    return t, r, cv, u
+    return t, R_UNIVERSAL / molar_mass, cv, u
 
 
 class NasaGas:
-    """Unburnt charge and burnt products from the NASA polynomials (needs Cantera).
+    """Unburnt charge and burnt products from the species' NASA polynomials (:data:`NASA7`).
 
     Parameters
     ----------
@@ -230,27 +242,15 @@ class NasaGas:
         Hydrogen-to-carbon atom ratio of the fuel [-] (gasoline 1.87).
     residual_fraction : float
         Mass fraction of burnt gas in the unburnt charge [-].
-
-    Raises
-    ------
-    ParameterError
-        ``loads.gas_properties`` when Cantera is not installed.
     """
 
     def __init__(self, equivalence_ratio=1.0, hc_ratio=1.87, residual_fraction=0.0):
-        if not cantera_available():
-            raise ParameterError(
-                "loads.gas_properties",
-                "nasa",
-                "gas_properties = 'nasa' needs Cantera: pip install 'rotorkin[thermo]' "
-                "(or 'constant')",
-            )
         burnt = burnt_composition(equivalence_ratio, hc_ratio)
         self._b = _tables(tuple(sorted(burnt.items())))
         self._a = _tables(tuple(sorted(AIR.items())))
         self.residual_fraction = float(residual_fraction)
         self._mixture = None
-        self.label = "NASA polynomials (Cantera, GRI-Mech 3.0 data)"
+        self.label = "NASA polynomials (GRI-Mech 3.0 data)"
 
     def _unburnt(self, table_index, t):
         a, b, xr = self._a, self._b, self.residual_fraction

@@ -168,7 +168,7 @@ def summary(pairs, theta, work_per_turn, model: ContactModel, omega, batch: bool
     if contacts:
         peak = np.stack(np.broadcast_arrays(*(np.max(np.abs(p.force), axis=axis)
                                               for p in contacts)))  # fmt: skip
-        k = np.argmax(peak, axis=0)
+        k = _first_peak(peak)
         out["peak_contact_force_N"] = _pick(peak, k)
         out["peak_contact_force_pair"] = np.asarray([p.name for p in contacts])[k]
     stressed = [(p, stress(p, model)) for p in contacts if p.geometry is not None]
@@ -178,7 +178,7 @@ def summary(pairs, theta, work_per_turn, model: ContactModel, omega, batch: bool
             peaks = np.fmax.reduce(curves, axis=-1)  # NaN only where every angle is NaN
         else:
             peaks = np.array([np.nanmax(s) for _, s in stressed])
-        k = np.argmax(peaks, axis=0)
+        k = _first_peak(peaks)
         top = _pick(peaks, k)
         s = _pick(curves, k)
         out["peak_contact_stress_MPa"] = top / 1e6
@@ -212,6 +212,24 @@ def summary(pairs, theta, work_per_turn, model: ContactModel, omega, batch: bool
     if batch:
         return out
     return {k: v.item() if np.ndim(v) == 0 and hasattr(v, "item") else v for k, v in out.items()}
+
+
+#: Peaks of two pairs closer than this (relative) are a tie: the first pair is named.
+PEAK_TIE = 1e-9
+
+
+def _first_peak(values):
+    """Index along the first axis of the largest of ``values`` (>= 0), per design.
+
+    Pairs that mirror each other (a drive's symmetric rollers) peak at the same value but
+    for rounding, which would name one or the other at random from one platform or model
+    input to the next: the first pair within :data:`PEAK_TIE` of the largest is named.
+    A design with a NaN peak names its first NaN pair (as ``argmax``).
+    """
+    top = np.max(values, axis=0)
+    with np.errstate(invalid="ignore"):
+        k = np.argmax(values >= top * (1.0 - PEAK_TIE), axis=0)
+    return np.where(np.isnan(top), np.argmax(values, axis=0), k)
 
 
 def _pick(values, k):

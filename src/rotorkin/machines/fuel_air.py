@@ -89,8 +89,6 @@ class FuelAirLoads:
                 f"burn_start + burn_duration <= 180 deg (the exhaust opens there); "
                 f"burn_start is {np.degrees(self.burn_start):.4g} deg",
             )
-        if self.gas_properties == "nasa" and not gs.cantera_available():
-            gs.NasaGas()  # raises the one-line refusal
 
     def charge(self) -> cb.Charge:
         return cb.Charge(self.intake_pressure, self.intake_temperature, self.residual_fraction,
@@ -101,10 +99,8 @@ class FuelAirLoads:
         return cb.Wiebe(self.burn_start, self.burn_duration, self.wiebe_a, self.wiebe_m)
 
     def gas(self):
-        """NASA polynomials through Cantera when installed (``auto``), else one gamma."""
-        if self.gas_properties == "nasa" or (
-            self.gas_properties == "auto" and gs.cantera_available()
-        ):
+        """The species' NASA polynomials (``nasa``, ``auto``) or one gamma (``constant``)."""
+        if self.gas_properties in ("nasa", "auto"):
             return gs.NasaGas(self.equivalence_ratio, self.fuel_hc_ratio, self.residual_fraction)
         return gs.ConstantGas(self.specific_heat_ratio)
 

@@ -261,9 +261,9 @@ class EngineLoads(Section):
     )
     gas_properties: Literal["auto", "nasa", "constant"] = Field(
         "auto",
-        description="fuel-air cycle: 'nasa' (NASA polynomials of air and the burnt gas "
-        "through Cantera, the thermo extra), 'constant' (one ratio of specific heats, "
-        "specific_heat_ratio) or 'auto' (nasa when Cantera is installed)",
+        description="fuel-air cycle: 'nasa' (NASA polynomials of air and the burnt gas, "
+        "GRI-Mech 3.0 data), 'constant' (one ratio of specific heats, specific_heat_ratio) "
+        "or 'auto' (the same as nasa)",
     )
     specific_heat_ratio: float = Field(
         1.3,

@@ -582,8 +582,13 @@ def columns(f: Forces) -> tuple[dict, dict]:
         "Torque the cam shell delivers to its load (drive.output), along its turning.")  # fmt: skip
     add("gearbox_torque_Nm", f.gearbox_torque,
         "G: torque the bevel gearbox puts on the cam shell (-G on the Z-shaft).")  # fmt: skip
+    grooves = np.asarray(f.groove_force, dtype=float)
+    # a force below 1e-9 of the groove's largest is rounding of a zero: no wall carries it
+    floor = 1e-9 * np.max(np.abs(grooves), axis=-1, keepdims=True)
+    loaded = np.where(np.abs(grooves) > floor, -np.sign(grooves), 0.0)
     for j in range(4):
-        add(f"groove{_SLUGS[j]}_loaded_wall", -np.sign(f.groove_force[j]),
+        add(f"groove{_SLUGS[j]}_loaded_wall", loaded[j],
             f"Wall of groove {_NAMES[j]} carrying its roller: +1 the +n wall (left of the "
-            "travel seen from outside the sphere), -1 the -n wall, 0 none.")  # fmt: skip
+            "travel seen from outside the sphere), -1 the -n wall, 0 none (a force below "
+            "1e-9 of the groove's largest).")  # fmt: skip
     return cols, docs
