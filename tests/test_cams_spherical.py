@@ -387,6 +387,11 @@ def test_summary(example):
     assert s["cam_groove_width_mm"] == pytest.approx(8.0315)  # 8 mm H8/f7: 31.5 um more
     assert s["cam_running_clearance_mm"] == pytest.approx(0.0315)
     assert all(isinstance(v, (int, float)) for v in s.values())
+    # the shape's keys (what the cam's figure shows) are the summary's, measured alone
+    shape = sph.shape_summary(drive, cam)
+    assert len(shape) == 6 and shape == {k: s[k] for k in shape}
+    kmax = np.max(np.abs(sph.geodesic_curvature(drive, np.linspace(0, 2 * np.pi, 20001))))
+    assert shape["cam_curvature_radius_min_mm"] == pytest.approx(1e3 / kmax, rel=1e-6)
 
 
 def test_argument_errors(example):

@@ -69,6 +69,7 @@ __all__ = [
     "wall_gaps",
     "pressure_angle_peaks",
     "summary",
+    "shape_summary",
     "GrooveCrossing",
     "groove_crossings",
     "groove_separation",
@@ -549,6 +550,43 @@ def pressure_angle_peaks(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 
     }
 
 
+#: The keys of :func:`shape_summary`, in the order :func:`summary` lists them.
+_SHAPE_KEYS = (
+    "cam_pressure_angle_max_deg",
+    "cam_pressure_angle_max_theta_deg",
+    "cam_pressure_angle_best_roller_max_deg",
+    "cam_curvature_radius_min_mm",
+    "cam_curvature_min_theta_deg",
+    "cam_roller_radius_limit_mm",
+)
+
+
+def shape_summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict:
+    """The keys of :func:`summary` that follow from the grooves' shape alone.
+
+    The pressure angles of every roller (crossings included) and the sharpest bend, with
+    the undercut limit it sets: neither the crossings nor the walls are searched (a
+    figure's titles need these without the cost of the rest).
+    """
+    _check_pair(drive, cam)
+    theta = np.linspace(0.0, 2.0 * np.pi, samples)
+    mu = pressure_angle(drive, theta)
+    k = int(np.argmax(np.max(mu, axis=0)))
+    kmax, th_k, _ = sharpest_bend(drive)
+    return {
+        "cam_pressure_angle_max_deg": float(np.degrees(mu[:, k].max())),
+        "cam_pressure_angle_max_theta_deg": float(np.degrees(theta[k])),
+        "cam_pressure_angle_best_roller_max_deg": float(np.degrees(mu.min(axis=0).max())),
+        "cam_curvature_radius_min_mm": 1e3 / kmax,
+        "cam_curvature_min_theta_deg": float(np.degrees(th_k)),
+        "cam_roller_radius_limit_mm": 1e3
+        * (
+            cam.inner_radius / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
+            - 0.5 * cam.running_clearance
+        ),
+    }
+
+
 def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict:
     """Scalar results for a study's ``summary.json`` (units in the key names).
 
@@ -573,12 +611,8 @@ def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict
     ``cam_groove_separation_mm`` (closest centre-lines of two different grooves, 0 where
     they cross); ``cam_groove_width_mm`` (``2 rho + c``); ``cam_running_clearance_mm``.
     """
-    _check_pair(drive, cam)
+    shape = shape_summary(drive, cam, samples)
     period = groove_period(drive)
-    theta = np.linspace(0.0, 2.0 * np.pi, samples)
-    mu = pressure_angle(drive, theta)
-    k = int(np.argmax(np.max(mu, axis=0)))
-    kmax, th_k, _ = sharpest_bend(drive)
     crossings = groove_crossings(drive)
     distinct = distinct_grooves(drive)
     n_self = sum(c.rollers[0] == c.rollers[1] for c in crossings)
@@ -587,11 +621,9 @@ def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict
     turn = np.linspace(0.0, 2.0 * np.pi, _TURN_SAMPLES, endpoint=False)
     return {
         "cam_roller_radius_mm": cam.roller_radius * 1e3,
-        "cam_pressure_angle_max_deg": float(np.degrees(mu[:, k].max())),
-        "cam_pressure_angle_max_theta_deg": float(np.degrees(theta[k])),
-        "cam_pressure_angle_best_roller_max_deg": float(np.degrees(mu.min(axis=0).max())),
+        **{k: shape[k] for k in _SHAPE_KEYS[:3]},
         "cam_pressure_angle_fixed_max_deg": float(
-            np.degrees(pressure_angle(drive, theta, "fixed").max())
+            np.degrees(pressure_angle(drive, np.linspace(0.0, 2.0 * np.pi, samples), "fixed").max())
         ),
         "cam_pressure_angle_guided_max_deg": float(np.degrees(peaks["guided"][0])),
         "cam_pressure_angle_guided_max_theta_deg": float(np.degrees(peaks["guided"][1])),
@@ -599,13 +631,7 @@ def summary(drive: wc.WobbleCam, cam: SphericalCam, samples: int = 2881) -> dict
         "cam_pressure_angle_best_guided_roller_max_theta_deg": float(
             np.degrees(peaks["best_guided"][1])
         ),
-        "cam_curvature_radius_min_mm": 1e3 / kmax,
-        "cam_curvature_min_theta_deg": float(np.degrees(th_k)),
-        "cam_roller_radius_limit_mm": 1e3
-        * (
-            cam.inner_radius / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)
-            - 0.5 * cam.running_clearance
-        ),
+        **{k: shape[k] for k in _SHAPE_KEYS[3:]},
         "cam_groove_period_deg": float(np.degrees(period)),
         "cam_distinct_grooves": len(distinct),
         "cam_self_crossings": int(n_self),

@@ -69,7 +69,7 @@ def plot_spherical_cam(source, outdir, cam=None, points: int = 1441) -> list[Pat
     walls = sph.groove_walls(drive, cam, theta, cam.inner_radius) * 1e3
     crossings = sph.groove_crossings(drive)
     distinct = sph.distinct_grooves(drive)
-    info = sph.summary(drive, cam)
+    info = sph.shape_summary(drive, cam)
     names = sph.ROLLER_NAMES
 
     fig = plt.figure(figsize=(13, 10.5))
