@@ -334,3 +334,72 @@ def test_pyplot_imported_ahead_is_the_one_the_figures_use():
     )
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "ok" and done.stderr == ""
+
+
+_AHEAD_SCRIPT = """
+import functools, json, os, sys
+from pathlib import Path
+from rotorkin.render import figures
+
+def square(outdir, name, value):
+    fig, ax = figures.pyplot().subplots(figsize=(2.5, 2))
+    ax.plot([0.0, 1.0], [0.0, value])
+    return figures.save(fig, Path(outdir) / name, layout=(0.6, 0.5, 0.2, 0.3))
+
+def tasks(outdir, local=False):
+    if local:  # a closure over a local: cannot travel by pickle
+        return [lambda i=i: square(outdir, f"f{i}.png", float(i)) for i in range(5)]
+    return [functools.partial(square, outdir, f"f{i}.png", float(i)) for i in range(5)]
+
+style = {"lines.linewidth": 4.0}
+out = {}
+cases = (("ahead", False, "2", style), ("plain", False, "1", None),  # before any style here
+         ("local", True, "2", style), ("serial", False, "1", style))
+for name, local, workers, rc in cases:
+    os.environ[figures.WORKERS_ENV] = workers
+    d = Path(name)
+    d.mkdir()
+    with figures.drawing_ahead(rc):
+        helper = figures._HELPER is not None
+        paths = figures.draw(tasks(d, local))
+    out[name] = {"helper": helper, "paths": [p.name for p in paths],
+                 "pyplot_here": "matplotlib.pyplot" in sys.modules}
+    try:
+        os.waitpid(-1, os.WNOHANG)
+        out[name]["children_left"] = True
+    except ChildProcessError:
+        out[name]["children_left"] = False
+os.environ[figures.WORKERS_ENV] = "2"
+with figures.drawing_ahead(style):  # a block without a draw ends its process
+    pid = figures._HELPER.pid if figures._HELPER else None
+try:
+    os.waitpid(-1, os.WNOHANG)
+    out["unused_left"] = True
+except ChildProcessError:
+    out["unused_left"] = False
+out["unused_pid"] = pid
+print(json.dumps(out))
+"""
+
+
+def test_figures_drawn_ahead_are_the_files_drawn_here(tmp_path):
+    """Inside drawing_ahead the process forked before the work draws the tasks: this
+    process never imports pyplot, the files are those one process draws with the block's
+    style; tasks that do not pickle are drawn here; no process is left behind."""
+    done = subprocess.run([sys.executable, "-c", _AHEAD_SCRIPT], capture_output=True,
+                          text=True, cwd=tmp_path, timeout=300,
+                          env={**os.environ, "PYTHONPATH": SRC, "MPLBACKEND": "Agg"})  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    out = json.loads(done.stdout.splitlines()[-1])
+    names = [f"f{i}.png" for i in range(5)]
+    assert out["ahead"] == {"helper": True, "paths": names, "pyplot_here": False,
+                            "children_left": False}  # fmt: skip
+    assert out["local"]["helper"] and out["local"]["pyplot_here"]  # drawn here
+    assert out["serial"]["helper"] is False and out["serial"]["paths"] == names
+    assert out["unused_pid"] is not None and out["unused_left"] is False
+    for name in names:
+        ahead = (tmp_path / "ahead" / name).read_bytes()
+        assert ahead == (tmp_path / "serial" / name).read_bytes()
+        assert ahead == (tmp_path / "local" / name).read_bytes()
+        # the style reached the drawing process (without it, another picture)
+        assert ahead != (tmp_path / "plain" / name).read_bytes()

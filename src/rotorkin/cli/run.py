@@ -5,7 +5,9 @@
 and the figures; ``--no-figures`` leaves the figures out, ``--report`` adds the
 HTML report) and prints the summary as a table, JSON or CSV (``--format``). The
 figures are drawn by forked processes, one per core
-(:func:`rotorkin.render.figures.draw`; ``$ROTORKIN_FIGURE_WORKERS`` sets their number).
+(:func:`rotorkin.render.figures.draw`; ``$ROTORKIN_FIGURE_WORKERS`` sets their number),
+the first forked before the study, importing matplotlib while the study computes
+(:func:`rotorkin.render.figures.drawing_ahead`).
 """
 
 from __future__ import annotations
@@ -36,18 +38,9 @@ from rotorkin.core.errors import RotorkinError
 from rotorkin.drives import REGISTRY, evaluate
 from rotorkin.io.config import example_names, example_path, glossary, load_config, read_toml
 from rotorkin.io.output import check_out, write_outputs
-from rotorkin.render.figures import import_ahead
+from rotorkin.render.figures import RUN_STYLE, drawing_ahead
 
 __all__ = ["register"]
-
-
-def _figure_settings() -> None:
-    """matplotlib's settings for the run's figures (:data:`rotorkin.render.figures.RUN_STYLE`)."""
-    import matplotlib
-
-    from rotorkin.render.figures import RUN_STYLE
-
-    matplotlib.rcParams.update(RUN_STYLE)
 
 
 @contextlib.contextmanager
@@ -94,23 +87,20 @@ def register(app) -> None:
             outdir = out if out is not None else Path("rotorkin-out") / name
             check_out(outdir)  # before any work
             step("evaluating the design")
-            if figures:
-                import_ahead()
-            with _frozen():
-                result = evaluate(cfg)
-            if strict:
-                from rotorkin.studies.limits import refuse
+            with drawing_ahead(RUN_STYLE) if figures else contextlib.nullcontext():
+                with _frozen():
+                    result = evaluate(cfg)
+                if strict:
+                    from rotorkin.studies.limits import refuse
 
-                refuse(result)  # before anything is written
-            if not figures:
-                result = dataclasses.replace(result, write_figures=lambda outdir: [])
-            meta = {"name": name, "drive_type": cfg["drive"]["type"],
-                    "rotorkin_version": __version__}  # fmt: skip
-            step("writing the outputs and drawing the figures" if figures else
-                 "writing the outputs")  # fmt: skip
-            if figures:
-                _figure_settings()
-            written = write_outputs(result, outdir, raw, meta)
+                    refuse(result)  # before anything is written
+                if not figures:
+                    result = dataclasses.replace(result, write_figures=lambda outdir: [])
+                meta = {"name": name, "drive_type": cfg["drive"]["type"],
+                        "rotorkin_version": __version__}  # fmt: skip
+                step("writing the outputs and drawing the figures" if figures else
+                     "writing the outputs")  # fmt: skip
+                written = write_outputs(result, outdir, raw, meta)
             if report:
                 step("writing the report")
                 from rotorkin.report.html import write_report

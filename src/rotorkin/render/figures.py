@@ -9,7 +9,9 @@ more files and return their paths), on the cores of the machine: the process
 forks workers that inherit the study's arrays and each draw a share of the
 figures, the figures being independent of each other
 (``$ROTORKIN_FIGURE_WORKERS``; ``1`` draws them in this process, one after the
-other, as where ``fork`` is unavailable).
+other, as where ``fork`` is unavailable). Inside :func:`drawing_ahead` the drawing
+process is forked before the study starts and imports pyplot on another core while
+the study computes; the study's figure tasks travel to it by pickle.
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ from pathlib import Path
 
 __all__ = [
     "draw",
+    "drawing_ahead",
     "figure_workers",
     "FigureError",
     "WORKERS_ENV",
@@ -71,6 +74,244 @@ def _import_pyplot() -> None:
     # a failure is left to pyplot(), which imports it again in the caller's thread
     with contextlib.suppress(Exception):
         import matplotlib.pyplot  # noqa: F401 - imported for its side effect
+
+
+@dataclass
+class _Helper:
+    """The drawing process forked by :func:`drawing_ahead`: its pid and its two pipes."""
+
+    pid: int
+    tasks_w: int  # this process writes the pickled tasks, then closes it
+    out_r: int  # the helper writes its result, then ends
+
+
+#: The drawing process of the current :func:`drawing_ahead` block, until a draw takes it.
+_HELPER: _Helper | None = None
+
+#: The matplotlib settings of the current :func:`drawing_ahead` block, applied once.
+_STYLE: dict | None = None
+
+
+@contextlib.contextmanager
+def drawing_ahead(style: dict | None = None):
+    """Fork the process that draws the block's figures now, before the study computes.
+
+    The forked process imports ``matplotlib.pyplot`` and applies ``style`` (rcParams) on
+    another core while this one computes; the first :func:`draw` in the block sends it
+    its tasks by pickle. It forks the other workers and draws with them; this process
+    waits for the paths. Tasks that do not pickle are drawn as without the block (this
+    process imports pyplot and forks after the study). Without ``fork``, with one worker
+    (:func:`figure_workers`) or where threads run, no process is forked ahead. When the
+    block ends the drawing process, if no draw took it, ends too.
+
+    Parameters
+    ----------
+    style : dict, optional
+        rcParams for the block's figures (:data:`RUN_STYLE` for a run), in whichever
+        process draws them.
+    """
+    global _HELPER, _STYLE
+    started = _HELPER is None and figure_workers() > 1
+    previous = _STYLE
+    _STYLE = dict(style) if style else None
+    if started:
+        _HELPER = _fork_helper(_STYLE)
+    try:
+        yield
+    finally:
+        _STYLE = previous
+        if started:
+            helper, _HELPER = _HELPER, None
+            if helper is not None:
+                _end_helper(helper, kill=False)
+
+
+def _fork_helper(style: dict | None) -> _Helper | None:
+    """Fork the drawing process of :func:`drawing_ahead` (None where the fork fails)."""
+    for stream in (sys.stdout, sys.stderr):  # the child would write their buffers again
+        with contextlib.suppress(Exception):
+            stream.flush()
+    tasks_r, tasks_w = os.pipe()
+    out_r, out_w = os.pipe()
+    try:
+        pid = _fork()
+    except OSError:
+        for fd in (tasks_r, tasks_w, out_r, out_w):
+            os.close(fd)
+        return None
+    if pid == 0:  # pragma: no cover - runs in the forked process
+        os.close(tasks_w)
+        os.close(out_r)
+        _helper(tasks_r, out_w, style)
+    os.close(tasks_r)
+    os.close(out_w)
+    return _Helper(pid, tasks_w, out_r)
+
+
+#: The signals held while forking (the child takes them once its own code runs).
+_HELD = {signal.SIGTERM} if hasattr(signal, "pthread_sigmask") else set()
+
+
+def _fork() -> int:
+    """``os.fork()`` with SIGTERM held in the child until :func:`_take_signals`.
+
+    A SIGTERM reaching a child inside the interpreter's after-fork hooks would raise
+    there and print a traceback; held, it is raised in the child's own code, which ends
+    the child quietly (a failure sent back, or none wanted).
+    """
+    if _HELD:
+        previous = signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
+    try:
+        with warnings.catch_warnings():  # rotorkin's idle threads hold no lock
+            warnings.simplefilter("ignore", DeprecationWarning)
+            pid = os.fork()
+    except BaseException:
+        if _HELD:
+            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+        raise
+    if _HELD and pid != 0:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+    return pid
+
+
+def _take_signals() -> None:  # pragma: no cover - runs in a forked child
+    """In a child of :func:`_fork`: receive the held signals (a pending one raises now)."""
+    if _HELD:
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, _HELD)
+
+
+def _helper(tasks_r: int, out_w: int, style: dict | None) -> None:  # pragma: no cover
+    """The drawing process: pyplot imported, then the tasks drawn, the result sent back.
+
+    It reads ``(tasks, workers, slowest)`` pickled until this end of the pipe closes;
+    nothing read (the block ended without a draw, or the caller died): it ends at once.
+    Its result is :func:`_child`'s, with ``"gone"`` for tasks it could not unpickle.
+    """
+    code = 0
+    try:
+        _take_signals()
+        try:
+            gc.disable()  # nothing to collect while importing (a third faster)
+            import matplotlib.pyplot  # noqa: F401 - imported for its use by the tasks
+
+            if style:
+                matplotlib.rcParams.update(style)
+        except BaseException:  # noqa: BLE001 - the caller draws, and reports the failure
+            os._exit(3)
+        finally:
+            gc.enable()
+        import select
+
+        if not select.select([tasks_r], [], [], 0)[0]:  # idle until the study is done
+            with contextlib.suppress(Exception):
+                _warm_up()
+        data = _read_all(tasks_r)
+        os.close(tasks_r)
+        if not data:
+            os._exit(0)
+        try:
+            tasks, workers, slowest = pickle.loads(data)
+        except BaseException:  # noqa: BLE001 - the caller draws them itself
+            result = ("gone", None)
+        else:
+            del data
+            try:
+                result = ("ok", draw(tasks, workers, slowest))
+            except BaseException as exc:  # noqa: BLE001 - everything goes to the caller
+                result = ("error", _portable(exc))
+                code = 1
+        payload = pickle.dumps(result)
+        view = memoryview(payload)
+        while view:
+            view = view[os.write(out_w, view) :]
+    except BaseException:  # noqa: BLE001 - the process never returns into the caller's code
+        code = 1
+    finally:
+        with contextlib.suppress(BaseException):
+            sys.stdout.flush()
+            sys.stderr.flush()
+        os._exit(code)
+
+
+def _warm_up() -> None:
+    """Draw a small figure of every kind of element once, and forget it.
+
+    The first figure a process draws loads the fonts, builds the text layout's caches and
+    imports the 3D axes (0.05-0.1 s); the drawing process does it while it waits for the
+    study's tasks, and the workers it forks inherit it.
+    """
+    plt = pyplot()
+    fig = plt.figure(figsize=(3.0, 2.0), dpi=DPI)
+    try:
+        ax = fig.add_subplot(1, 2, 1)
+        ax.plot([1.0, 2.0], [1.0, 3.0], "o-", label="a")
+        ax.set_yscale("log")
+        plain_log_labels(ax, "y")
+        ax.set_title("title")
+        ax.set_xlabel("x [deg]")
+        ax.legend(loc="upper right", fontsize=8)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.annotate("a", (1.0, 1.0), textcoords="offset points", xytext=(6, 6), fontsize=8)
+        space = axes3d(fig, 1, 2, 2, title="3d")
+        space.plot([0.0, 1.0], [0.0, 1.0], [0.0, 1.0])
+        fig.suptitle("suptitle")
+        fig.canvas.draw()
+    finally:
+        plt.close(fig)
+
+
+def _draw_ahead(helper: _Helper, tasks: list, workers, slowest) -> list[Path] | None:
+    """The tasks drawn by :func:`drawing_ahead`'s process; None: draw them here."""
+    try:
+        try:
+            payload = pickle.dumps((tasks, workers, tuple(slowest)), protocol=5)
+        except Exception:  # noqa: BLE001 - tasks that do not pickle are drawn here
+            payload = b""
+        view = memoryview(payload)
+        with contextlib.suppress(BrokenPipeError):  # a helper that ended: drawn here
+            while view:
+                view = view[os.write(helper.tasks_w, view) :]
+        os.close(helper.tasks_w)
+        helper.tasks_w = -1
+        data = _read_all(helper.out_r)
+    except BaseException:
+        _end_helper(helper, kill=True)
+        raise
+    status = _end_helper(helper, kill=False)
+    if not data:  # nothing sent, or the helper ended without a result
+        return None
+    kind, payload = _result(data, status)
+    if kind == "ok":
+        return payload
+    if kind == "error":
+        raise _rebuilt(payload)
+    return None
+
+
+def _end_helper(helper: _Helper, kill: bool) -> int:
+    """Close the pipes to the drawing process, end it if ``kill``; its wait status."""
+    for fd in (helper.tasks_w, helper.out_r):
+        if fd >= 0:
+            with contextlib.suppress(OSError):
+                os.close(fd)
+    helper.tasks_w = helper.out_r = -1
+    if kill:
+        with contextlib.suppress(OSError):
+            os.kill(helper.pid, signal.SIGTERM)
+    try:
+        return os.waitpid(helper.pid, 0)[1]
+    except ChildProcessError:
+        return 0
+
+
+def _apply_style() -> None:
+    """The :func:`drawing_ahead` block's rcParams in this process, once."""
+    global _STYLE
+    if _STYLE:
+        import matplotlib
+
+        matplotlib.rcParams.update(_STYLE)
+        _STYLE = None
 
 
 def _join_ahead() -> None:
@@ -418,7 +659,17 @@ def draw(
     with its one-line message), after every child has ended; the files already
     written are left to the caller's staging folder. A SIGTERM ends the children.
     """
+    global _HELPER
     tasks = list(tasks)
+    helper, _HELPER = _HELPER, None
+    if helper is not None:
+        if tasks:
+            done = _draw_ahead(helper, tasks, workers, slowest)
+            if done is not None:
+                return done
+        else:
+            _end_helper(helper, kill=False)
+    _apply_style()
     _join_ahead()  # no fork while that thread imports
     workers = min(figure_workers(workers), len(tasks))
     # the objects that exist now (the study's, the libraries') are left out of the garbage
@@ -448,9 +699,7 @@ def _draw_forked(tasks: list, workers: int, slowest: Sequence[int]) -> list[Path
     try:
         for _ in range(workers - 1):
             out_r, out_w = os.pipe()
-            with warnings.catch_warnings():  # rotorkin's idle threads hold no lock
-                warnings.simplefilter("ignore", DeprecationWarning)
-                pid = os.fork()
+            pid = _fork()
             if pid == 0:  # pragma: no cover - runs in the child (its coverage is not collected)
                 os.close(out_r)
                 _child(tasks, queue_r, out_w)
@@ -502,6 +751,7 @@ def _child(tasks, queue_r, out_w) -> None:  # pragma: no cover - runs in a forke
     code = 0
     try:
         try:
+            _take_signals()
             result = ("ok", _take(tasks, queue_r))
         except BaseException as exc:  # noqa: BLE001 - everything goes back to the parent
             result = ("error", _portable(exc))

@@ -507,7 +507,9 @@ def evaluate(cfg: dict) -> StudyResult:
                                            model, outdir))  # fmt: skip
         if "cam" in cfg:  # the cam's own figure, when its roller fits the grooves
             tasks.append(functools.partial(_cam_figure, cfg, outdir))
-        return draw(tasks, slowest=(len(tasks) - 1, len(tasks) - 2))
+        # longest first (measured): the cam, the forces, the four strokes, Fig. 9, Fig. 8
+        n = len(tasks)
+        return draw(tasks, slowest=(n - 1, n - 2, 7, 1, 0, 6, 3, 5, 4, 2))
 
     return StudyResult(
         drive_type="wobble_cam",
