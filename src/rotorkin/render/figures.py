@@ -101,8 +101,8 @@ def drawing_ahead(style: dict | None = None):
     its tasks by pickle. It forks the other workers and draws with them; this process
     waits for the paths. Tasks that do not pickle are drawn as without the block (this
     process imports pyplot and forks after the study). Without ``fork``, with one worker
-    (:func:`figure_workers`) or where threads run, no process is forked ahead. When the
-    block ends the drawing process, if no draw took it, ends too.
+    (:func:`figure_workers`) or where threads run, no process is forked ahead. A drawing
+    process that no draw took is ended (SIGTERM) when the block ends.
 
     Parameters
     ----------
@@ -122,8 +122,8 @@ def drawing_ahead(style: dict | None = None):
         _STYLE = previous
         if started:
             helper, _HELPER = _HELPER, None
-            if helper is not None:
-                _end_helper(helper, kill=False)
+            if helper is not None:  # no draw took it: not worth waiting for its imports
+                _end_helper(helper, kill=True)
 
 
 def _fork_helper(style: dict | None) -> _Helper | None:
@@ -189,6 +189,8 @@ def _helper(tasks_r: int, out_w: int, style: dict | None) -> None:  # pragma: no
     """
     code = 0
     try:
+        # until the tasks come there is nothing to clean up: a SIGTERM ends it at once
+        handler = signal.signal(signal.SIGTERM, signal.SIG_DFL) if _HELD else None
         _take_signals()
         try:
             gc.disable()  # nothing to collect while importing (a third faster)
@@ -209,6 +211,8 @@ def _helper(tasks_r: int, out_w: int, style: dict | None) -> None:  # pragma: no
         os.close(tasks_r)
         if not data:
             os._exit(0)
+        if _HELD:
+            signal.signal(signal.SIGTERM, handler)  # workers of its own to end from now on
         try:
             tasks, workers, slowest = pickle.loads(data)
         except BaseException:  # noqa: BLE001 - the caller draws them itself
@@ -668,7 +672,7 @@ def draw(
             if done is not None:
                 return done
         else:
-            _end_helper(helper, kill=False)
+            _end_helper(helper, kill=True)
     _apply_style()
     _join_ahead()  # no fork while that thread imports
     workers = min(figure_workers(workers), len(tasks))

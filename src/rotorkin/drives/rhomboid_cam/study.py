@@ -472,8 +472,7 @@ def evaluate(cfg: dict) -> StudyResult:
     columns.update(mcols)
     docs.update(mdocs)
 
-    def state(alpha):
-        return machine_state(params, machine, loads, alpha)
+    state = functools.partial(machine_state, params, machine, loads)  # pickles (drawn ahead)
 
     def plot(outdir: Path) -> list[Path]:
         outdir = Path(outdir)
