@@ -370,6 +370,9 @@ for name, local, workers, rc in cases:
     except ChildProcessError:
         out[name]["children_left"] = False
 os.environ[figures.WORKERS_ENV] = "2"
+with figures.drawing_ahead(style), figures.recording() as record:  # kept in this process
+    figures.draw(tasks(Path("ahead")))
+out["recorded"] = len(record)
 with figures.drawing_ahead(style):  # a block without a draw ends its process
     pid = figures._HELPER.pid if figures._HELPER else None
 try:
@@ -397,6 +400,7 @@ def test_figures_drawn_ahead_are_the_files_drawn_here(tmp_path):
     assert out["local"]["helper"] and out["local"]["pyplot_here"]  # drawn here
     assert out["serial"]["helper"] is False and out["serial"]["paths"] == names
     assert out["unused_pid"] is not None and out["unused_left"] is False
+    assert out["recorded"] == 5
     for name in names:
         ahead = (tmp_path / "ahead" / name).read_bytes()
         assert ahead == (tmp_path / "serial" / name).read_bytes()

@@ -667,7 +667,8 @@ def draw(
     tasks = list(tasks)
     helper, _HELPER = _HELPER, None
     if helper is not None:
-        if tasks:
+        # figures recorded, or asked for in this process (one worker): not drawn there
+        if tasks and _RECORDED is None and (workers is None or workers > 1):
             done = _draw_ahead(helper, tasks, workers, slowest)
             if done is not None:
                 return done
