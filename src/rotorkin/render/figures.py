@@ -187,7 +187,7 @@ def _helper(tasks_r: int, out_w: int, style: dict | None) -> None:  # pragma: no
     nothing read (the block ended without a draw, or the caller died): it ends at once.
     Its result is :func:`_child`'s, with ``"gone"`` for tasks it could not unpickle.
     """
-    code = 0
+    result, code = None, 1
     try:
         # until the tasks come there is nothing to clean up: a SIGTERM ends it at once
         handler = signal.signal(signal.SIGTERM, signal.SIG_DFL) if _HELD else None
@@ -216,19 +216,27 @@ def _helper(tasks_r: int, out_w: int, style: dict | None) -> None:  # pragma: no
         try:
             tasks, workers, slowest = pickle.loads(data)
         except BaseException:  # noqa: BLE001 - the caller draws them itself
-            result = ("gone", None)
+            result, code = ("gone", None), 0
         else:
             del data
             try:
-                result = ("ok", draw(tasks, workers, slowest))
+                result, code = ("ok", draw(tasks, workers, slowest)), 0
             except BaseException as exc:  # noqa: BLE001 - everything goes to the caller
                 result = ("error", _portable(exc))
-                code = 1
-        payload = pickle.dumps(result)
-        view = memoryview(payload)
-        while view:
-            view = view[os.write(out_w, view) :]
     except BaseException:  # noqa: BLE001 - the process never returns into the caller's code
+        result, code = None, 1
+    _send_and_end(out_w, result, code)
+
+
+def _send_and_end(out_w: int, result, code: int) -> None:  # pragma: no cover - in a child
+    """A forked process's end: ``result`` pickled into ``out_w`` (unless None), its streams
+    flushed, ``os._exit(code)`` (1 where the result cannot be sent)."""
+    try:
+        if result is not None:
+            view = memoryview(pickle.dumps(result))
+            while view:
+                view = view[os.write(out_w, view) :]
+    except BaseException:  # noqa: BLE001 - a child never returns into the caller's code
         code = 1
     finally:
         with contextlib.suppress(BaseException):
@@ -753,25 +761,15 @@ def _child(tasks, queue_r, out_w) -> None:  # pragma: no cover - runs in a forke
     """A forked worker: draw tasks from the queue, send back the paths or the error, exit."""
     global _IN_WORKER
     _IN_WORKER = True
-    code = 0
     try:
+        _take_signals()
+        result, code = ("ok", _take(tasks, queue_r)), 0
+    except BaseException as exc:  # noqa: BLE001 - everything goes back to the parent
         try:
-            _take_signals()
-            result = ("ok", _take(tasks, queue_r))
-        except BaseException as exc:  # noqa: BLE001 - everything goes back to the parent
-            result = ("error", _portable(exc))
-            code = 1
-        data = pickle.dumps(result)
-        view = memoryview(data)
-        while view:
-            view = view[os.write(out_w, view) :]
-    except BaseException:  # noqa: BLE001 - a child never returns into the caller's code
-        code = 1
-    finally:
-        with contextlib.suppress(BaseException):
-            sys.stdout.flush()
-            sys.stderr.flush()
-        os._exit(code)
+            result, code = ("error", _portable(exc)), 1
+        except BaseException:  # noqa: BLE001 - a child never returns into the caller's code
+            result, code = None, 1
+    _send_and_end(out_w, result, code)
 
 
 def _portable(exc: BaseException):
