@@ -354,14 +354,18 @@ def tasks(outdir, local=False):
 style = {"lines.linewidth": 4.0}
 out = {}
 cases = (("ahead", False, "2", style), ("plain", False, "1", None),  # before any style here
-         ("local", True, "2", style), ("serial", False, "1", style))
+         ("direct", False, "2", style), ("local", True, "2", style),
+         ("serial", False, "1", style))
 for name, local, workers, rc in cases:
     os.environ[figures.WORKERS_ENV] = workers
     d = Path(name)
     d.mkdir()
     with figures.drawing_ahead(rc):
         helper = figures._HELPER is not None
-        paths = figures.draw(tasks(d, local))
+        if name == "direct":  # drawn here without draw (the block's style all the same)
+            paths = [task() for task in tasks(d)]
+        else:
+            paths = figures.draw(tasks(d, local))
     out[name] = {"helper": helper, "paths": [p.name for p in paths],
                  "pyplot_here": "matplotlib.pyplot" in sys.modules}
     try:
@@ -405,5 +409,6 @@ def test_figures_drawn_ahead_are_the_files_drawn_here(tmp_path):
         ahead = (tmp_path / "ahead" / name).read_bytes()
         assert ahead == (tmp_path / "serial" / name).read_bytes()
         assert ahead == (tmp_path / "local" / name).read_bytes()
+        assert ahead == (tmp_path / "direct" / name).read_bytes()
         # the style reached the drawing process (without it, another picture)
         assert ahead != (tmp_path / "plain" / name).read_bytes()

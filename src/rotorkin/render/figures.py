@@ -335,18 +335,19 @@ def _join_ahead() -> None:
 
 
 def pyplot():
-    """``matplotlib.pyplot``, imported on first use (no garbage collection meanwhile)."""
+    """``matplotlib.pyplot``, imported on first use (no garbage collection meanwhile), with
+    the :func:`drawing_ahead` block's style applied (figures drawn here, not by draw)."""
     _join_ahead()
     plt = sys.modules.get("matplotlib.pyplot")
-    if plt is not None:
-        return plt
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        import matplotlib.pyplot as plt
-    finally:
-        if enabled:
-            gc.enable()
+    if plt is None:
+        enabled = gc.isenabled()
+        gc.disable()
+        try:
+            import matplotlib.pyplot as plt
+        finally:
+            if enabled:
+                gc.enable()
+    _apply_style()
     return plt
 
 
