@@ -116,9 +116,9 @@ def _png_size(path: Path) -> tuple[int, int]:
 def forking(monkeypatch):
     """Fork even if an earlier test left threads running in this process (the tasks here
     take no lock those threads could hold)."""
-    from rotorkin.render import figures
+    from rotorkin.core import forked
 
-    monkeypatch.setattr(figures, "_fork_safe", lambda: True)
+    monkeypatch.setattr(forked, "fork_safe", lambda: True)
 
 
 def test_parallel_draw_writes_the_files_of_the_serial_one(tmp_path, forking):

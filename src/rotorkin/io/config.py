@@ -233,10 +233,15 @@ def _path_keys(cfg: dict) -> list[tuple[str, str]]:
     return out
 
 
-def glossary() -> list[tuple[str, str, str, str]]:
-    """Every config key: ``(drive type, key, default, description)``."""
+def glossary(drive_type: str | None = None) -> list[tuple[str, str, str, str]]:
+    """Every config key: ``(drive type, key, default, description)``.
+
+    With ``drive_type``, the keys of that drive only (importing no other drive).
+    """
     rows = []
-    for kind, spec in drives.REGISTRY.items():
+    kinds = drives.REGISTRY if drive_type is None else [drive_type]
+    for kind in kinds:
+        spec = drives.get(kind)
         model = spec.config_model
         for section, sfield in model.model_fields.items():
             sub = sfield.annotation

@@ -23,10 +23,11 @@ import pickle
 import signal
 import sys
 import threading
-import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from rotorkin.core import forked
 
 __all__ = [
     "draw",
@@ -128,13 +129,11 @@ def drawing_ahead(style: dict | None = None):
 
 def _fork_helper(style: dict | None) -> _Helper | None:
     """Fork the drawing process of :func:`drawing_ahead` (None where the fork fails)."""
-    for stream in (sys.stdout, sys.stderr):  # the child would write their buffers again
-        with contextlib.suppress(Exception):
-            stream.flush()
+    forked.flush_streams()  # the child would write their buffers again
     tasks_r, tasks_w = os.pipe()
     out_r, out_w = os.pipe()
     try:
-        pid = _fork()
+        pid = forked.fork()
     except OSError:
         for fd in (tasks_r, tasks_w, out_r, out_w):
             os.close(fd)
@@ -148,38 +147,6 @@ def _fork_helper(style: dict | None) -> _Helper | None:
     return _Helper(pid, tasks_w, out_r)
 
 
-#: The signals held while forking (the child takes them once its own code runs).
-_HELD = {signal.SIGTERM} if hasattr(signal, "pthread_sigmask") else set()
-
-
-def _fork() -> int:
-    """``os.fork()`` with SIGTERM held in the child until :func:`_take_signals`.
-
-    A SIGTERM reaching a child inside the interpreter's after-fork hooks would raise
-    there and print a traceback; held, it is raised in the child's own code, which ends
-    the child quietly (a failure sent back, or none wanted).
-    """
-    if _HELD:
-        previous = signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
-    try:
-        with warnings.catch_warnings():  # rotorkin's idle threads hold no lock
-            warnings.simplefilter("ignore", DeprecationWarning)
-            pid = os.fork()
-    except BaseException:
-        if _HELD:
-            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
-        raise
-    if _HELD and pid != 0:
-        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
-    return pid
-
-
-def _take_signals() -> None:  # pragma: no cover - runs in a forked child
-    """In a child of :func:`_fork`: receive the held signals (a pending one raises now)."""
-    if _HELD:
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, _HELD)
-
-
 def _helper(tasks_r: int, out_w: int, style: dict | None) -> None:  # pragma: no cover
     """The drawing process: pyplot imported, then the tasks drawn, the result sent back.
 
@@ -190,8 +157,8 @@ def _helper(tasks_r: int, out_w: int, style: dict | None) -> None:  # pragma: no
     result, code = None, 1
     try:
         # until the tasks come there is nothing to clean up: a SIGTERM ends it at once
-        handler = signal.signal(signal.SIGTERM, signal.SIG_DFL) if _HELD else None
-        _take_signals()
+        handler = signal.signal(signal.SIGTERM, signal.SIG_DFL) if forked.HELD else None
+        forked.take_signals()
         try:
             gc.disable()  # nothing to collect while importing (a third faster)
             import matplotlib.pyplot  # noqa: F401 - imported for its use by the tasks
@@ -207,11 +174,11 @@ def _helper(tasks_r: int, out_w: int, style: dict | None) -> None:  # pragma: no
         if not select.select([tasks_r], [], [], 0)[0]:  # idle until the study is done
             with contextlib.suppress(Exception):
                 _warm_up()
-        data = _read_all(tasks_r)
+        data = forked.read_all(tasks_r)
         os.close(tasks_r)
         if not data:
             os._exit(0)
-        if _HELD:
+        if forked.HELD:
             signal.signal(signal.SIGTERM, handler)  # workers of its own to end from now on
         try:
             tasks, workers, slowest = pickle.loads(data)
@@ -222,27 +189,10 @@ def _helper(tasks_r: int, out_w: int, style: dict | None) -> None:  # pragma: no
             try:
                 result, code = ("ok", draw(tasks, workers, slowest)), 0
             except BaseException as exc:  # noqa: BLE001 - everything goes to the caller
-                result = ("error", _portable(exc))
+                result = ("error", forked.portable(exc))
     except BaseException:  # noqa: BLE001 - the process never returns into the caller's code
         result, code = None, 1
-    _send_and_end(out_w, result, code)
-
-
-def _send_and_end(out_w: int, result, code: int) -> None:  # pragma: no cover - in a child
-    """A forked process's end: ``result`` pickled into ``out_w`` (unless None), its streams
-    flushed, ``os._exit(code)`` (1 where the result cannot be sent)."""
-    try:
-        if result is not None:
-            view = memoryview(pickle.dumps(result))
-            while view:
-                view = view[os.write(out_w, view) :]
-    except BaseException:  # noqa: BLE001 - a child never returns into the caller's code
-        code = 1
-    finally:
-        with contextlib.suppress(BaseException):
-            sys.stdout.flush()
-            sys.stderr.flush()
-        os._exit(code)
+    forked.send_and_end(out_w, result, code)
 
 
 def _warm_up() -> None:
@@ -285,7 +235,7 @@ def _draw_ahead(helper: _Helper, tasks: list, workers, slowest) -> list[Path] | 
                 view = view[os.write(helper.tasks_w, view) :]
         os.close(helper.tasks_w)
         helper.tasks_w = -1
-        data = _read_all(helper.out_r)
+        data = forked.read_all(helper.out_r)
     except BaseException:
         _end_helper(helper, kill=True)
         raise
@@ -633,7 +583,7 @@ def figure_workers(workers: int | None = None) -> int:
             except AttributeError:  # pragma: no cover - no affinity on this system
                 cores = os.cpu_count() or 1
             workers = min(cores, MAX_WORKERS)
-    if not hasattr(os, "fork") or _IN_WORKER or _RECORDED is not None or not _fork_safe():
+    if not hasattr(os, "fork") or _IN_WORKER or _RECORDED is not None or not forked.fork_safe():
         return 1
     return max(1, int(workers))
 
@@ -701,9 +651,7 @@ def draw(
 def _draw_forked(tasks: list, workers: int, slowest: Sequence[int]) -> list[Path]:
     """:func:`draw` with ``workers - 1`` forked children besides this process."""
     pyplot()  # imported once, before the fork, for every worker
-    for stream in (sys.stdout, sys.stderr):  # a child would write their buffers once more
-        with contextlib.suppress(Exception):
-            stream.flush()
+    forked.flush_streams()  # a child would write their buffers once more
     queue_r, queue_w = os.pipe()
     first = [i for i in dict.fromkeys(slowest) if 0 <= i < len(tasks)]
     order = first + [i for i in range(len(tasks)) if i not in first]
@@ -713,7 +661,7 @@ def _draw_forked(tasks: list, workers: int, slowest: Sequence[int]) -> list[Path
     try:
         for _ in range(workers - 1):
             out_r, out_w = os.pipe()
-            pid = _fork()
+            pid = forked.fork()
             if pid == 0:  # pragma: no cover - runs in the child (its coverage is not collected)
                 os.close(out_r)
                 _child(tasks, queue_r, out_w)
@@ -723,7 +671,7 @@ def _draw_forked(tasks: list, workers: int, slowest: Sequence[int]) -> list[Path
         failure = None
         while children:
             pid, out_r = children[0]
-            data = _read_all(out_r)
+            data = forked.read_all(out_r)
             os.close(out_r)
             children[0] = (pid, None)
             _, status = os.waitpid(pid, 0)
@@ -763,66 +711,23 @@ def _child(tasks, queue_r, out_w) -> None:  # pragma: no cover - runs in a forke
     global _IN_WORKER
     _IN_WORKER = True
     try:
-        _take_signals()
+        forked.take_signals()
         result, code = ("ok", _take(tasks, queue_r)), 0
     except BaseException as exc:  # noqa: BLE001 - everything goes back to the parent
         try:
-            result, code = ("error", _portable(exc)), 1
+            result, code = ("error", forked.portable(exc)), 1
         except BaseException:  # noqa: BLE001 - a child never returns into the caller's code
             result, code = None, 1
-    _send_and_end(out_w, result, code)
-
-
-def _portable(exc: BaseException):
-    """What a child sends back of ``exc``: the exception, or what rebuilds it, or its text.
-
-    An exception that pickles is sent as it is; one whose constructor takes other
-    arguments than it keeps (:class:`rotorkin.core.errors.ParameterError`) as its class's
-    module and name, its arguments and attributes, rebuilt by :func:`_rebuilt` (the
-    class is in the parent too: it forked); any other as ``(class name, message)``.
-    """
-    try:
-        back = pickle.loads(pickle.dumps(exc))
-        if type(back) is type(exc) and str(back) == str(exc):
-            return exc
-    except Exception:  # noqa: BLE001 - any failure: try the parts
-        pass
-    cls = type(exc)
-    try:
-        parts = ("class", cls.__module__, cls.__qualname__, exc.args, dict(vars(exc)))
-        pickle.loads(pickle.dumps(parts))
-        if "<locals>" not in cls.__qualname__:
-            return parts
-    except Exception:  # noqa: BLE001 - the text only
-        pass
-    return (cls.__name__, str(exc))
+    forked.send_and_end(out_w, result, code)
 
 
 def _rebuilt(failure) -> BaseException:
-    """The exception a worker sent back (:func:`_portable`)."""
+    """The exception a worker sent back (:func:`rotorkin.core.forked.portable`)."""
+    failure = forked.rebuilt(failure)
     if isinstance(failure, BaseException):
         return failure
-    if len(failure) == 5 and failure[0] == "class":
-        _, module, qualname, args, attrs = failure
-        cls = sys.modules.get(module)
-        for part in qualname.split("."):
-            cls = getattr(cls, part, None)
-        if isinstance(cls, type) and issubclass(cls, BaseException):
-            exc = cls.__new__(cls)
-            BaseException.__init__(exc, *args)
-            exc.__dict__.update(attrs)
-            return exc
-        failure = (qualname, str(args[0]) if args else "")
     name, message = failure
     return FigureError(f"a figure could not be drawn: {name}: {message}")
-
-
-def _read_all(fd: int) -> bytes:
-    """Everything a child writes into its pipe, until it closes it."""
-    chunks = []
-    while chunk := os.read(fd, 1 << 16):
-        chunks.append(chunk)
-    return b"".join(chunks)
 
 
 def _result(data: bytes, status: int):
@@ -832,16 +737,6 @@ def _result(data: bytes, status: int):
     except Exception:  # noqa: BLE001 - a child that died without a result
         code = os.waitstatus_to_exitcode(status)
         return ("error", ("FigureError", f"the process drawing figures ended with code {code}"))
-
-
-def _fork_safe() -> bool:
-    """Whether this process may fork: no threads but its own and rotorkin's idle pool."""
-    import threading
-
-    main = threading.main_thread()
-    return threading.current_thread() is main and all(
-        t is main or t.name.startswith("rotorkin") for t in threading.enumerate()
-    )
 
 
 def plain_log_labels(ax, axes: str = "xy") -> None:

@@ -83,7 +83,7 @@ def reason_keys(drive_type: str) -> list[str]:
     key whose admissible range the design violates (the one the scalar study
     would name in its error).
     """
-    return ["ok", *(key for kind, key, _, _ in glossary() if kind == drive_type), "other"]
+    return ["ok", *(key for _, key, _, _ in glossary(drive_type)), "other"]
 
 
 @dataclass(frozen=True)
