@@ -35,9 +35,9 @@ from rotorkin.core.errors import ConfigError
 from rotorkin.drives import REGISTRY, spec_of
 from rotorkin.io.config import apply_sets, load_config
 from rotorkin.io.output import check_out, staged_output
-from rotorkin.render.figures import import_ahead
+from rotorkin.render.figures import draw, drawing_ahead
 from rotorkin.report import figures_sweep as fs
-from rotorkin.sweep import build_spec, compute
+from rotorkin.sweep import CheckAhead, build_spec, compute
 from rotorkin.sweep.checks import skipped as skipped_checks
 from rotorkin.sweep.engine import SweepFallbackWarning, coverage
 from rotorkin.sweep.store import write_dataset
@@ -139,84 +139,93 @@ def register(app) -> None:
             raise ConfigError("give at least one --vary KEY=START:STOP:N (or --paper-figures)")
         outdir = out if out is not None else Path("rotorkin-out") / f"{name}-sweep"
         check_out(outdir)
-        import_ahead()  # pyplot, for the figures, while the sweep is checked and computed
-        specs = []  # (recipe or None, spec), all validated before anything runs
-        if vary:
-            specs.append(
-                (
-                    None,
-                    build_spec(
-                        raw,
-                        vary,
-                        keep_curves=curves,
-                        chunk_size=chunk,
-                        metrics=metrics,
-                        samples=angles,
-                        name=name,
-                    ),
-                )
-            )
-        if paper_figures:
-            recipes = fs.paper_recipes(cfg, spec_of(cfg))
-            if not recipes:
-                raise ConfigError(
-                    f"--paper-figures: the {cfg['drive']['type']} paper has no "
-                    "sweep figures (those of "
-                    + ", ".join(k for k, s in REGISTRY.items() if s.sweep_recipes)
-                    + " do)"
-                )
-            for r in recipes:
-                base = apply_sets(raw, list(r.sets))
+        # the drawing process, forked now, imports pyplot while the sweep is checked and
+        # computed; the sweep's one design through the study runs beside it too
+        with drawing_ahead(), contextlib.ExitStack() as ahead:
+            specs = []  # (recipe or None, spec), all validated before anything runs
+            if vary:
                 specs.append(
                     (
-                        r,
+                        None,
                         build_spec(
-                            base,
-                            list(r.vary),
-                            keep_curves=r.curves,
-                            metrics=list(r.metrics) or None,
+                            raw,
+                            vary,
+                            keep_curves=curves,
+                            chunk_size=chunk,
+                            metrics=metrics,
                             samples=angles,
-                            name=f"{name} {r.key}",
+                            name=name,
+                            check=False,
                         ),
                     )
                 )
-        for _, spec in specs:
-            why = coverage(
-                spec.drive_type, spec.base_cfg, [v.key for v in spec.varies], spec.metrics
-            )[2]
-            if why:
-                _note(f"{why}: evaluated design by design by the scalar study (slow)", quiet)
-            unchecked = skipped_checks(spec.base_cfg, spec.varies)
-            if unchecked:
-                _note(unchecked, quiet)
-        written, main_ds = [], None
-        with _client(workers, scheduler) as client, staged_output(outdir, "sweep") as (stage, _):
-            for recipe, spec in specs:
-                if recipe is None:
-                    main_ds = compute(
-                        spec,
-                        store=outdir,
-                        client=client,
-                        progress=not quiet,
-                        on_status=lambda m: _note(m, quiet),
+                checked = ahead.enter_context(CheckAhead(specs[0][1]))
+            if paper_figures:
+                recipes = fs.paper_recipes(cfg, spec_of(cfg))
+                if not recipes:
+                    raise ConfigError(
+                        f"--paper-figures: the {cfg['drive']['type']} paper has no "
+                        "sweep figures (those of "
+                        + ", ".join(k for k, s in REGISTRY.items() if s.sweep_recipes)
+                        + " do)"
                     )
-                    written.append("sweep.nc")
-                    path = fs.fig_overview(
-                        main_ds, _headline(spec.base_cfg), stage / "sweep_overview.png"
+                for r in recipes:
+                    base = apply_sets(raw, list(r.sets))
+                    specs.append(
+                        (
+                            r,
+                            build_spec(
+                                base,
+                                list(r.vary),
+                                keep_curves=r.curves,
+                                metrics=list(r.metrics) or None,
+                                samples=angles,
+                                name=f"{name} {r.key}",
+                            ),
+                        )
                     )
-                    if path is not None:
-                        written.append(path.name)
-                    (stage / "README.txt").write_text(
-                        _readme(main_ds, f"rotorkin sweep of {name}: {spec.size} designs", written)
-                    )
-                    written.append("README.txt")
-                else:
-                    ds = compute(spec, client=client, progress=not quiet)
-                    write_dataset(ds, stage / f"paper_{recipe.key}.nc")
-                    written.append(f"paper_{recipe.key}.nc")
-                    written += [p.name for p in fs.plot_recipe(recipe, ds, stage)]
-        if not quiet:
-            _print_sweep(name, specs, main_ds, outdir, written, time.perf_counter() - t0)
+            for _, spec in specs:
+                why = coverage(
+                    spec.drive_type, spec.base_cfg, [v.key for v in spec.varies], spec.metrics
+                )[2]
+                if why:
+                    _note(f"{why}: evaluated design by design by the scalar study (slow)", quiet)
+                unchecked = skipped_checks(spec.base_cfg, spec.varies)
+                if unchecked:
+                    _note(unchecked, quiet)
+            written, main_ds = [], None
+            with (
+                _client(workers, scheduler) as client,
+                staged_output(outdir, "sweep") as (stage, _),
+            ):
+                for recipe, spec in specs:
+                    if recipe is None:
+                        main_ds = compute(
+                            spec,
+                            store=outdir,
+                            client=client,
+                            progress=not quiet,
+                            on_status=lambda m: _note(m, quiet),
+                            confirm=checked.confirm,
+                        )
+                        written.append("sweep.nc")
+                        task = fs.overview_task(
+                            main_ds, _headline(spec.base_cfg), stage / "sweep_overview.png"
+                        )
+                        written += [path.name for path in draw([task] if task else [])]
+                        (stage / "README.txt").write_text(
+                            _readme(
+                                main_ds, f"rotorkin sweep of {name}: {spec.size} designs", written
+                            )
+                        )
+                        written.append("README.txt")
+                    else:
+                        ds = compute(spec, client=client, progress=not quiet)
+                        write_dataset(ds, stage / f"paper_{recipe.key}.nc")
+                        written.append(f"paper_{recipe.key}.nc")
+                        written += [p.name for p in fs.plot_recipe(recipe, ds, stage)]
+            if not quiet:
+                _print_sweep(name, specs, main_ds, outdir, written, time.perf_counter() - t0)
 
     @app.command()
     @flag_names(samples="--samples", angles="--angles", metrics="--metrics", seed="--seed")

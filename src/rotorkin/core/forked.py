@@ -29,6 +29,11 @@ __all__ = ["fork", "fork_safe", "take_signals", "send_and_end", "read_all", "por
 HELD = {signal.SIGTERM} if hasattr(signal, "pthread_sigmask") else set()
 
 
+#: File descriptors this process keeps to itself: a child of :func:`ahead` closes its copies
+#: at once (the write end of a pipe another child reads to its end, e.g.).
+PRIVATE: set[int] = set()
+
+
 def fork() -> int:
     """``os.fork()`` with SIGTERM held in the child until :func:`take_signals`.
 
@@ -223,6 +228,9 @@ def _run(fn, args, out_w: int) -> None:  # pragma: no cover - runs in a forked c
         if HELD:
             signal.signal(signal.SIGTERM, signal.SIG_DFL)
         take_signals()
+        for fd in PRIVATE:
+            with contextlib.suppress(OSError):
+                os.close(fd)
         try:
             result, code = ("ok", fn(*args)), 0
         except BaseException as exc:  # noqa: BLE001 - everything goes back to the caller

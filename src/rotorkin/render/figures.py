@@ -144,6 +144,7 @@ def _fork_helper(style: dict | None) -> _Helper | None:
         _helper(tasks_r, out_w, style)
     os.close(tasks_r)
     os.close(out_w)
+    forked.PRIVATE.add(tasks_w)  # the helper reads its tasks until every copy is closed
     return _Helper(pid, tasks_w, out_r)
 
 
@@ -234,6 +235,7 @@ def _draw_ahead(helper: _Helper, tasks: list, workers, slowest) -> list[Path] | 
             while view:
                 view = view[os.write(helper.tasks_w, view) :]
         os.close(helper.tasks_w)
+        forked.PRIVATE.discard(helper.tasks_w)
         helper.tasks_w = -1
         data = forked.read_all(helper.out_r)
     except BaseException:
@@ -252,6 +254,7 @@ def _draw_ahead(helper: _Helper, tasks: list, workers, slowest) -> list[Path] | 
 
 def _end_helper(helper: _Helper, kill: bool) -> int:
     """Close the pipes to the drawing process, end it if ``kill``; its wait status."""
+    forked.PRIVATE.discard(helper.tasks_w)
     for fd in (helper.tasks_w, helper.out_r):
         if fd >= 0:
             with contextlib.suppress(OSError):

@@ -12,6 +12,8 @@ matplotlib is imported when a figure is drawn.
 
 from __future__ import annotations
 
+import functools
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -21,7 +23,14 @@ from rotorkin.render.figures import Recipe, save_in
 from rotorkin.render.figures import pyplot as _plt
 from rotorkin.render.figures import save as _save
 
-__all__ = ["Recipe", "paper_recipes", "plot_recipe", "fig_overview", "fig_tolerance"]
+__all__ = [
+    "Recipe",
+    "paper_recipes",
+    "plot_recipe",
+    "fig_overview",
+    "overview_task",
+    "fig_tolerance",
+]
 
 _DPI = 120
 
@@ -52,6 +61,23 @@ def fig_overview(ds, metrics, path: Path) -> Path | None:
     :class:`~rotorkin.sweep.result.SweepResult` or :class:`xarray.Dataset` (only
     ``ds[name].values``, ``.dims`` and ``.attrs`` are read).
     """
+    task = overview_task(ds, metrics, path)
+    return None if task is None else task()
+
+
+def overview_task(ds, metrics, path: Path) -> Callable[[], Path] | None:
+    """:func:`fig_overview` as a task for :func:`~rotorkin.render.figures.draw`.
+
+    What the figure shows is taken from ``ds`` now (the drawn lines, labels and title:
+    a few kB however large the sweep), so the task pickles small and draws without
+    ``ds``. None when there is nothing to draw.
+    """
+    plan = _overview_plan(ds, metrics)
+    return None if plan is None else functools.partial(_draw_overview, plan, Path(path))
+
+
+def _overview_plan(ds, metrics) -> dict | None:
+    """The lines, labels and title of :func:`fig_overview`, or None."""
     dims = list(ds["reason"].dims)
     if not dims or ds[dims[0]].values.dtype == object:
         return None
@@ -73,41 +99,61 @@ def fig_overview(ds, metrics, path: Path) -> Path | None:
     curves = moving or flat
     if not curves:
         return None
-    plt = _plt()
     x = ds[dims[0]]
+    second = dims[1] if len(dims) > 1 else None
+    lines: list = [None]
+    labels: list = [None]
+    if second:
+        values2 = ds[second].values
+        lines = list(range(len(values2)))
+        if len(lines) > 8:
+            lines = np.unique(np.linspace(0, len(values2) - 1, 8).round().astype(int)).tolist()
+        unit2 = ds[second].attrs.get("units", "1")
+        labels = [f"{second.split('.')[-1]} = {_fmt(values2[j])}"
+                  + ("" if unit2 == "1" else f" {unit2}") for j in lines]  # fmt: skip
+    held = ", ".join(f"{d} = {_fmt(ds[d].values[0])}" for d in dims[2:])
+    return {
+        "x": np.array(x.values),
+        "xlabel": f"{dims[0]} [{x.attrs.get('units', '')}]",
+        # only the drawn lines of each metric travel (copies, not views of the sweep)
+        "curves": [
+            (
+                f"{m} [{ds[m].attrs.get('units', '1')}]",
+                np.array(y if second is None else y[:, lines]).reshape(len(x.values), -1),
+            )
+            for m, y in curves.items()
+        ],  # fmt: skip
+        "labels": labels,
+        "held": held,
+        "title": f"{ds.attrs.get('title', 'sweep')}: {ds.attrs['designs']} designs, "
+        f"{ds.attrs['inadmissible_designs']} inadmissible (gaps)",
+    }
+
+
+def _draw_overview(plan: dict, path: Path) -> Path:
+    """Draw and write :func:`fig_overview`'s figure from its plan."""
+    plt = _plt()
+    curves, held = plan["curves"], plan["held"]
     ncol = min(3, len(curves))
     nrow = -(-len(curves) // ncol)
-    held = ", ".join(f"{d} = {_fmt(ds[d].values[0])}" for d in dims[2:])
     width, height, top = 4.6 * ncol, 3.6 * nrow + 0.8, 0.95 if held else 0.7
     # fixed margins [in] instead of tight_layout, which draws every tick once more
     fig, axes = plt.subplots(nrow, ncol, figsize=(width, height), squeeze=False,
                              gridspec_kw={"left": 0.95 / width, "right": 1 - 0.2 / width,
                                           "bottom": 0.55 / height, "top": 1 - top / height,
                                           "wspace": 1.05 / 3.45, "hspace": 0.75 / 2.6})  # fmt: skip
-    second = dims[1] if len(dims) > 1 else None
-    values2 = ds[second].values if second else None
-    lines = range(len(values2)) if second else [None]
-    if second and len(lines) > 8:
-        lines = np.unique(np.linspace(0, len(values2) - 1, 8).round().astype(int))
-    unit2 = ds[second].attrs.get("units", "1") if second else "1"
-    for ax, (m, y) in zip(axes.ravel(), curves.items(), strict=False):
-        for k, j in enumerate(lines):
-            lab = None
-            if j is not None:
-                lab = (f"{second.split('.')[-1]} = {_fmt(values2[int(j)])}"
-                       + ("" if unit2 == "1" else f" {unit2}"))  # fmt: skip
-            ax.plot(x.values, y if j is None else y[:, int(j)], color=f"C{k}", label=lab)
-        ax.set_xlabel(f"{dims[0]} [{x.attrs.get('units', '')}]")
-        ax.set_ylabel(f"{m} [{ds[m].attrs.get('units', '1')}]", fontsize=8)
+    for ax, (ylabel, y) in zip(axes.ravel(), curves, strict=False):
+        for k, label in enumerate(plan["labels"]):
+            ax.plot(plan["x"], y[:, k], color=f"C{k}", label=label)
+        ax.set_xlabel(plan["xlabel"])
+        ax.set_ylabel(ylabel, fontsize=8)
         ax.grid(True, alpha=0.4)
     for ax in axes.ravel()[len(curves) :]:
         ax.set_visible(False)
-    if second:
+    if plan["labels"][0] is not None:
         axes.ravel()[0].legend(fontsize=7)
-    fig.suptitle(f"{ds.attrs.get('title', 'sweep')}: {ds.attrs['designs']} designs, "
-                 f"{ds.attrs['inadmissible_designs']} inadmissible (gaps)"
-                 + (f"\nheld: {held}" if held else ""), fontsize=10, y=1 - 0.1 / height,
-                 va="top")  # fmt: skip
+    fig.suptitle(plan["title"] + (f"\nheld: {held}" if held else ""), fontsize=10,
+                 y=1 - 0.1 / height, va="top")  # fmt: skip
     return save_in(fig, Path(path).parent, Path(path).name)
 
 

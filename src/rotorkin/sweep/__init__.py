@@ -30,6 +30,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from rotorkin.core import forked
 from rotorkin.core.batch import DEFAULT_SAMPLES, Designs, block_progress
 from rotorkin.core.errors import ConfigError, ParameterError, shown
 from rotorkin.core.extras import xarray_module
@@ -40,7 +41,9 @@ from rotorkin.sweep.checks import check_metrics
 from rotorkin.sweep.engine import (
     SweepFallbackWarning,
     SweepSpec,
+    check_grid_values,
     check_spec_values,
+    check_study,
     chunk_bounds,
     compute_chunk,
     coverage,
@@ -59,6 +62,7 @@ __all__ = [
     "build_spec",
     "execute",
     "compute",
+    "CheckAhead",
     "SweepResult",
     "parse_vary",
     "resolve_metrics",
@@ -222,6 +226,49 @@ def build_spec(base_cfg_raw: dict, vary, *, keep_curves=False, chunk_size=None, 
     return spec
 
 
+class CheckAhead:
+    """:func:`check_spec_values` of a spec built with ``check=False``, its last check ahead.
+
+    The checks over the grid run when it is made (one line for a refused value); the
+    last, one admissible design through the scalar study (a few tenths of a second, the
+    keys no kernel reads), runs in a forked process beside the sweep, where this system
+    forks (else here, at once). Give :meth:`confirm` to :func:`compute` (it waits for
+    the check before anything is written) and :meth:`cancel` it when the sweep ends
+    otherwise; as a context manager it cancels on leaving.
+
+    Raises
+    ------
+    RotorkinError
+        From the constructor or :meth:`confirm`: what :func:`check_spec_values` raises.
+    """
+
+    def __init__(self, spec: SweepSpec):
+        self._job = None
+        cfg = check_grid_values(spec)
+        if cfg is not None:
+            self._job = forked.ahead(check_study, cfg)
+            if self._job is None:
+                check_study(cfg)
+
+    def confirm(self) -> None:
+        """Wait for the study's check; its one-line error raised here (then no more)."""
+        job, self._job = self._job, None
+        if job is not None:
+            job.result()
+
+    def cancel(self) -> None:
+        """End the study's check if it still runs."""
+        job, self._job = self._job, None
+        if job is not None:
+            job.cancel()
+
+    def __enter__(self) -> CheckAhead:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.cancel()
+
+
 def run_sweep(base_cfg_raw: dict, vary, *, keep_curves: bool = False, chunk_size=None,
               store=None, client=None, progress: bool = True, metrics=None, samples=None,
               threads=None, memory_budget: int = MEMORY_BUDGET, name: str = "sweep",
@@ -298,20 +345,40 @@ def execute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
 
 
 def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=None,
-            keep_chunks=False, on_status=None) -> SweepResult:  # fmt: skip
+            keep_chunks=False, on_status=None, confirm=None) -> SweepResult:  # fmt: skip
     """Run a validated spec (locally or on ``client``), optionally through a chunk store.
 
     Returns the :class:`SweepResult` (numpy arrays; no xarray needed). With
     ``store``, the chunks are committed to ``store/.chunks`` as they finish and the
-    result is written to ``store/sweep.nc`` (streamed, atomically).
+    result is written to ``store/sweep.nc`` (streamed, atomically). ``confirm()``, if
+    given, is called once before anything is written into ``store`` (before the result
+    is returned without one): an exception it raises ends the sweep there
+    (:meth:`CheckAhead.confirm`).
     """
     from pathlib import Path
 
     chunks = ChunkStore.of_spec(Path(store) / ".chunks", spec.manifest()) if store else None
+    # a new store is made once confirmed: a sweep refused then leaves no folder behind;
+    # an existing one (chunks to resume, or to replace) is opened now, confirmed first
+    opened = chunks is None or confirm is None or chunks.folder.exists()
+
+    def confirmed() -> None:
+        nonlocal confirm, opened
+        if confirm is not None:
+            check, confirm = confirm, None
+            check()
+        if not opened:
+            opened = True
+            chunks.open()
+
     if store is not None:
         for stale in Path(store).glob(".sweep.nc.tmp-*"):  # a killed run's half-written result
             stale.unlink(missing_ok=True)
-    done = chunks.open() if chunks else set()
+    if chunks is not None and opened:
+        confirmed()
+        done = chunks.open()
+    else:
+        done = set()
     if chunks and done and on_status:
         on_status(f"resuming: {len(done)} of {spec.n_chunks} chunks already committed, "
                   f"computing {spec.n_chunks - len(done)}")  # fmt: skip
@@ -323,6 +390,7 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
 
         def take(index, res):
             if chunks:
+                confirmed()
                 chunks.commit(index, res)
             else:
                 _place(flat, res)
@@ -337,6 +405,7 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
                 with bar.within(stop - start):  # advanced block by block inside the chunk
                     res = compute_chunk(spec, start, stop, threads)
                 take(index, res)
+    confirmed()
     if chunks:
         release_memory()  # the chunks' freed work arrays, back before the result is assembled
         flat = _assemble(spec, chunks)

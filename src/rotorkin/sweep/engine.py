@@ -33,6 +33,9 @@ __all__ = [
     "SweepFallbackWarning",
     "kernel_of",
     "reason_keys",
+    "check_spec_values",
+    "check_grid_values",
+    "check_study",
     "evaluate_designs",
     "compute_chunk",
     "chunk_bounds",
@@ -459,9 +462,19 @@ def check_spec_values(spec: SweepSpec) -> None:
     RotorkinError
         One line naming the ``--vary`` item, the value and the study's message.
     """
+    cfg = check_grid_values(spec)
+    if cfg is not None:
+        check_study(cfg)
 
+
+def check_grid_values(spec: SweepSpec) -> dict | None:
+    """:func:`check_spec_values` but its last check: the config of the design left for it.
+
+    The design to run through the scalar study (:func:`check_study`), or None when the
+    checks made already ran every design they tried through it.
+    """
     if not spec.varies:
-        return
+        return None
     kern = kernel_of(spec.drive_type, spec.base_cfg)
     code = {k: i for i, k in enumerate(reason_keys(spec.drive_type))}
     keys = [v.key for v in spec.varies]
@@ -475,11 +488,23 @@ def check_spec_values(spec: SweepSpec) -> None:
         if _check_scalar(spec) is False:
             _refuse_all(spec)
         admissible = None
-    if admissible is not None:
-        try:
-            drives.evaluate(designs_at(spec, [admissible]).config(0))
-        except ParameterError as exc:
-            raise RotorkinError(f"the base config is not admissible: {exc}") from None
+    return None if admissible is None else designs_at(spec, [admissible]).config(0)
+
+
+def check_study(cfg: dict) -> None:
+    """One admissible design of a sweep through the scalar study: the keys no kernel reads.
+
+    Raises
+    ------
+    RotorkinError
+        One line: the base config is not admissible, and the study's message.
+    """
+    try:
+        with warnings.catch_warnings():  # the study's own warnings are not the sweep's
+            warnings.simplefilter("ignore")
+            drives.evaluate(cfg)
+    except ParameterError as exc:
+        raise RotorkinError(f"the base config is not admissible: {exc}") from None
 
 
 def _refuse(spec: SweepSpec, axis: int, j: int, flat: int):
