@@ -318,24 +318,6 @@ def test_log_axes_in_plain_numbers_on_the_ticks_matplotlib_labels():
     assert {text for _, text in plain[0] if text} >= {"10", "20"}
 
 
-def test_pyplot_imported_ahead_is_the_one_the_figures_use():
-    done = _python(
-        "import sys, threading\n"
-        "from rotorkin.render import figures\n"
-        "assert 'matplotlib.pyplot' not in sys.modules\n"
-        "figures.import_ahead()\n"
-        "figures.import_ahead()  # a second call starts no second thread\n"
-        "ahead = [t.name for t in threading.enumerate() if t.name.startswith('rotorkin')]\n"
-        "assert len(ahead) <= 1, ahead\n"
-        "plt = figures.pyplot()\n"
-        "assert plt is sys.modules['matplotlib.pyplot']\n"
-        "assert threading.active_count() == 1\n"
-        "print('ok')\n"
-    )
-    assert done.returncode == 0, done.stderr
-    assert done.stdout.strip() == "ok" and done.stderr == ""
-
-
 _AHEAD_SCRIPT = """
 import functools, json, os, sys
 from pathlib import Path

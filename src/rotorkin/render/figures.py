@@ -22,7 +22,6 @@ import os
 import pickle
 import signal
 import sys
-import threading
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -53,28 +52,6 @@ __all__ = [
 
 #: Resolution of the PNG figures [dots per inch].
 DPI = 120
-
-
-#: The thread importing pyplot ahead of its first use (:func:`import_ahead`), if any.
-_AHEAD: threading.Thread | None = None
-
-
-def import_ahead() -> None:
-    """Import ``matplotlib.pyplot`` in a background thread while this one computes.
-
-    Importing it is about a quarter of a second of mostly Python work; a study's
-    numpy work runs beside it on the other core. :func:`pyplot` waits for it.
-    """
-    global _AHEAD
-    if _AHEAD is None and "matplotlib.pyplot" not in sys.modules:
-        _AHEAD = threading.Thread(target=_import_pyplot, name="rotorkin-pyplot")
-        _AHEAD.start()
-
-
-def _import_pyplot() -> None:
-    # a failure is left to pyplot(), which imports it again in the caller's thread
-    with contextlib.suppress(Exception):
-        import matplotlib.pyplot  # noqa: F401 - imported for its side effect
 
 
 @dataclass
@@ -279,18 +256,9 @@ def _apply_style() -> None:
         _STYLE = None
 
 
-def _join_ahead() -> None:
-    """Wait for :func:`import_ahead`'s thread (before a fork, and before using pyplot)."""
-    global _AHEAD
-    if _AHEAD is not None:
-        _AHEAD.join()
-        _AHEAD = None
-
-
 def pyplot():
     """``matplotlib.pyplot``, imported on first use (no garbage collection meanwhile), with
     the :func:`drawing_ahead` block's style applied (figures drawn here, not by draw)."""
-    _join_ahead()
     plt = sys.modules.get("matplotlib.pyplot")
     if plt is None:
         enabled = gc.isenabled()
@@ -637,7 +605,6 @@ def draw(
         else:
             _end_helper(helper, kill=True)
     _apply_style()
-    _join_ahead()  # no fork while that thread imports
     workers = min(figure_workers(workers), len(tasks))
     # the objects that exist now (the study's, the libraries') are left out of the garbage
     # collector's passes while drawing: the passes take less time, and a forked worker does
