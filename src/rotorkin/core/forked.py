@@ -22,8 +22,8 @@ import threading
 import warnings
 from collections.abc import Callable
 
-__all__ = ["fork", "fork_safe", "take_signals", "send_and_end", "read_all", "portable",
-           "rebuilt", "Ahead", "ahead"]  # fmt: skip
+__all__ = ["fork", "fork_safe", "take_signals", "flush_streams", "send_and_end", "read_all",
+           "portable", "rebuilt", "Ahead", "ahead"]  # fmt: skip
 
 #: The signals held while forking (the child takes them once its own code runs).
 HELD = {signal.SIGTERM} if hasattr(signal, "pthread_sigmask") else set()
@@ -73,7 +73,7 @@ def fork_safe() -> bool:
 def flush_streams() -> None:
     """Flush stdout and stderr (a child would otherwise write their buffers once more)."""
     for stream in (sys.stdout, sys.stderr):
-        with contextlib.suppress(Exception):
+        with contextlib.suppress(BaseException):
             stream.flush()
 
 
@@ -88,9 +88,7 @@ def send_and_end(out_w: int, result, code: int) -> None:  # pragma: no cover - i
     except BaseException:  # noqa: BLE001 - a child never returns into the caller's code
         code = 1
     finally:
-        with contextlib.suppress(BaseException):
-            sys.stdout.flush()
-            sys.stderr.flush()
+        flush_streams()
         os._exit(code)
 
 
