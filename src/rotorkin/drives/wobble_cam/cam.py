@@ -43,6 +43,7 @@ from rotorkin.drives.wobble_cam.grooves import (
     groove_derivatives,
     groove_period,
 )
+from rotorkin.machines.twin_rotor import first_violation
 
 #: The fit of the rollers in their grooves and on their shafts when no clearance is given
 #: (ISO 286 close running fit).
@@ -53,6 +54,8 @@ __all__ = [
     "ROLLER_NAMES",
     "ROLLER_SLUGS",
     "SphericalCam",
+    "CAM_CHECKED",
+    "cam_violation",
     "from_config",
     "groove_period",
     "distinct_grooves",
@@ -81,6 +84,53 @@ _TURN_SAMPLES = 72000
 ROLLER_NAMES = ("1", "1'", "2", "2'")
 #: The same names for file names and CSV column stems.
 ROLLER_SLUGS = ("1", "1p", "2", "2p")
+
+
+#: Fields of :class:`SphericalCam` in the order it checks them (:func:`cam_violation`).
+CAM_CHECKED = ("sphere_radius", "shell_thickness", "groove_depth", "roller_radius",
+               "running_clearance", "roller_end_gap", "roller_length")  # fmt: skip
+
+
+def cam_violation(sphere_radius, roller_radius=0.004, shell_thickness=0.012, groove_depth=0.008,
+                  running_clearance=None, roller_length=None, roller_end_gap=0.0005):  # fmt: skip
+    """Which field of the spherical cam is not admissible, per design (arrays broadcast).
+
+    Returns
+    -------
+    ndarray of int16
+        0 where the cam is admissible, else ``1 + CAM_CHECKED.index(field)`` of the first
+        field out of range (the rules of :class:`SphericalCam`): ``r > 0``;
+        ``0 < t < 2 r``; ``t/2 < d < t``; ``0 < rho < R_i = r - t/2``;
+        ``0 <= c <= rho/2`` (``c`` None: the :data:`RUNNING_FIT` clearance at ``2 rho``);
+        ``0 <= gap < R_b - sqrt(R_i^2 + rho^2)``, ``R_b = R_i + d``;
+        ``0 < L <= sqrt((R_b - gap)^2 - rho^2) - R_i`` (``L`` None: that largest).
+    """
+    with np.errstate(invalid="ignore"):
+        r, rho, t, d, gap = (np.asarray(v, dtype=float) for v in (sphere_radius, roller_radius,
+                                                                   shell_thickness, groove_depth,
+                                                                   roller_end_gap))  # fmt: skip
+        ri = r - 0.5 * t
+        rb = ri + d
+        ok_rho = np.isfinite(rho) & (rho > 0.0) & (rho < ri)
+        if running_clearance is None:  # the fit's table at the roller's diameter, where valid
+            size = np.where(ok_rho & (rho <= 0.25), rho, 0.004)
+            c = np.where(ok_rho, fit_clearance(RUNNING_FIT, 2.0 * size), np.nan)
+        else:
+            c = np.asarray(running_clearance, dtype=float)
+        top = rb - np.sqrt(ri * ri + rho * rho)
+        longest = np.sqrt((rb - gap) ** 2 - rho * rho) - ri
+        length = longest if roller_length is None else np.asarray(roller_length, dtype=float)
+        return first_violation(
+            [
+                ~(np.isfinite(r) & (r > 0.0)),
+                ~(np.isfinite(t) & (t > 0.0) & (t < 2.0 * r)),
+                ~(np.isfinite(d) & (d > 0.5 * t) & (d < t)),
+                ~ok_rho,
+                ~(np.isfinite(c) & (c >= 0.0) & (c <= 0.5 * rho)),
+                ~(np.isfinite(gap) & (gap >= 0.0) & (gap < top)),
+                ~(np.isfinite(length) & (length > 0.0) & (length <= longest * (1.0 + 1e-12))),
+            ]
+        )
 
 
 @dataclass(frozen=True)
@@ -127,67 +177,61 @@ class SphericalCam:
     roller_end_gap: float = 0.0005
 
     def __post_init__(self):
-        r = float(self.sphere_radius)
-        if not (np.isfinite(r) and r > 0.0):
-            raise ParameterError("sphere_radius", fmt_mm(r), "sphere_radius > 0 mm")
-        t = float(self.shell_thickness)
-        if not (np.isfinite(t) and 0.0 < t < 2.0 * r):
-            raise ParameterError(
-                "shell_thickness",
-                fmt_mm(t),
-                f"0 mm < shell_thickness < {fmt_mm(2.0 * r)} (twice the sphere radius: the "
-                "shell spans sphere_radius -+ shell_thickness/2)",
-            )
-        d = float(self.groove_depth)
-        if not (np.isfinite(d) and 0.5 * t < d < t):
-            raise ParameterError(
-                "groove_depth",
-                fmt_mm(d),
-                f"{fmt_mm(0.5 * t)} < groove_depth < {fmt_mm(t)} (the groove, cut from the "
-                "shell's inner surface, must reach the roller centres at sphere_radius and "
-                "leave a floor: shell_thickness/2 < groove_depth < shell_thickness)",
-            )
-        rho = float(self.roller_radius)
-        ri = r - 0.5 * t
-        if not (np.isfinite(rho) and 0.0 < rho < ri):
-            raise ParameterError(
-                "roller_radius",
-                fmt_mm(rho),
-                f"0 mm < roller_radius < {fmt_mm(ri)} (the shell's inner radius)",
-            )
-        for name in ("sphere_radius", "roller_radius", "shell_thickness", "groove_depth"):
+        code = int(cam_violation(self.sphere_radius, self.roller_radius, self.shell_thickness,
+                                 self.groove_depth, self.running_clearance, self.roller_length,
+                                 self.roller_end_gap))  # fmt: skip
+        if code:
+            self._refuse(CAM_CHECKED[code - 1])
+        for name in ("sphere_radius", "roller_radius", "shell_thickness", "groove_depth",
+                     "roller_end_gap"):  # fmt: skip
             object.__setattr__(self, name, float(getattr(self, name)))
+        rho = self.roller_radius
         c = self.running_clearance
         c = float(fit_clearance(RUNNING_FIT, 2.0 * rho)) if c is None else float(c)
-        if not (np.isfinite(c) and 0.0 <= c <= 0.5 * rho):
-            raise ParameterError(
-                "running_clearance",
-                fmt_mm(c),
-                f"0 mm <= running_clearance <= {fmt_mm(0.5 * rho)} (half the roller radius)",
-            )
         object.__setattr__(self, "running_clearance", c)
-        gap = float(self.roller_end_gap)
-        rb = self.bottom_radius
-        top = rb - np.sqrt(ri * ri + rho * rho)
-        if not (np.isfinite(gap) and 0.0 <= gap < top):
-            raise ParameterError(
-                "roller_end_gap",
-                fmt_mm(gap),
-                f"0 mm <= roller_end_gap < {fmt_mm(top)} (a roller reaching from the shell's "
-                "inner radius must fit below the groove bottom)",
-            )
-        object.__setattr__(self, "roller_end_gap", gap)
-        longest = self.roller_outer_end - ri
+        longest = self.roller_outer_end - self.inner_radius
         length = longest if self.roller_length is None else float(self.roller_length)
-        if not (np.isfinite(length) and 0.0 < length <= longest * (1.0 + 1e-12)):
-            raise ParameterError(
-                "roller_length",
-                fmt_mm(length),
-                f"0 mm < roller_length <= {fmt_mm(longest)}, the largest that fits: from the "
-                f"shell's inner radius {fmt_mm(ri)} to roller_end_gap = {fmt_mm(gap)} inside "
-                f"the groove bottom {fmt_mm(rb)}",
-            )
         object.__setattr__(self, "roller_length", min(length, longest))
+
+    def _refuse(self, name: str):
+        """Raise the :class:`ParameterError` of the field ``name`` (:data:`CAM_CHECKED`)."""
+        r, t, d = (float(v) for v in (self.sphere_radius, self.shell_thickness,
+                                      self.groove_depth))  # fmt: skip
+        rho, gap = float(self.roller_radius), float(self.roller_end_gap)
+        ri = r - 0.5 * t
+        rb = ri + d
+        if name == "sphere_radius":
+            raise ParameterError(name, fmt_mm(r), "sphere_radius > 0 mm")
+        if name == "shell_thickness":
+            raise ParameterError(name, fmt_mm(t),
+                                 f"0 mm < shell_thickness < {fmt_mm(2.0 * r)} (twice the sphere "
+                                 "radius: the shell spans sphere_radius -+ "
+                                 "shell_thickness/2)")  # fmt: skip
+        if name == "groove_depth":
+            raise ParameterError(name, fmt_mm(d),
+                                 f"{fmt_mm(0.5 * t)} < groove_depth < {fmt_mm(t)} (the groove, "
+                                 "cut from the shell's inner surface, must reach the roller "
+                                 "centres at sphere_radius and leave a floor: shell_thickness/2 "
+                                 "< groove_depth < shell_thickness)")  # fmt: skip
+        if name == "roller_radius":
+            raise ParameterError(name, fmt_mm(rho),
+                                 f"0 mm < roller_radius < {fmt_mm(ri)} (the shell's inner "
+                                 "radius)")  # fmt: skip
+        if name == "running_clearance":
+            raise ParameterError(name, fmt_mm(float(self.running_clearance)),
+                                 f"0 mm <= running_clearance <= {fmt_mm(0.5 * rho)} (half the "
+                                 "roller radius)")  # fmt: skip
+        if name == "roller_end_gap":
+            top = rb - np.sqrt(ri * ri + rho * rho)
+            raise ParameterError(name, fmt_mm(gap),
+                                 f"0 mm <= roller_end_gap < {fmt_mm(top)} (a roller reaching "
+                                 "from the shell's inner radius must fit below the groove "
+                                 "bottom)")  # fmt: skip
+        longest = np.sqrt((rb - gap) ** 2 - rho * rho) - ri
+        raise ParameterError(name, fmt_mm(float(self.roller_length)),
+                             f"0 mm < roller_length <= {fmt_mm(longest)}, the largest that fits: "
+                             f"from the shell's inner radius {fmt_mm(ri)} to roller_end_gap = "
+                             f"{fmt_mm(gap)} inside the groove bottom {fmt_mm(rb)}")  # fmt: skip
 
     @property
     def inner_radius(self) -> float:

@@ -37,7 +37,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorkin.core.errors import RotorkinError
 from rotorkin.core.nearby import PointGrid
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam.grooves import (
@@ -229,6 +228,7 @@ def wall_gaps(drive: wc.WobbleCam, cam, crossings=None) -> list[WallGap]:
     step = period / SCAN
     theta = (np.arange(SCAN) + 0.5) * step
     brackets = []  # (roller, wall, outside, inside): both ends of every run of the scan
+    whole = []  # walls missing over the whole period
     for roller in range(4):
         near = channels.near_others(roller)
         near |= np.roll(near, 1) | np.roll(near, -1)  # the scan samples sit between them
@@ -238,11 +238,12 @@ def wall_gaps(drive: wc.WobbleCam, cam, crossings=None) -> list[WallGap]:
             miss = np.zeros(SCAN, dtype=bool)
             miss[near] = _missing(channels, cam, roller, theta[near], wall)
             for i, j in _runs(miss):
-                if (i, j) == (0, SCAN - 1):  # pragma: no cover - the wall is nowhere
-                    raise RotorkinError(f"roller {roller + 1} has no wall {wall} at all")
+                if (i, j) == (0, SCAN - 1):  # the wall is nowhere (the grooves cut it away)
+                    whole.append(WallGap(roller, wall, 0.0, period, period))
+                    continue
                 brackets.append((roller, wall, theta[i % SCAN] - step, theta[i % SCAN]))
                 brackets.append((roller, wall, theta[j % SCAN] + step, theta[j % SCAN]))
-    out = []
+    out = whole
     if brackets:
         roller, wall, a, b = (np.array(x) for x in zip(*brackets, strict=True))
         for _ in range(_BISECT):  # a: the wall there, b: missing

@@ -104,6 +104,7 @@ __all__ = [
     "ForceParams",
     "Forces",
     "from_config",
+    "rail_violation",
     "solve",
     "pairs",
     "summary",
@@ -172,8 +173,8 @@ def force_params(cfg: dict, cam: cs.SphericalCam) -> ForceParams:
         fp = ForceParams(**values)
     except ParameterError as exc:
         raise ParameterError(f"drive.{exc.name}", exc.value, exc.admissible) from None
-    least = cam.outer_radius + fp.rail_roller_radius
-    if not fp.rail_radius > least:
+    if rail_violation(fp.rail_radius, cam.outer_radius, fp.rail_roller_radius):
+        least = cam.outer_radius + fp.rail_roller_radius
         raise ParameterError(
             "drive.rail_radius",
             fmt_mm(fp.rail_radius),
@@ -181,6 +182,13 @@ def force_params(cfg: dict, cam: cs.SphericalCam) -> ForceParams:
             "sphere_radius + shell_thickness/2 + rail_roller_radius)",
         )
     return fp
+
+
+def rail_violation(rail_radius, shell_outer_radius, rail_roller_radius):
+    """Where the rail rollers do not clear the cam shell (arrays broadcast): ``True`` unless
+    ``rail_radius > shell_outer_radius + rail_roller_radius``."""
+    with np.errstate(invalid="ignore"):
+        return ~(np.asarray(rail_radius) > np.asarray(shell_outer_radius) + rail_roller_radius)
 
 
 def from_config(cfg: dict):

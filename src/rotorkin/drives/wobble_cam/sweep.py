@@ -30,6 +30,7 @@ their vectorised ``violation`` functions.
 from __future__ import annotations
 
 import contextlib
+from dataclasses import fields
 
 import numpy as np
 
@@ -43,7 +44,9 @@ from rotorkin.core.batch import (
     run_blocks,
     sample_grid,
 )
+from rotorkin.drives.wobble_cam import cam as cs
 from rotorkin.drives.wobble_cam import chambers as wch
+from rotorkin.drives.wobble_cam import forces as fo
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam.fast import rotor_kinematics
 from rotorkin.drives.wobble_cam.sweep_cycle import fuel_air_cycle
@@ -219,25 +222,45 @@ def reasons(p, code: dict) -> np.ndarray:
 
     The machine's and the drive's own vectorised checks
     (:func:`rotorkin.machines.twin_rotor.violation`,
-    :func:`rotorkin.drives.wobble_cam.kinematics.violation`,
-    :func:`rotorkin.drives.wobble_cam.chambers.compression_ratio_violation`), then the
-    ideal cycle's, in the order the study meets them.
+    :func:`rotorkin.drives.wobble_cam.kinematics.violation`), with a ``[cam]`` section the
+    spherical cam's (:func:`rotorkin.drives.wobble_cam.cam.cam_violation`: every command
+    refuses what ``export`` would, before the study), then
+    :func:`rotorkin.drives.wobble_cam.chambers.compression_ratio_violation`, the cycle's,
+    and last the rail rollers against the cam shell
+    (:func:`rotorkin.drives.wobble_cam.forces.rail_violation`, where the cam fits: the pair
+    forces), in the order the study meets them.
     """
     r = np.zeros(p.n, dtype=np.int16)
     with np.errstate(all="ignore"):
         m = _machine_args(p)
-        first = tr.violation(**m)
-        for i, name in enumerate(tr.CHECKED, start=1):
-            if f"machine.{name}" in code:
-                flag(r, first == i, code[f"machine.{name}"])
         tilt, alpha = p.float("drive.plate_tilt"), p.float("drive.roller_axis_angle")
         d = p.cfg["drive"]
-        first = wc.violation(tilt, alpha, p.float("drive.spin_ratio"),
-                             p.float("drive.sphere_radius"), m["pistons_per_rotor"],
-                             d.get("spin_a") or (), d.get("spin_b") or ())  # fmt: skip
-        for i, name in enumerate(wc.CHECKED, start=1):
-            key = "machine.pistons_per_rotor" if name == "pistons_per_rotor" else f"drive.{name}"
-            flag(r, first == i, code.get(key, code["other"]))
+
+        def machine():
+            first = tr.violation(**m)
+            for i, name in enumerate(tr.CHECKED, start=1):
+                if f"machine.{name}" in code:
+                    flag(r, first == i, code[f"machine.{name}"])
+
+        def drive():
+            first = wc.violation(tilt, alpha, p.float("drive.spin_ratio"),
+                                 p.float("drive.sphere_radius"), m["pistons_per_rotor"],
+                                 d.get("spin_a") or (), d.get("spin_b") or ())  # fmt: skip
+            for i, name in enumerate(wc.CHECKED, start=1):
+                key = f"drive.{name}"
+                key = "machine.pistons_per_rotor" if name == "pistons_per_rotor" else key
+                flag(r, first == i, code.get(key, code["other"]))
+
+        shell = _cam_args(p)
+        cam_code = cs.cam_violation(p.float("drive.sphere_radius"), **shell)
+        if "cam" in p.cfg:  # the cam's checks come first, with the drive's (as export's)
+            drive()
+            for i, name in enumerate(cs.CAM_CHECKED, start=1):
+                flag(r, cam_code == i, code.get(cs.config_key(name), code["other"]))
+            machine()
+        else:
+            machine()
+            drive()
         npist = m["pistons_per_rotor"]
         n_f = np.where((npist >= 2) & (npist % 2 == 0), npist, 4).astype(float)
         gaps = wc.chamber_gaps(tilt, alpha, n_f)
@@ -257,7 +280,28 @@ def reasons(p, code: dict) -> np.ndarray:
         bad = ec.cycle_violation(*(p.float(f"loads.{key}") for key in ec.CYCLE_CHECKS))
         for i, key in enumerate(ec.CYCLE_CHECKS, start=1):
             flag(r, bad == i, code[f"loads.{key}"])
+        # the pair forces of a cam that fits: its rail rollers must clear the shell
+        outer = p.float("drive.sphere_radius") + 0.5 * shell["shell_thickness"]
+        rail = fo.rail_violation(_drive_value(p, "rail_radius"), outer,
+                                 _drive_value(p, "rail_roller_radius"))  # fmt: skip
+        flag(r, (cam_code == 0) & rail, code.get("drive.rail_radius", code["other"]))
     return r
+
+
+def _cam_args(p) -> dict:
+    """The spherical cam's fields of the base config (defaults where it has none)."""
+    c = p.cfg.get("cam") or {}
+    keys = ("roller_radius", "shell_thickness", "groove_depth", "running_clearance",
+            "roller_length", "roller_end_gap")  # fmt: skip
+    defaults = {f.name: f.default for f in fields(cs.SphericalCam) if f.name in keys}
+    return {k: defaults[k] if c.get(k) is None else c[k] for k in keys}
+
+
+def _drive_value(p, key: str):
+    """A force parameter ``drive.<key>`` of the designs, or its default."""
+    if f"drive.{key}" in p.cfg["drive"] or p.varies(f"drive.{key}"):
+        return p.float(f"drive.{key}")
+    return getattr(fo.ForceParams, key)
 
 
 # --------------------------------------------------------------------------------------------
