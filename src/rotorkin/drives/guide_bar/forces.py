@@ -75,6 +75,7 @@ import numpy as np
 
 from rotorkin.analysis.pairs import Pair
 from rotorkin.core.errors import ParameterError
+from rotorkin.core.schema import ContactSection
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar.schema import (
     DRIVE_LENGTH_MAX,
@@ -155,6 +156,11 @@ def gearing(drive: dict) -> Gearing:
         raise ParameterError(f"drive.{exc.name}", exc.value, exc.admissible) from None
 
 
+def bearing_radius(cfg: dict) -> float:
+    """The bearings' journal radius of a validated config (``contact.bearing_radius``)."""
+    return float({**ContactSection().model_dump(), **(cfg.get("contact") or {})}["bearing_radius"])
+
+
 def drive_torques(params: gb.GuideBar, theta, member_torques, inertias, omega, omega_dot=0.0):
     """Torque the drive must put on each impeller, ``D_k = J_k qdd_k - M_k`` [N*m], shape (2, n).
 
@@ -166,12 +172,14 @@ def drive_torques(params: gb.GuideBar, theta, member_torques, inertias, omega, o
     member_torques : array_like, shape (2, n)
         ``M_k``: torque of the pump on impeller k along ``+q_k`` [N*m].
     inertias : (float, float)
-        ``J_1``, ``J_2`` [kg*m^2].
+        ``J_1``, ``J_2`` [kg*m^2]; with parameters of designs ``(m, 1)``, columns of
+        that shape (every array then ``(2, m, n)``).
     omega, omega_dot : float or ndarray, shape (n,)
         Input speed and acceleration [rad/s, rad/s^2].
     """
     dq, d2q, _ = gb.impeller_rates(params, theta)
-    j = np.asarray(inertias, dtype=float).reshape(2, 1)
+    j = np.stack(np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in inertias)))
+    j = j.reshape(j.shape + (1,) * (d2q.ndim - j.ndim))  # (2, 1) or columns (2, m, 1)
     w, wd = np.asarray(omega, dtype=float), np.asarray(omega_dot, dtype=float)
     return j * (d2q * w**2 + dq * wd) - np.asarray(member_torques, dtype=float)
 
@@ -234,17 +242,18 @@ class Forces:
 
 
 def _mesh_force(tangential, normal_out, tan_alpha):
-    """Force on a gear at its pitch point [N], (2, 2, n): ``F_t t - |F_t| tan(alpha) e``.
+    """Force on a gear at its pitch point [N], (2, 2, ...): ``F_t t - |F_t| tan(alpha) e``.
 
-    ``normal_out`` is the unit vector from the gear's axis to its mate's, (2,) or (2, n);
+    ``normal_out`` is the unit vector from the gear's axis to its mate's, shape (2, ...)
+    with the parameters' shape (it broadcasts with ``tangential``'s after padding);
     ``t = z x normal_out`` (the gear's counter-clockwise tangent); the radial part pushes the
     gear away from its mate.
     """
     e = np.asarray(normal_out, dtype=float)
+    e = e.reshape(e.shape + (1,) * (tangential.ndim - e.ndim))  # aligned with the angles
     t = np.stack([-e[1], e[0]])
-    ft = tangential[:, None, :]
-    shape = (1, 2, 1) if e.ndim == 1 else (1, *e.shape)
-    return ft * t.reshape(shape) - np.abs(ft) * tan_alpha * e.reshape(shape)
+    ft = tangential[:, None]
+    return ft * t[None] - np.abs(ft) * tan_alpha * e[None]
 
 
 def solve(params: gb.GuideBar, size: Gearing, theta, impeller_torques) -> Forces:
@@ -253,11 +262,13 @@ def solve(params: gb.GuideBar, size: Gearing, theta, impeller_torques) -> Forces
     Parameters
     ----------
     params : GuideBar
-        Scalar parameters (``driver`` a string).
+        Scalar parameters, or columns of designs ``(m, 1)`` (``driver`` a string or an
+        array of them); every array of the result then has the designs' axis before the
+        angles'.
     size : Gearing
     theta : array_like, shape (n,)
         Input angles [rad].
-    impeller_torques : array_like, shape (2, n)
+    impeller_torques : array_like, shape (2, n) or (2, m, n)
         ``D_k`` (:func:`drive_torques`) [N*m].
 
     Returns
@@ -265,46 +276,43 @@ def solve(params: gb.GuideBar, size: Gearing, theta, impeller_torques) -> Forces
     Forces
     """
     theta = np.asarray(theta, dtype=float)
-    lam, u = float(params.lam), float(params.gear_ratio)
-    i12 = float(params.input_gear_ratio)
+    lam, u, i12 = (np.asarray(v, dtype=float) for v in (params.lam, params.gear_ratio,
+                                                        params.input_gear_ratio))  # fmt: skip
     a = float(size.crank_length)
     r1, r6 = float(size.input_pitch_radius), float(size.output_pitch_radius)
     r2, r7 = i12 * r1, u * r6
     ta = np.tan(float(size.pressure_angle))
-    D = np.broadcast_to(np.asarray(impeller_torques, dtype=float), (2, theta.size))
 
     x = gb.driving_angles(params, theta)
+    D = np.broadcast_to(np.asarray(impeller_torques, dtype=float), x.shape)
     f, f1, _, _ = gb.driven_angle(lam, params.driver, x)
-    crank_driven = params.driver == "crank"
-    phi_c, phi_g = (x, f) if crank_driven else (f, x)
-    uniform = np.full_like(f1, 1.0 / i12)
-    rate_c, rate_g = (uniform, f1 / i12) if crank_driven else (f1 / i12, uniform)
+    crank_driven = np.asarray(params.driver) == "crank"
+    phi_c, phi_g = np.where(crank_driven, x, f), np.where(crank_driven, f, x)
+    uniform = np.broadcast_to(1.0 / i12, f1.shape)
+    rate_c = np.where(crank_driven, uniform, f1 / i12)
+    rate_g = np.where(crank_driven, f1 / i12, uniform)
     root = np.sqrt(1.0 + 2.0 * lam * np.cos(phi_c) + lam * lam)
     s = a * root
     ds = -a * lam * np.sin(phi_c) / root * rate_c
     c = np.cos(phi_c - phi_g)
-    n_g = np.stack([-np.sin(phi_g), np.cos(phi_g)], axis=1)  # (2, 2, n)
+    n_g = np.stack([-np.sin(phi_g), np.cos(phi_g)], axis=1)  # (2, 2, ...)
 
     L = -D / u  # gear 7 on gear 6, along the driven member's turning
-    if crank_driven:
-        N = L / s
-        T = -N * a * c
-    else:
-        N = -L / (a * c)
-        T = N * s
-    pin = N[:, None, :] * n_g  # block on crank
+    with np.errstate(divide="ignore", invalid="ignore"):  # the other driver's branch
+        N = np.where(crank_driven, L / s, -L / (a * c))
+    T = np.where(crank_driven, -N * a * c, N * s)
+    pin = N[:, None] * n_g  # block on crank
 
     # the frame line points from the driven member's pivot to the driving member's: +x
     # crank-driven (C -> A), -x guide-driven; gear 1 lies along it, the impellers against it
-    e_in = np.array([1.0, 0.0]) if crank_driven else np.array([-1.0, 0.0])
+    along = np.where(crank_driven, 1.0, -1.0)
+    e_in = np.stack([along, np.zeros_like(along)])
     f_in = _mesh_force(T / r2, e_in, ta)  # gear 1 on gear 2 (9), at the driving pivot
     f_out = _mesh_force(L / r6, -e_in, ta)  # gear 7 on gear 6, at the driven pivot
-    if crank_driven:  # crank + gear 2, guide bar + gear 6
-        crank_bearing = -(pin + f_in)
-        guide_bearing = -(-pin + f_out)
-    else:  # guide bar + gear 2, crank + gear 6
-        crank_bearing = -(pin + f_out)
-        guide_bearing = -(-pin + f_in)
+    # crank-driven: crank + gear 2, guide bar + gear 6; guide-driven: guide bar + gear 2,
+    # crank + gear 6
+    crank_bearing = -(pin + np.where(crank_driven, f_in, f_out))
+    guide_bearing = -(-pin + np.where(crank_driven, f_out, f_in))
     return Forces(
         crank_angle=phi_c,
         guide_angle=phi_g,
@@ -337,14 +345,17 @@ def pairs(params: gb.GuideBar, size: Gearing, forces: Forces, bearing_radius: fl
     Slips per unit input speed: the block's ``|ds/dtheta|``; a bearing's journal radius
     times the relative turning speed; a mesh's pitch-line speed times ``cos alpha``.
     """
-    i12, u = float(params.input_gear_ratio), float(params.gear_ratio)
+    i12, u = np.asarray(params.input_gear_ratio, float), np.asarray(params.gear_ratio, float)
     alpha = float(size.pressure_angle)
     r1, r6 = float(size.input_pitch_radius), float(size.output_pitch_radius)
     r2, r7 = i12 * r1, u * r6
     rb = float(bearing_radius)
     F = forces
     ca = np.cos(alpha)
-    crank_driven = params.driver == "crank"
+    drivers = set(np.unique(np.asarray(params.driver)))
+    if len(drivers) != 1:
+        raise ValueError("the pairs of designs with different drivers: one driver at a time")
+    crank_driven = drivers == {"crank"}
     gear_in, gear_out = ("crank", "guide bar") if crank_driven else ("guide bar", "crank")
     n = F.shaft_torque.shape
     driven_rate = F.guide_rate if crank_driven else F.crank_rate
@@ -399,31 +410,58 @@ def pairs(params: gb.GuideBar, size: Gearing, forces: Forces, bearing_radius: fl
     return out
 
 
+#: Keys of :func:`own_summary`, in its order.
+SUMMARY_KEYS = (
+    "load_reversals_per_period",
+    "peak_slider_force_N",
+    "peak_slider_speed_m_per_s",
+    "peak_input_mesh1_tangential_force_N",
+    "peak_input_mesh2_tangential_force_N",
+    "peak_impeller_mesh1_tangential_force_N",
+    "peak_impeller_mesh2_tangential_force_N",
+    "peak_crank_bearing_load_N",
+    "peak_guide_pivot_load_N",
+    "peak_input_bearing_load_N",
+)
+
+
 def own_summary(forces: Forces, omega) -> dict:
     """The drive's own peaks: slider force and speed, mesh tangential forces, pivot loads, and
-    how often per period the load on an impeller's mesh (and on its slot's walls) reverses."""
+    how often per period the load on an impeller's mesh (and on its slot's walls) reverses.
+
+    Floats for one design; arrays ``(m,)`` for forces of designs ``(m, 1)`` (:func:`solve`).
+    """
     w = np.asarray(omega, dtype=float)
-    reversals = 0
-    for k in (0, 1):  # over the samples of a period; where the load is 0 no wall is chosen
-        sign = np.sign(forces.impeller_torque[k])
-        sign = sign[sign != 0]
-        reversals = max(reversals, int(np.sum(sign[1:] != sign[:-1])))
+
+    def peak(values, axis=(0, -1)):
+        return np.max(values, axis=axis)
+
+    # over the samples of a period; where the load is 0 no wall is chosen
+    reversals = np.max(_sign_changes(np.sign(forces.impeller_torque)), axis=0)
     out = {
         "load_reversals_per_period": reversals,
-        "peak_slider_force_N": float(np.max(np.abs(forces.slider))),
-        "peak_slider_speed_m_per_s": float(np.max(np.abs(forces.pin_slip) * w)),
+        "peak_slider_force_N": peak(np.abs(forces.slider)),
+        "peak_slider_speed_m_per_s": peak(np.abs(forces.pin_slip) * w),
     }
     for k in (0, 1):
-        out[f"peak_input_mesh{k + 1}_tangential_force_N"] = float(
-            np.max(np.abs(forces.input_mesh[k])))  # fmt: skip
+        out[f"peak_input_mesh{k + 1}_tangential_force_N"] = peak(np.abs(forces.input_mesh[k]),
+                                                                 -1)  # fmt: skip
     for k in (0, 1):
-        out[f"peak_impeller_mesh{k + 1}_tangential_force_N"] = float(
-            np.max(np.abs(forces.impeller_mesh[k])))  # fmt: skip
+        out[f"peak_impeller_mesh{k + 1}_tangential_force_N"] = peak(
+            np.abs(forces.impeller_mesh[k]), -1)  # fmt: skip
     for key, vec in (("crank_bearing", forces.crank_bearing),
                      ("guide_pivot", forces.guide_bearing)):  # fmt: skip
-        out[f"peak_{key}_load_N"] = float(np.max(np.hypot(vec[:, 0], vec[:, 1])))
-    out["peak_input_bearing_load_N"] = float(np.max(np.hypot(*forces.input_bearing)))
-    return out
+        out[f"peak_{key}_load_N"] = peak(np.hypot(vec[:, 0], vec[:, 1]))
+    out["peak_input_bearing_load_N"] = peak(np.hypot(*forces.input_bearing), -1)
+    return {k: v.item() if np.ndim(v) == 0 else v for k, v in out.items()}
+
+
+def _sign_changes(sign):
+    """Changes of sign along the last axis, zeros skipped (the sign before them carries on)."""
+    at = np.arange(sign.shape[-1])
+    last = np.maximum.accumulate(np.where(sign != 0, at, 0), axis=-1)
+    held = np.take_along_axis(sign, last, axis=-1)
+    return np.sum((held[..., 1:] != held[..., :-1]) & (held[..., :-1] != 0), axis=-1)
 
 
 #: Docs of :func:`signed_columns`.

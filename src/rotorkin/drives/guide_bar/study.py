@@ -30,7 +30,7 @@ import numpy as np
 
 from rotorkin.analysis import pairs as pr
 from rotorkin.core.errors import ParameterError
-from rotorkin.core.schema import ContactSection, RunSection
+from rotorkin.core.schema import RunSection
 from rotorkin.drives.guide_bar import figures as figures_guide_bar
 from rotorkin.drives.guide_bar import forces as gb_forces
 from rotorkin.drives.guide_bar import kinematics as gb
@@ -289,8 +289,7 @@ def pair_forces(cfg: dict, params: gb.GuideBar, state: dict, theta, inertia):
     D = gb_forces.drive_torques(params, theta, state["M"], inertia[1], state["omega"],
                                 state["omega_dot"])  # fmt: skip
     forces = gb_forces.solve(params, size, theta, D)
-    contact = {**ContactSection().model_dump(), **(cfg.get("contact") or {})}
-    return forces, gb_forces.pairs(params, size, forces, float(contact["bearing_radius"]))
+    return forces, gb_forces.pairs(params, size, forces, gb_forces.bearing_radius(cfg))
 
 
 def _forces_summary(cfg, params, pump, ports, inertia, speed, work_per_turn,
@@ -340,8 +339,7 @@ def pairs_of(cfg: dict):
     """``f(theta, drive_torque, motion) -> list[Pair]`` for a machine that is not the pump."""
     params = drive_params(cfg)
     size = gb_forces.gearing(cfg["drive"])
-    radius = float({**ContactSection().model_dump(), **(cfg.get("contact") or {})}
-                   ["bearing_radius"])  # fmt: skip
+    radius = gb_forces.bearing_radius(cfg)
 
     def f(theta, drive_torque, motion):
         return gb_forces.pairs(params, size, gb_forces.solve(params, size, theta, drive_torque),

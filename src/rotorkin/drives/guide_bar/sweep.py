@@ -24,8 +24,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorkin.analysis import pairs as ap
 from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.batch import Designs, flag, full, run_blocks, sample_grid
+from rotorkin.drives.guide_bar import forces as gb_forces
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar import pump as gb_pump
 from rotorkin.drives.guide_bar import summary as closed_forms
@@ -109,6 +111,9 @@ _FLOW = ("flow_mean_l_per_min", "hydraulic_power_W")
 _INERTIAS = ("inertia_shaft", "inertia_impeller_1", "inertia_impeller_2")
 #: Keys of the pump's dynamics (ideal ports; sampled).
 _DYNAMIC = closed_forms.FLOW_KEYS + closed_forms.TORQUE_KEYS + closed_forms.TIME_KEYS
+#: Keys of the pairs' forces, stresses and friction and the drive's own peaks (ideal
+#: ports; sampled with the dynamics).
+_FORCES = ap.NUMBER_KEYS + gb_forces.SUMMARY_KEYS
 
 CURVES = (
     "impeller1_angle_deg",
@@ -136,7 +141,7 @@ def metric_names(cfg: dict) -> tuple[str, ...]:
     speed = cfg.get("run", {}).get("speed")
     ideal = not (cfg.get("machine") or {}).get("port_land")
     return (_METRICS + (_FLOW if not isinstance(speed, list) else ())
-            + (_DYNAMIC if ideal else ()))  # fmt: skip
+            + (_DYNAMIC + _FORCES if ideal else ()))  # fmt: skip
 
 
 def _value(p, key: str):
@@ -239,20 +244,26 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
         flow = vp.displacement(pump) / (gb.period(params) / float(speed))  # volume / its time
         val["flow_mean_l_per_min"] = flow * 60.0e3
     val |= closed_forms.work_summary(params, pump, ports, flow)
-    if names & set(_DYNAMIC):
-        val |= _dynamics(p, samples, threads)
+    if names & set(_DYNAMIC + _FORCES):
+        work = full(val["indicated_work_J"], p.n) if names & set(_FORCES) else None
+        val |= _dynamics(p, samples, threads, work)
     return {name: full(val[name], p.n) for name in names}
 
 
-def _dynamics(p, samples: int, threads) -> dict:
-    """The :data:`_DYNAMIC` keys on ``samples`` input angles per design (ideal ports).
+def _dynamics(p, samples: int, threads, work=None) -> dict:
+    """The :data:`_DYNAMIC` keys on ``samples`` input angles per design (ideal ports), and
+    given the designs' indicated work per turn ``work``, the :data:`_FORCES` keys.
 
-    Designs of one input gear ratio (it sets the period) and one number of vanes (the
-    number of chambers) at a time; the study's
-    :func:`~rotorkin.drives.guide_bar.pump.pump_state` and
-    :func:`~rotorkin.drives.guide_bar.summary.dynamics_summary` on (block, 1) columns.
+    Designs of one input gear ratio (it sets the period), one number of vanes (the
+    number of chambers) and one driver at a time; the study's
+    :func:`~rotorkin.drives.guide_bar.pump.pump_state`,
+    :func:`~rotorkin.drives.guide_bar.summary.dynamics_summary` and the pairs' forces
+    (:func:`~rotorkin.drives.guide_bar.forces.solve`,
+    :func:`~rotorkin.drives.guide_bar.forces.pairs`,
+    :func:`rotorkin.analysis.pairs.summary`) on (block, 1) columns.
     """
     n = p.n
+    keys = _DYNAMIC + (_FORCES if work is not None else ())
     cols = {k: full(p.float(k), n) for k in ("drive.lambda", "drive.gear_ratio",
             "drive.input_gear_ratio", "drive.phase", "loads.suction_pressure",
             "loads.discharge_pressure")}  # fmt: skip
@@ -260,21 +271,30 @@ def _dynamics(p, samples: int, threads) -> dict:
         cols[k] = full(_value(p, f"machine.{k}"), n)
     if p["machine.vane_angle"] is not None:
         cols["vane_angle"] = full(p.float("machine.vane_angle"), n)
+    if work is not None:
+        cols["work"] = work
+        # the gears' and contacts' keys: the same for every design
+        size = gb_forces.gearing(p.cfg["drive"])
+        model = ap.ContactModel.from_config(p.cfg)
+        bearing = gb_forces.bearing_radius(p.cfg)
     driver = full(np.asarray(p["drive.driver"]), n, dtype=str)
+    drivers, driver_of = np.unique(driver, return_inverse=True)
     vanes = full(np.asarray(p["machine.vanes_per_impeller"]), n, dtype=np.int64)
     i12 = cols["drive.input_gear_ratio"]
     speed = p.cfg["run"]["speed"]
-    out = {k: np.empty(n) for k in _DYNAMIC}
-    for ratio, count in np.unique(np.stack([i12, vanes.astype(float)], axis=-1), axis=0):
-        rows = np.flatnonzero((i12 == ratio) & (vanes == count))
+    out = {k: np.empty(n) for k in keys}
+    kinds = np.stack([i12, vanes.astype(float), driver_of.reshape(-1).astype(float)], axis=-1)
+    for ratio, count, which in np.unique(kinds, axis=0):
+        rows = np.flatnonzero((i12 == ratio) & (vanes == count)
+                              & (driver_of.reshape(-1) == which))  # fmt: skip
         theta = sample_grid(gb.input_period(ratio), samples)
         omega = shaft_speed(theta, speed, gb.input_period(ratio))
 
-        def fn(lo, hi, rows=rows, count=int(count), theta=theta, omega=omega):
+        def fn(lo, hi, rows=rows, count=int(count), theta=theta, omega=omega,
+               driver=str(drivers[int(which)])):  # fmt: skip
             c = {k: v[rows[lo:hi], None] for k, v in cols.items()}
             params = gb.GuideBar(c["drive.lambda"], c["drive.gear_ratio"],
-                                 c["drive.input_gear_ratio"], c["drive.phase"],
-                                 driver[rows[lo:hi], None])  # fmt: skip
+                                 c["drive.input_gear_ratio"], c["drive.phase"], driver)  # fmt: skip
             pump = gb_pump.vane_pump(params, count, c.get("vane_angle"), c["hub_radius"],
                                      c["casing_radius"], c["axial_width"])  # fmt: skip
             ports = vp.PortPressures(c["loads.suction_pressure"], c["loads.discharge_pressure"])
@@ -283,10 +303,17 @@ def _dynamics(p, samples: int, threads) -> dict:
             val = closed_forms.dynamics_summary(params, st, inertia, theta,
                                                 c["speed_fluctuation"][:, 0])  # fmt: skip
             val |= time_peaks(st["motion"], omega, closed_forms.SLUGS)
-            return {k: np.broadcast_to(val[k], (hi - lo,)) for k in _DYNAMIC}
+            if work is not None:
+                torque = gb_forces.drive_torques(params, theta, st["M"], inertia[1],
+                                                 st["omega"], st["omega_dot"])  # fmt: skip
+                forces = gb_forces.solve(params, size, theta, torque)
+                found = gb_forces.pairs(params, size, forces, bearing)
+                val |= ap.summary(found, theta, c["work"][:, 0], model, st["omega"], batch=True)
+                val |= gb_forces.own_summary(forces, st["omega"])
+            return {k: np.broadcast_to(val[k], (hi - lo,)) for k in keys}
 
         res = run_blocks(fn, rows.size, samples, threads)
-        for k in _DYNAMIC:
+        for k in keys:
             out[k][rows] = res[k]
     return out
 
