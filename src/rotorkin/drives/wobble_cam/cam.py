@@ -54,6 +54,7 @@ __all__ = [
     "ROLLER_NAMES",
     "ROLLER_SLUGS",
     "SphericalCam",
+    "CAM_KEYS",
     "CAM_CHECKED",
     "cam_violation",
     "from_config",
@@ -86,6 +87,10 @@ ROLLER_NAMES = ("1", "1'", "2", "2'")
 ROLLER_SLUGS = ("1", "1p", "2", "2p")
 
 
+#: Fields of :class:`SphericalCam` set by the ``[cam]`` section (the sphere radius is the
+#: drive's).
+CAM_KEYS = ("roller_radius", "shell_thickness", "groove_depth", "running_clearance",
+            "roller_length", "roller_end_gap")  # fmt: skip
 #: Fields of :class:`SphericalCam` in the order it checks them (:func:`cam_violation`).
 CAM_CHECKED = ("sphere_radius", "shell_thickness", "groove_depth", "roller_radius",
                "running_clearance", "roller_end_gap", "roller_length")  # fmt: skip
@@ -296,10 +301,9 @@ def from_config(cfg: dict):
         key = key if "." in key else f"drive.{key}"
         raise ParameterError(key, exc.value, exc.admissible) from None
     c = cfg.get("cam") or {}
-    keys = ("roller_radius", "shell_thickness", "groove_depth", "running_clearance",
-            "roller_length", "roller_end_gap")  # fmt: skip
     try:
-        cam = SphericalCam(drive.sphere_radius, **{k: c[k] for k in keys if c.get(k) is not None})
+        cam = SphericalCam(drive.sphere_radius,
+                           **{k: c[k] for k in CAM_KEYS if c.get(k) is not None})  # fmt: skip
     except ParameterError as exc:
         raise ParameterError(config_key(exc.name), exc.value, exc.admissible) from None
     return drive, cam

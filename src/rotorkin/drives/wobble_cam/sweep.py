@@ -291,10 +291,8 @@ def reasons(p, code: dict) -> np.ndarray:
 def _cam_args(p) -> dict:
     """The spherical cam's fields of the base config (defaults where it has none)."""
     c = p.cfg.get("cam") or {}
-    keys = ("roller_radius", "shell_thickness", "groove_depth", "running_clearance",
-            "roller_length", "roller_end_gap")  # fmt: skip
-    defaults = {f.name: f.default for f in fields(cs.SphericalCam) if f.name in keys}
-    return {k: defaults[k] if c.get(k) is None else c[k] for k in keys}
+    defaults = {f.name: f.default for f in fields(cs.SphericalCam)}
+    return {k: defaults[k] if c.get(k) is None else c[k] for k in cs.CAM_KEYS}
 
 
 def _drive_value(p, key: str):
