@@ -223,7 +223,9 @@ class SphericalCam:
                                  f"0 mm < roller_radius < {fmt_mm(ri)} (the shell's inner "
                                  "radius)")  # fmt: skip
         if name == "running_clearance":
-            raise ParameterError(name, fmt_mm(float(self.running_clearance)),
+            c = self.running_clearance
+            c = fit_clearance(RUNNING_FIT, 2.0 * rho) if c is None else c
+            raise ParameterError(name, fmt_mm(float(c)),
                                  f"0 mm <= running_clearance <= {fmt_mm(0.5 * rho)} (half the "
                                  "roller radius)")  # fmt: skip
         if name == "roller_end_gap":
@@ -233,7 +235,8 @@ class SphericalCam:
                                  "from the shell's inner radius must fit below the groove "
                                  "bottom)")  # fmt: skip
         longest = np.sqrt((rb - gap) ** 2 - rho * rho) - ri
-        raise ParameterError(name, fmt_mm(float(self.roller_length)),
+        length = longest if self.roller_length is None else self.roller_length
+        raise ParameterError(name, fmt_mm(float(length)),
                              f"0 mm < roller_length <= {fmt_mm(longest)}, the largest that fits: "
                              f"from the shell's inner radius {fmt_mm(ri)} to roller_end_gap = "
                              f"{fmt_mm(gap)} inside the groove bottom {fmt_mm(rb)}")  # fmt: skip
