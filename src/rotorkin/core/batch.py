@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import copy
+import dataclasses
 import os
 from concurrent.futures import ThreadPoolExecutor
 from contextvars import ContextVar
@@ -24,6 +25,8 @@ __all__ = [
     "run_blocks",
     "flag",
     "block_progress",
+    "number",
+    "refuse_first",
 ]
 
 #: Samples per period of the sampled peaks: the studies' ``_PEAK_SAMPLES``.
@@ -169,3 +172,31 @@ def flag(reason: np.ndarray, bad, code: int) -> None:
     """Set ``reason`` to ``code`` where ``bad`` and no earlier check failed (in place)."""
     bad = np.broadcast_to(np.asarray(bad, dtype=bool), reason.shape)
     reason[(reason == 0) & bad] = code
+
+
+def number(value):
+    """A float for one design, an array of floats for a column of designs."""
+    return float(value) if np.ndim(value) == 0 else np.asarray(value, dtype=float)
+
+
+def refuse_first(params, codes) -> None:
+    """Refuse a parameter dataclass holding arrays of designs if any design is refused.
+
+    ``codes`` (the dataclass's vectorised ``violation``, 0 where admissible) has the
+    designs' shape; the first refused design is built alone, so the error raised is the
+    one the dataclass gives that design (its field, value and admissible range).
+    """
+    codes = np.asarray(codes)
+    bad = np.flatnonzero(codes)
+    if not bad.size:
+        return
+    at = np.unravel_index(bad[0], codes.shape)
+
+    def one(value):
+        if np.ndim(value) == 0 or isinstance(value, (tuple, list)):
+            return value
+        picked = np.broadcast_to(value, codes.shape)[at]
+        return picked.item() if hasattr(picked, "item") else picked
+
+    type(params)(**{f.name: one(getattr(params, f.name)) for f in dataclasses.fields(params)})
+    raise AssertionError("a refused design was admitted on its own")  # pragma: no cover

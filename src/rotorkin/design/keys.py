@@ -23,7 +23,7 @@ from rotorkin import drives
 from rotorkin.core.errors import ConfigError, ParameterError, shown
 from rotorkin.core.units import parse_quantity
 from rotorkin.io.config import validate_config
-from rotorkin.sweep.engine import kernel_of
+from rotorkin.sweep.engine import kernel_of, optional_metrics
 from rotorkin.sweep.spec import Field, bounds_of, field_of
 
 __all__ = [
@@ -222,7 +222,7 @@ def with_values(raw: dict, infos, values) -> tuple[dict, dict]:
 def numeric_metrics(cfg: dict) -> tuple[str, ...]:
     """Summary keys with a number (not a flag): the kernel's metrics and the study's summary."""
     kern = kernel_of(cfg["drive"]["type"], cfg)
-    names = [*kern.metric_names(cfg), *getattr(kern, "OPTIONAL_METRICS", ())]
+    names = [*kern.metric_names(cfg), *optional_metrics(kern, cfg)]
     try:
         summary = drives.evaluate(cfg).summary
     except ParameterError:  # the base design is refused: the kernel's names are all there is

@@ -51,7 +51,8 @@ class DriveSpec:
         ``KEYS``, ``CURVES``, ``ANGLE``, ``unsupported(cfg)``, ``metric_names(cfg)``,
         ``reasons(designs, code)``, ``metrics(designs, names, samples, threads)``,
         ``curves(designs, points)``, ``period(designs)``, optionally
-        ``OPTIONAL_METRICS``. Without it every design goes through ``study``.
+        ``OPTIONAL_METRICS`` or ``optional_metrics(cfg)`` (metrics computed on request
+        only). Without it every design goes through ``study``.
     sweep_recipes : callable, optional
         ``sweep_recipes(cfg) -> list[Recipe]``: the sweeps behind the paper's
         parameter-study figures (``rotorkin sweep --paper-figures``).

@@ -51,6 +51,7 @@ import numpy as np
 from rotorkin.analysis import engine_cycle as ec
 from rotorkin.analysis.torque import member_torques, shaft_torque_from_members
 from rotorkin.core.angles import fmt_mm
+from rotorkin.core.batch import number, refuse_first
 from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion
 
@@ -297,10 +298,15 @@ class TwinRotor:
 
     def __post_init__(self):
         try:
-            code = int(violation(**{f: getattr(self, f) for f in CHECKED}))
+            code = violation(**{f: getattr(self, f) for f in CHECKED})
         except (TypeError, ValueError):  # a value that is no number at all
             check_pistons(self.pistons_per_rotor)
             raise
+        if np.ndim(code):  # columns of designs (one number of pistons): each one admissible
+            check_pistons(self.pistons_per_rotor)
+            refuse_first(self, code)
+            return
+        code = int(code)
         if code:
             name = CHECKED[code - 1]
             if name == "pistons_per_rotor":
@@ -315,8 +321,8 @@ class TwinRotor:
 
     @property
     def member_inertias(self) -> tuple[float, float]:
-        """``(inertia_rotor_1, inertia_rotor_2)`` [kg m^2]."""
-        return float(self.inertia_rotor_1), float(self.inertia_rotor_2)
+        """``(inertia_rotor_1, inertia_rotor_2)`` [kg m^2] (arrays for columns of designs)."""
+        return number(self.inertia_rotor_1), number(self.inertia_rotor_2)
 
 
 @dataclass(frozen=True)
@@ -433,9 +439,10 @@ def displacement(swept_volume, chambers, cycles_per_rev):
 def volume_per_radian(machine: TwinRotor) -> float:
     """Volume of the cylinder per radian of chamber angle, K [m^3/rad].
 
-    :func:`section_volume_per_radian` of the machine's fields.
+    :func:`section_volume_per_radian` of the machine's fields (an array for columns of
+    designs).
     """
-    return float(
+    return number(
         section_volume_per_radian(
             machine.section,
             machine.inner_radius,
@@ -463,16 +470,25 @@ def _signs(machine, ndim=0):
 
 
 def _per_chamber(machine, pair, ndim=0):
-    """Chamber-kind values ``(A, B)`` spread over the 2N chambers, shape (2N, 1, ...)."""
+    """Chamber-kind values ``(A, B)`` spread over the 2N chambers, shape (2N, 1, ...).
+
+    ``A`` and ``B`` may be columns of designs broadcasting against the ``ndim`` trailing
+    axes (e.g. (designs, 1) with ``ndim = 2``).
+    """
     a, b = pair
-    return np.where(chamber_kinds(machine) == 0, a, b).reshape((-1,) + (1,) * ndim)
+    kinds = chamber_kinds(machine).reshape((-1,) + (1,) * ndim)
+    return np.where(kinds == 0, a, b)
 
 
-def volume_gradient(machine: TwinRotor) -> np.ndarray:
-    """``dV_j/dPhi_i`` [m^3/rad], shape (2, 2N): row 0 rotor 1 (``-s_j K``), row 1 rotor 2."""
+def volume_gradient(machine: TwinRotor, ndim: int = 0) -> np.ndarray:
+    """``dV_j/dPhi_i`` [m^3/rad], shape (2, 2N): row 0 rotor 1 (``-s_j K``), row 1 rotor 2.
+
+    With ``ndim`` trailing unit axes, shape (2, 2N, 1, ...), K broadcast into them (columns
+    of designs: (2, 2N, designs, 1) with ``ndim = 2``).
+    """
     k = volume_per_radian(machine)
-    s = _signs(machine)
-    return np.stack([-k * s, k * s])
+    s = _signs(machine, ndim)
+    return np.stack(np.broadcast_arrays(-k * s, k * s))
 
 
 def _offsets(machine, piston_width, ndim=0):
@@ -519,19 +535,20 @@ def chambers(machine: TwinRotor, motion: Motion, piston_width) -> Chambers:
     m = motion
     theta = np.asarray(m.theta, dtype=float)
     k = volume_per_radian(machine)
-    s = _signs(machine, theta.ndim)
+    nd = np.ndim(m.dq[0])  # the angles' axes, and the designs' for columns of designs
+    s = _signs(machine, nd)
     return Chambers(
         theta=theta,
         volume=chamber_volumes_from_rotors(machine, piston_width, m.q[0], m.q[1]),
         dvolume=k * s * (m.dq[1] - m.dq[0]),
         d2volume=k * s * (m.d2q[1] - m.d2q[0]),
-        dvolume_dq=volume_gradient(machine),
+        dvolume_dq=volume_gradient(machine, 0 if np.ndim(k) == 0 else nd),
         motion=m,
         piston_width=piston_width,
     )
 
 
-def volume_limits(machine: TwinRotor, angle_min, angle_max):
+def volume_limits(machine: TwinRotor, angle_min, angle_max, ndim: int = 0):
     """Smallest and largest volume of every chamber [m^3].
 
     Parameters
@@ -540,14 +557,16 @@ def volume_limits(machine: TwinRotor, angle_min, angle_max):
     angle_min, angle_max : pair of float
         Smallest and largest chamber angle of kind A and of kind B,
         ``(delta_A, delta_B)`` [rad].
+    ndim : int, optional
+        Trailing unit axes of the result (2 for columns of designs against the angles).
 
     Returns
     -------
-    (v_min, v_max) : tuple of ndarray, shape (2N,)
+    (v_min, v_max) : tuple of ndarray, shape (2N,) (with ``ndim``: (2N, 1, ...))
     """
     k, vc = volume_per_radian(machine), machine.clearance_volume
-    lo = _per_chamber(machine, angle_min)
-    hi = _per_chamber(machine, angle_max)
+    lo = _per_chamber(machine, angle_min, ndim)
+    hi = _per_chamber(machine, angle_max, ndim)
     return chamber_volume(k, lo, vc), chamber_volume(k, hi, vc)
 
 
@@ -649,11 +668,8 @@ def chamber_pressures(cycle, machine: TwinRotor, angle_min, angle_max, stroke, v
     """
     if not isinstance(cycle, ec.IdealCycle):
         return cycle.pressures(theta, stroke)
-    v_min, v_max = volume_limits(machine, angle_min, angle_max)
-    extra = (1,) * (np.ndim(volume) - 1)
-    return ec.cycle_pressure(
-        cycle, stroke, volume, v_max.reshape((-1,) + extra), v_min.reshape((-1,) + extra)
-    )
+    v_min, v_max = volume_limits(machine, angle_min, angle_max, np.ndim(volume) - 1)
+    return ec.cycle_pressure(cycle, stroke, volume, v_max, v_min)
 
 
 def engine_state(
@@ -688,9 +704,11 @@ def engine_state(
         Chamber 1's stroke counter at theta (:func:`stroke_counter`) [-].
     """
     ch = chambers(machine, motion, piston_width)
+    count = np.asarray(count, dtype=float)
+    count = count.reshape((1,) * (np.ndim(motion.q[0]) - count.ndim) + count.shape)
     stroke = strokes(machine, count)
     p = chamber_pressures(cycle, machine, angle_min, angle_max, stroke, ch.volume, ch.theta)
-    grad = ch.dvolume_dq.reshape(ch.dvolume_dq.shape + (1,) * ch.theta.ndim)
+    grad = ch.dvolume_dq.reshape(ch.dvolume_dq.shape + (1,) * (p.ndim + 1 - ch.dvolume_dq.ndim))
     members = member_torques(p, grad)
     return EngineState(
         chambers=ch,

@@ -49,6 +49,7 @@ from rotorkin.sweep.engine import (
     coverage,
     evaluate_designs,
     kernel_of,
+    optional_metrics,
     reason_keys,
     to_result,
     warn_fallback,
@@ -130,7 +131,7 @@ def _all_metrics(cfg: dict) -> tuple[str, ...]:
     """Numeric summary keys of the study (from the kernel list and one scalar run)."""
 
     kern = kernel_of(cfg["drive"]["type"], cfg)
-    names = [*kern.metric_names(cfg), *getattr(kern, "OPTIONAL_METRICS", ())]
+    names = [*kern.metric_names(cfg), *optional_metrics(kern, cfg)]
     try:
         summary = evaluate(cfg).summary
     except ParameterError:

@@ -191,11 +191,22 @@ def coverage(drive_type: str, cfg: dict, keys, metrics) -> tuple[list, list, str
             why = f"the kernel does not vary {', '.join(outside)}"
     if why is not None:
         return [], list(metrics), why
-    names = set(kern.metric_names(cfg)) | set(getattr(kern, "OPTIONAL_METRICS", ()))
+    names = set(kern.metric_names(cfg)) | set(optional_metrics(kern, cfg))
     fast = [m for m in metrics if m in names]
     slow = [m for m in metrics if m not in names]
     return fast, slow, (f"{len(slow)} metric(s) are not vectorized ({', '.join(slow[:4])}"
                         f"{', ...' if len(slow) > 4 else ''})" if slow else None)  # fmt: skip
+
+
+def optional_metrics(kern, cfg: dict) -> tuple[str, ...]:
+    """The metrics a kernel computes on request only, for this base config.
+
+    A kernel's ``optional_metrics(cfg)`` when it has one (they depend on the config), else
+    its ``OPTIONAL_METRICS``.
+    """
+    if hasattr(kern, "optional_metrics"):
+        return tuple(kern.optional_metrics(cfg))
+    return tuple(getattr(kern, "OPTIONAL_METRICS", ()))
 
 
 def warn_fallback(why: str | None, designs: int) -> None:

@@ -62,9 +62,11 @@ __all__ = [
     "distinct_grooves",
     "groove_derivatives",
     "groove_frame",
+    "frame_of",
     "groove_walls",
     "pressure_angle",
     "geodesic_curvature",
+    "curvature_of",
     "curvature_radius",
     "roller_radius_limit",
     "sharpest_bend",
@@ -327,7 +329,11 @@ def groove_frame(drive: wc.WobbleCam, theta):
     -------
     (e_r, t, n) : tuple of ndarray, shape (4, 3, ...)
     """
-    g, d1, _ = groove_derivatives(drive, theta)
+    return frame_of(*groove_derivatives(drive, theta)[:2])
+
+
+def frame_of(g, d1):
+    """:func:`groove_frame` from the centre-lines ``g`` and their derivatives ``d1``."""
     e_r = g / np.linalg.norm(g, axis=1, keepdims=True)
     t = d1 / np.linalg.norm(d1, axis=1, keepdims=True)
     return e_r, t, np.cross(e_r, t, axis=1)
@@ -419,7 +425,11 @@ def geodesic_curvature(drive: wc.WobbleCam, theta):
     -------
     ndarray, shape (4, ...)
     """
-    g, d1, d2 = groove_derivatives(drive, theta)
+    return curvature_of(*groove_derivatives(drive, theta))
+
+
+def curvature_of(g, d1, d2):
+    """:func:`geodesic_curvature` from the centre-lines and their first two derivatives."""
     e_r = g / np.linalg.norm(g, axis=1, keepdims=True)
     num = np.sum(np.cross(d1, d2, axis=1) * e_r, axis=1)
     return num / np.linalg.norm(d1, axis=1) ** 3

@@ -21,6 +21,13 @@ from __future__ import annotations
 import numpy as np
 
 from rotorkin.analysis import engine_cycle as ec
+from rotorkin.analysis.flywheel import energy_fluctuation, flywheel_inertia
+from rotorkin.analysis.torque import (
+    equivalent_inertia,
+    inertia_torque,
+    kinetic_energy,
+    torque_ripple,
+)
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.machines import twin_rotor as tr
 
@@ -40,6 +47,9 @@ __all__ = [
     "chamber_pressures",
     "engine_state",
     "indicated_work_per_rev",
+    "dynamics",
+    "DYNAMICS_KEYS",
+    "dynamics_summary",
 ]
 
 
@@ -173,14 +183,17 @@ def chamber_pressures(cycle: ec.IdealCycle, machine: tr.TwinRotor, layout, strok
     return tr.chamber_pressures(cycle, machine, *_extremes(layout), stroke, volume)
 
 
-def engine_state(drive: wc.WobbleCam, machine: tr.TwinRotor, cycle: ec.IdealCycle, theta):
+def engine_state(drive: wc.WobbleCam, machine: tr.TwinRotor, cycle: ec.IdealCycle, theta,
+                 layout=None):  # fmt: skip
     """Volumes, strokes, pressures, member torques and shaft gas torque at ``theta`` [rad].
 
     :func:`rotorkin.machines.twin_rotor.engine_state` with the rotors' motion,
-    the piston layout and chamber 1's stroke counter.
+    the piston layout (default: :func:`piston_layout`) and chamber 1's stroke counter.
+    Columns of designs: drive and machine holding arrays of shape (d, 1) against ``theta``
+    (n,) give every curve of shape (..., d, n).
     """
     _check(drive, machine)
-    layout = piston_layout(drive, machine)
+    layout = piston_layout(drive, machine) if layout is None else layout
     theta = np.asarray(theta, dtype=float)
     return tr.engine_state(
         machine,
@@ -199,3 +212,85 @@ def indicated_work_per_rev(drive, machine: tr.TwinRotor, cycle: ec.IdealCycle, l
     cycles per turn (:func:`rotorkin.analysis.engine_cycle.indicated_work`).
     """
     return tr.indicated_work_per_rev(machine, cycle, *_extremes(layout), cycles_per_rev(drive))
+
+
+def dynamics(machine: tr.TwinRotor, state: tr.EngineState, omega, omega_dot):
+    """Inertia torque, net shaft torque, ``J_eq`` and kinetic energy at the given speed.
+
+    ``omega``, ``omega_dot`` [rad/s, rad/s^2] at the state's angles; the net torque is the
+    gas torque less the torque that accelerates shaft and rotors.
+    """
+    dq, d2q = state.chambers.motion.dq, state.chambers.motion.d2q
+    j_s, j_m = machine.inertia_shaft, machine.member_inertias
+    t_in = inertia_torque(j_s, j_m, dq, d2q, omega, omega_dot)
+    return (
+        t_in,
+        state.shaft_torque - t_in,
+        equivalent_inertia(j_s, j_m, dq),
+        kinetic_energy(j_s, j_m, dq, omega),
+    )
+
+
+#: The keys of :func:`dynamics_summary`, in order.
+DYNAMICS_KEYS = (
+    "torque_ripple",
+    "torque_ripple_with_inertia",
+    "shaft_torque_max_Nm",
+    "shaft_torque_min_Nm",
+    "shaft_torque_with_inertia_max_Nm",
+    "shaft_torque_with_inertia_min_Nm",
+    "rotor_gas_torque_peak_Nm",
+    "equivalent_inertia_mean_kgm2",
+    "energy_fluctuation_J",
+    "speed_fluctuation_without_flywheel",
+    "speed_fluctuation",
+    "flywheel_inertia_kgm2",
+)
+
+
+def dynamics_summary(machine: tr.TwinRotor, state: tr.EngineState, theta, omega, omega_mean):
+    """Torque extremes and ripple, equivalent inertia, energy fluctuation and flywheel.
+
+    Parameters
+    ----------
+    machine : TwinRotor
+    state : EngineState
+        Over one turn ``theta`` (ends included), e.g. :func:`engine_state`.
+    theta : ndarray, shape (n,)
+        Shaft angles [rad].
+    omega : tuple of ndarray
+        ``(omega, omega_dot)`` at ``theta`` [rad/s, rad/s^2] (the run's speed profile).
+    omega_mean : float
+        Time-averaged shaft speed [rad/s]; the flywheel is sized at this constant speed
+        (net torque ``T_gas - T_inertia(omega_mean)``).
+
+    Returns
+    -------
+    dict
+        :data:`DYNAMICS_KEYS`: arrays of the designs for columns of designs (machine fields
+        of shape (d, 1), the state's angles last), else 0-d values.
+    """
+    _, net, j_eq, _ = dynamics(machine, state, omega[0], omega[1])
+    _, net_const, _, _ = dynamics(machine, state, omega_mean, 0.0)
+    d_e = energy_fluctuation(net_const, theta)
+    j_mean = np.mean(j_eq[..., :-1], axis=-1)
+    c_s = np.asarray(machine.speed_fluctuation, dtype=float)
+    c_s = c_s[..., 0] if c_s.ndim else c_s  # a column of designs: (d, 1) -> (d,)
+    torque = state.shaft_torque
+    held = j_mean * omega_mean**2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        unbound = np.where(held > 0, d_e / np.where(held > 0, held, 1.0), np.nan)
+    return {
+        "torque_ripple": torque_ripple(torque),
+        "torque_ripple_with_inertia": torque_ripple(net),
+        "shaft_torque_max_Nm": np.max(torque, axis=-1),
+        "shaft_torque_min_Nm": np.min(torque, axis=-1),
+        "shaft_torque_with_inertia_max_Nm": np.max(net, axis=-1),
+        "shaft_torque_with_inertia_min_Nm": np.min(net, axis=-1),
+        "rotor_gas_torque_peak_Nm": np.max(np.abs(state.member_torque), axis=(0, -1)),
+        "equivalent_inertia_mean_kgm2": j_mean,
+        "energy_fluctuation_J": d_e,
+        "speed_fluctuation_without_flywheel": unbound,
+        "speed_fluctuation": c_s,
+        "flywheel_inertia_kgm2": flywheel_inertia(d_e, omega_mean, c_s, j_mean),
+    }

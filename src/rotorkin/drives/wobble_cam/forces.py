@@ -108,6 +108,7 @@ __all__ = [
     "solve",
     "pairs",
     "summary",
+    "SUMMARY_KEYS",
     "columns",
 ]
 
@@ -262,14 +263,6 @@ def _to_fixed(v, theta):
     return np.stack([v[:, 0], c * v[:, 1] + s * v[:, 2], -s * v[:, 1] + c * v[:, 2]], axis=1)
 
 
-def _dot(a, b):
-    return np.sum(a * b, axis=-2)
-
-
-def _cross(a, b):
-    return np.cross(a, b, axis=-2)
-
-
 def solve(
     drive: wc.WobbleCam,
     cam: cs.SphericalCam,
@@ -297,38 +290,54 @@ def solve(
     guided : ndarray of bool, shape (4, n), optional
         Rollers that carry groove load (default all four; ``cam.guided`` gives those
         between both walls, away from the crossings).
+
+    Columns of designs: ``drive`` holding arrays of shape (d, 1) (one spin law), the
+    torques (2, d, n) and the inertias (d, 1) give every force of shape (..., d, n) (a
+    vector's xyz axis before the designs': (3, d, n), (4, 3, d, n)).
     """
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     omega = np.broadcast_to(np.asarray(omega, dtype=float), theta.shape)
     omega_dot = np.broadcast_to(np.asarray(omega_dot, dtype=float), theta.shape)
     moments = np.asarray(member_torque, dtype=float)
     phi, r, big_r = drive.plate_tilt, drive.sphere_radius, fp.rail_radius
+    shape = np.broadcast_shapes(theta.shape, np.shape(phi), np.shape(r),
+                                np.shape(drive.roller_axis_angle))  # fmt: skip
+    ax = -1 - len(shape)  # the xyz axis of the vectors (3, *shape) and (4, 3, *shape)
+
+    def _dot(a, b):
+        return np.sum(a * b, axis=ax)
+
+    def _cross(a, b):  # numpy's cross product, its arithmetic, without moving the axes
+        a, b = np.broadcast_arrays(a, b)
+        (a0, a1, a2), (b0, b1, b2) = (
+            [v[(slice(None),) * (v.ndim + ax) + (i,)] for i in range(3)] for v in (a, b)
+        )
+        return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=ax)
+
     spin = wc.spin_law(drive, theta)
     q, dq, d2q, _ = wc.rotor_angles(drive, theta)
-    jr = np.asarray(rotor_inertia, dtype=float).reshape(2, 1)
-    need = jr * (d2q * omega**2 + dq * omega_dot) - moments  # D_k, (2, n)
+    jr = [np.asarray(j, dtype=float) for j in rotor_inertia]
+    need = np.stack([jr[k] * (d2q[k] * omega**2 + dq[k] * omega_dot) - moments[k]
+                     for k in (0, 1)])  # D_k, (2, n)  # fmt: skip
 
     # geometry: roller directions, rail normals, groove normals (fixed frame), plate axis
-    c = wc.roller_offsets(drive.roller_axis_angle)[:, None]
+    c = wc.roller_offsets_against(drive, theta)
     e = np.moveaxis(wc.plate_point(phi, 1.0, theta, spin[0], c), 0, 1)  # (4, 3, n)
     e_u = np.moveaxis(wc.plate_point(phi, 1.0, theta, spin[0], c + 0.5 * np.pi), 0, 1)
     yz = np.hypot(e[:, 1], e[:, 2])  # (4, n)
     e_phi = np.stack([np.zeros_like(yz), e[:, 2] / yz, -e[:, 1] / yz], axis=1)
-    x_hat = np.array([1.0, 0.0, 0.0])[:, None]
+    x_hat = np.array([1.0, 0.0, 0.0]).reshape((3,) + (1,) * len(shape))
     x2 = np.stack(
-        [
-            np.full_like(theta, np.cos(phi)),
-            -np.sin(phi) * np.sin(theta),
-            -np.sin(phi) * np.cos(theta),
-        ]
+        np.broadcast_arrays(np.cos(phi), -np.sin(phi) * np.sin(theta), -np.sin(phi) * np.cos(theta))
     )
-    _, t_cam, n_cam = cs.groove_frame(drive, theta)
+    lines = cs.groove_derivatives(drive, theta)
+    _, t_cam, n_cam = cs.frame_of(*lines[:2])
     n = _to_fixed(n_cam, theta)
-    dg = cs.groove_derivatives(drive, theta)[1]
-    kappa = cs.geodesic_curvature(drive, theta)
+    dg = lines[1]
+    kappa = cs.curvature_of(*lines)
     if guided is None:
-        guided = np.ones((4,) + theta.shape, dtype=bool)
-    g = np.broadcast_to(np.asarray(guided, dtype=bool), (4,) + theta.shape).astype(float)
+        guided = np.ones((4,) + shape, dtype=bool)
+    g = np.broadcast_to(np.asarray(guided, dtype=bool), (4,) + shape).astype(float)
 
     # rails: each rotor's two rollers share D_k
     rho = big_r * yz
@@ -521,8 +530,33 @@ def pairs(f: Forces, cam: cs.SphericalCam, fp: ForceParams, model: pr.ContactMod
     return out
 
 
-def _mean(values, theta) -> float:
-    return float(np.trapezoid(values, theta) / (theta[-1] - theta[0]))
+def _mean(values, theta):
+    return np.trapezoid(values, theta, axis=-1) / (theta[-1] - theta[0])
+
+
+#: The keys of :func:`summary`, in order.
+SUMMARY_KEYS = (
+    "cam_shell_torque_share",
+    "cam_shell_natural_torque_share",
+    "output_torque_mean_Nm",
+    "shaft_output_torque_mean_Nm",
+    "cam_shell_torque_mean_Nm",
+    "groove_roller_force_max_N",
+    "groove_contact_stress_max_MPa",
+    "rail_roller_force_max_N",
+    "rail_contact_stress_max_MPa",
+    "plate_bearing_load_max_N",
+    "plate_bearing_moment_max_Nm",
+    "plate_gyroscopic_moment_max_Nm",
+    "cam_bearing_load_max_N",
+    "cam_tilting_moment_max_Nm",
+    "cam_bevel_thrust_max_N",
+    "gearbox_torque_max_Nm",
+    "bevel_mesh_force_max_N",
+    "bevel_idler_bearing_load_max_N",
+    "groove_crossing_force_max_N",
+    "groove_crossing_fraction",
+)
 
 
 def summary(f: Forces, plist, model: pr.ContactModel, guided=None) -> dict:
@@ -531,44 +565,58 @@ def summary(f: Forces, plist, model: pr.ContactModel, guided=None) -> dict:
     ``guided`` (shape (4, n), :func:`rotorkin.drives.wobble_cam.cam.guided`): the rollers
     between both walls; the others run through a groove crossing, and
     ``groove_crossing_force_max_N`` is the largest load one of them carries there.
+
+    For the forces of columns of designs (:func:`solve`; angles last, designs before them)
+    every key is an array of the designs: each peak over the pairs and the angles of one
+    design.
     """
     th = f.theta
+    batch = np.ndim(f.torque_total) > 1
+
+    def peak(x):  # the largest over all but the designs' axis (the one before the angles)
+        x = np.asarray(x)
+        return np.max(x, axis=tuple(range(x.ndim - 2)) + (-1,)) if batch else float(np.max(x))
+
     crossing = np.zeros(f.groove_force.shape, bool) if guided is None else ~np.asarray(guided)
     total = _mean(f.torque_total, th)
-    share = _mean(f.output_cam, th) / total if total != 0.0 else float("nan")
-    natural = _mean(f.torque_cam_grooves, th) / total if total != 0.0 else float("nan")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        share = np.where(total != 0.0, _mean(f.output_cam, th) / total, np.nan)
+        natural = np.where(total != 0.0, _mean(f.torque_cam_grooves, th) / total, np.nan)
     by_slug = {p.slug: p for p in plist}
 
-    def peak_stress(stem):
-        vals = [pr.stress(by_slug[f"{stem}{s}"], model) for s in _SLUGS]
-        return float(np.nanmax(np.abs(vals))) / 1e6 if np.any(np.isfinite(vals)) else float("nan")
+    def peak_stress(stem):  # NaN where no angle has a stress (a roller that never loads)
+        vals = np.abs(np.stack(np.broadcast_arrays(
+            *(pr.stress(by_slug[f"{stem}{s}"], model) for s in _SLUGS))))  # fmt: skip
+        top = np.fmax.reduce(np.fmax.reduce(vals, axis=-1), axis=0) / 1e6
+        return top if batch else float(top)
 
     tilt = f.plate_bearing_moment
     cam_tilt = np.hypot(f.cam_moment[1], f.cam_moment[2])
-    return {
+    out = {
         "cam_shell_torque_share": share,
         "cam_shell_natural_torque_share": natural,
         "output_torque_mean_Nm": total,
         "shaft_output_torque_mean_Nm": _mean(f.output_shaft, th),
         "cam_shell_torque_mean_Nm": _mean(f.output_cam, th),
-        "groove_roller_force_max_N": float(np.max(np.abs(f.groove_force))),
+        "groove_roller_force_max_N": peak(np.abs(f.groove_force)),
         "groove_contact_stress_max_MPa": peak_stress("groove"),
-        "rail_roller_force_max_N": float(np.max(np.abs(f.rail_force))),
+        "rail_roller_force_max_N": peak(np.abs(f.rail_force)),
         "rail_contact_stress_max_MPa": peak_stress("rail"),
-        "plate_bearing_load_max_N": float(np.max(np.linalg.norm(f.plate_bearing, axis=1))),
-        "plate_bearing_moment_max_Nm": float(np.max(np.linalg.norm(tilt, axis=0))),
-        "plate_gyroscopic_moment_max_Nm": float(np.max(np.linalg.norm(f.gyroscopic, axis=0))),
-        "cam_bearing_load_max_N": float(np.max(np.linalg.norm(f.cam_bearing, axis=1))),
-        "cam_tilting_moment_max_Nm": float(np.max(cam_tilt)),
-        "cam_bevel_thrust_max_N": float(np.max(f.cam_thrust)),
-        "gearbox_torque_max_Nm": float(np.max(np.abs(f.gearbox_torque))),
-        "bevel_mesh_force_max_N": float(np.max(f.mesh_force)),
-        "bevel_idler_bearing_load_max_N": float(np.max(f.idler_bearing)),
-        "groove_crossing_force_max_N": float(
-            np.max(np.where(crossing, np.abs(f.groove_force), 0.0))
-        ),
-        "groove_crossing_fraction": float(np.mean(np.any(crossing, axis=0))),
+        "plate_bearing_load_max_N": peak(np.linalg.norm(f.plate_bearing, axis=1)),
+        "plate_bearing_moment_max_Nm": peak(np.linalg.norm(tilt, axis=0)),
+        "plate_gyroscopic_moment_max_Nm": peak(np.linalg.norm(f.gyroscopic, axis=0)),
+        "cam_bearing_load_max_N": peak(np.linalg.norm(f.cam_bearing, axis=1)),
+        "cam_tilting_moment_max_Nm": peak(cam_tilt),
+        "cam_bevel_thrust_max_N": peak(f.cam_thrust),
+        "gearbox_torque_max_Nm": peak(np.abs(f.gearbox_torque)),
+        "bevel_mesh_force_max_N": peak(f.mesh_force),
+        "bevel_idler_bearing_load_max_N": peak(f.idler_bearing),
+        "groove_crossing_force_max_N": peak(np.where(crossing, np.abs(f.groove_force), 0.0)),
+        "groove_crossing_fraction": np.mean(np.any(crossing, axis=0), axis=-1),
     }
+    if batch:
+        return out
+    return {k: float(v) for k, v in out.items()}
 
 
 def columns(f: Forces) -> tuple[dict, dict]:

@@ -40,7 +40,7 @@ def _partials(drive: wc.WobbleCam, theta):
     ``dp/du = plate_point(theta - psi, u + pi/2)`` (the plate radius turned by 90 deg).
     """
     theta = np.asarray(theta, dtype=float)
-    c = wc.roller_offsets(drive.roller_axis_angle).reshape((4,) + (1,) * theta.ndim)
+    c = wc.roller_offsets_against(drive, theta)
     spin = wc.spin_law(drive, theta)
     cam = wc.cam_angle(theta)
     phi, r = drive.plate_tilt, drive.sphere_radius

@@ -54,6 +54,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorkin.core.angles import angle_near, fmt_deg, fmt_mm
+from rotorkin.core.batch import number, refuse_first
 from rotorkin.core.errors import ParameterError
 from rotorkin.core.motion import Motion
 from rotorkin.drives.wobble_cam.chambers import (
@@ -110,6 +111,7 @@ __all__ = [
     "min_compression_ratio",
     "piston_layout",
     "roller_offsets",
+    "roller_offsets_against",
     "plate_point",
     "groove_point",
     "roller_positions",
@@ -288,17 +290,21 @@ class WobbleCam:
     def __post_init__(self):
         _check_pistons(self.pistons_per_rotor)
         args = (self.plate_tilt, self.roller_axis_angle, self.spin_ratio, self.sphere_radius)
-        code = int(violation(*args, self.pistons_per_rotor))
-        if code:
-            _raise_violation(self, CHECKED[code - 1])
+        self._refuse(violation(*args, self.pistons_per_rotor))
         for name in ("spin_a", "spin_b"):
             coeffs = np.asarray(getattr(self, name), dtype=float).ravel()
             if not np.all(np.isfinite(coeffs)):
                 raise ParameterError(name, str(list(coeffs)), "finite coefficients [rad]")
             object.__setattr__(self, name, tuple(float(c) for c in coeffs))
-        code = int(violation(*args, self.pistons_per_rotor, self.spin_a, self.spin_b))
-        if code:
-            _raise_violation(self, CHECKED[code - 1])
+        self._refuse(violation(*args, self.pistons_per_rotor, self.spin_a, self.spin_b))
+
+    def _refuse(self, code) -> None:
+        """Raise the error of the first refused field (of the first refused design: the
+        fields may be columns of designs, one number of pistons)."""
+        if np.ndim(code):
+            refuse_first(self, code)
+        elif code:
+            _raise_violation(self, CHECKED[int(code) - 1])
 
 
 # --------------------------------------------------------------------------------------------
@@ -557,8 +563,21 @@ def roller_offsets(roller_axis_angle):
     Order: group 1 (``-alpha/2``, ``pi - alpha/2``), group 2 (``alpha/2``,
     ``pi + alpha/2``); roller 1 is index 0 (eq. 12).
     """
-    h = 0.5 * float(roller_axis_angle)
-    return np.array([-h, np.pi - h, h, np.pi + h])
+    h = 0.5 * np.asarray(roller_axis_angle, dtype=float)
+    return np.stack([-h, np.pi - h, h, np.pi + h])
+
+
+def roller_offsets_against(params: WobbleCam, theta):
+    """:func:`roller_offsets` of ``params`` shaped to broadcast against its points at ``theta``.
+
+    Shape (4, 1, ...) with the axes of ``theta`` and of the drive's fields broadcast: (4, 1)
+    for one design against angles (n,), (4, d, 1) or (4, 1, 1) for columns of designs
+    (fields of shape (d, 1)) against them.
+    """
+    c = roller_offsets(params.roller_axis_angle)
+    fields = (params.plate_tilt, params.roller_axis_angle, params.sphere_radius)
+    shape = np.broadcast_shapes(np.shape(theta), *(np.shape(v) for v in fields))
+    return c.reshape(c.shape[:1] + (1,) * (len(shape) - (c.ndim - 1)) + c.shape[1:])
 
 
 def plate_point(plate_tilt, radius, theta, spin_angle, offset):
@@ -616,7 +635,7 @@ def groove_point(plate_tilt, radius, theta, cam, spin_angle, offset):
 
 def _per_roller(params: WobbleCam, theta):
     theta = np.asarray(theta, dtype=float)
-    c = roller_offsets(params.roller_axis_angle).reshape((4,) + (1,) * theta.ndim)
+    c = roller_offsets_against(params, theta)
     return theta, spin_law(params, theta)[0], c
 
 
@@ -649,9 +668,10 @@ def groove_points(params: WobbleCam, theta):
 # pistons for a design compression ratio (eq. 21-22), cycle counts
 # --------------------------------------------------------------------------------------------
 def _gaps(params: WobbleCam):
-    """Smallest and largest centre-line gap of chamber kinds A and B [rad] (floats)."""
+    """Smallest and largest centre-line gap of chamber kinds A and B [rad] (floats; arrays
+    for columns of designs)."""
     g = chamber_gaps(params.plate_tilt, params.roller_axis_angle, params.pistons_per_rotor)
-    return tuple((float(lo), float(hi)) for lo, hi in g)
+    return tuple((number(lo), number(hi)) for lo, hi in g)
 
 
 def min_compression_ratio(params: WobbleCam) -> float:
@@ -699,7 +719,7 @@ class PistonLayout:
         return self.chamber_a_max - self.chamber_a_min
 
 
-def piston_layout(params: WobbleCam, compression_ratio: float) -> PistonLayout:
+def piston_layout(params: WobbleCam, compression_ratio: float, width=None) -> PistonLayout:
     """Piston width beta giving the design compression ratio (eq. 21-22, generalised).
 
     The chamber kind with the smaller minimum angle gets exactly
@@ -719,24 +739,35 @@ def piston_layout(params: WobbleCam, compression_ratio: float) -> PistonLayout:
     compression_ratio : float
         eps, ``min_compression_ratio(params) < eps < inf``.
 
+    For columns of designs (``params`` holding arrays, ``compression_ratio`` one or an
+    array) every field is an array of the designs, ``design_kind`` an array of "A"/"B".
+    With ``width`` (pistons as manufactured, e.g. a tolerance analysis holding the nominal
+    width) beta is that width and the compression ratio the one it gives.
+
     Raises
     ------
     ParameterError
-        named ``"compression_ratio"`` when eps is not admissible.
+        named ``"compression_ratio"`` when eps is not admissible (of the first such design).
     """
-    eps = float(compression_ratio)
+    eps, fixed = number(compression_ratio), width
     ga, gb = _gaps(params)
-    if compression_ratio_violation((ga, gb), eps):
-        lo_ratio = min_compression_ratio(params)
+    bad = compression_ratio_violation((ga, gb), eps) if fixed is None else False
+    if np.any(bad):
+        lo_ratio = zero_width_ratio((ga, gb))
+        first = np.unravel_index(np.argmax(bad), np.shape(bad))
         raise ParameterError(
             "compression_ratio",
-            f"{eps:g}",
-            f"compression_ratio > {lo_ratio:.4g} (the ratio of zero-width pistons at this "
-            "plate tilt and roller axis angle; a smaller one needs a negative piston width, "
-            "eq. 21)",
+            f"{float(np.broadcast_to(eps, np.shape(bad))[first]):g}",
+            f"compression_ratio > {float(np.broadcast_to(lo_ratio, np.shape(bad))[first]):.4g} "
+            "(the ratio of zero-width pistons at this plate tilt and roller axis angle; a "
+            "smaller one needs a negative piston width, eq. 21)",
         )
-    kind = "A" if design_kind_a((ga, gb)) else "B"
-    beta = float(piston_width((ga, gb), eps))
+    kind_a = design_kind_a((ga, gb))
+    kind = ("A" if kind_a else "B") if np.ndim(kind_a) == 0 else np.where(kind_a, "A", "B")
+    beta = number(piston_width((ga, gb), eps) if fixed is None else fixed)
+    if fixed is not None:  # the design kind's ratio at this width
+        lo, hi = np.where(kind_a, ga[0], gb[0]) - beta, np.where(kind_a, ga[1], gb[1]) - beta
+        eps = number(hi / lo)
     a = (ga[0] - beta, ga[1] - beta)
     b = (gb[0] - beta, gb[1] - beta)
     return PistonLayout(

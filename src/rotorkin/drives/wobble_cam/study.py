@@ -21,14 +21,7 @@ import numpy as np
 
 from rotorkin.analysis import engine_cycle as ec
 from rotorkin.analysis import pairs as pr
-from rotorkin.analysis.flywheel import energy_fluctuation, flywheel_inertia
 from rotorkin.analysis.timing import mean_speed, shaft_speed
-from rotorkin.analysis.torque import (
-    equivalent_inertia,
-    inertia_torque,
-    kinetic_energy,
-    torque_ripple,
-)
 from rotorkin.core.errors import ParameterError
 from rotorkin.drives.wobble_cam import cam as cs
 from rotorkin.drives.wobble_cam import engine as eng
@@ -204,24 +197,6 @@ def _columns(params, layout, points) -> dict:
 # --------------------------------------------------------------------------------------------
 # the engine: volumes, pressures, torques, inertia
 # --------------------------------------------------------------------------------------------
-def _dynamics(machine, state, omega, omega_dot):
-    """Inertia torque, net shaft torque, J_eq and kinetic energy at the given speed."""
-    dq, d2q = state.chambers.motion.dq, state.chambers.motion.d2q
-    j_s, j_m = machine.inertia_shaft, machine.member_inertias
-    t_in = inertia_torque(j_s, j_m, dq, d2q, omega, omega_dot)
-    return (
-        t_in,
-        state.shaft_torque - t_in,
-        equivalent_inertia(j_s, j_m, dq),
-        kinetic_energy(j_s, j_m, dq, omega),
-    )
-
-
-def _ratio(num, den) -> float:
-    """num/den as a float; NaN when den is 0 (e.g. no heat, no inertia)."""
-    return float(num / den) if den > 0 else float("nan")
-
-
 def _engine_summary(params, machine, cycle, layout, speed) -> dict:
     """Volumes, cycle, torques and flywheel; closed forms where they exist, else a fine grid."""
     v_min, v_max = eng.volume_limits(machine, layout)
@@ -242,12 +217,7 @@ def _engine_summary(params, machine, cycle, layout, speed) -> dict:
     state = eng.engine_state(params, machine, cycle, fine)
     omega = shaft_speed(fine, speed, wc.period(params))
     omega_mean = wc.period(params) / np.trapezoid(1.0 / omega[0], fine)  # time average
-    _, net, j_eq, _ = _dynamics(machine, state, omega[0], omega[1])
-    # flywheel at the constant mean speed: net torque T_gas - T_inertia(omega_mean)
-    _, net_const, _, _ = _dynamics(machine, state, omega_mean, 0.0)
-    d_e = float(energy_fluctuation(net_const, fine))
-    j_mean = float(np.mean(j_eq[:-1]))
-    cs = machine.speed_fluctuation
+    dynamics = eng.dynamics_summary(machine, state, fine, omega, omega_mean)
     mm3 = 1e6
     return {
         "pistons_per_rotor": int(machine.pistons_per_rotor),
@@ -273,19 +243,9 @@ def _engine_summary(params, machine, cycle, layout, speed) -> dict:
         "indicated_work_per_cycle_b_J": float(work_cycle[1]),
         "otto_efficiency": otto,
         "mean_torque_Nm": work_rev / wc.period(params),
-        "torque_ripple": float(torque_ripple(state.shaft_torque)),
-        "torque_ripple_with_inertia": float(torque_ripple(net)),
-        "shaft_torque_max_Nm": float(np.max(state.shaft_torque)),
-        "shaft_torque_min_Nm": float(np.min(state.shaft_torque)),
-        "shaft_torque_with_inertia_max_Nm": float(np.max(net)),
-        "shaft_torque_with_inertia_min_Nm": float(np.min(net)),
-        "rotor_gas_torque_peak_Nm": float(np.max(np.abs(state.member_torque))),
+        **{k: float(dynamics[k]) for k in eng.DYNAMICS_KEYS[:7]},
         "indicated_power_kW": work_rev * omega_mean / wc.period(params) / 1e3,
-        "equivalent_inertia_mean_kgm2": j_mean,
-        "energy_fluctuation_J": d_e,
-        "speed_fluctuation_without_flywheel": _ratio(d_e, j_mean * omega_mean**2),
-        "speed_fluctuation": float(cs),
-        "flywheel_inertia_kgm2": float(flywheel_inertia(d_e, omega_mean, cs, j_mean)),
+        **{k: float(dynamics[k]) for k in eng.DYNAMICS_KEYS[7:]},
     }
 
 
@@ -293,7 +253,7 @@ def _engine_columns(params, machine, cycle, speed, theta):
     state = eng.engine_state(params, machine, cycle, theta)
     ch = state.chambers
     omega = shaft_speed(theta, speed, wc.period(params))
-    t_in, net, j_eq, ke = _dynamics(machine, state, omega[0], omega[1])
+    t_in, net, j_eq, ke = eng.dynamics(machine, state, omega[0], omega[1])
     cols, docs = {}, {}
 
     def add(name, values, doc):

@@ -48,12 +48,13 @@ from rotorkin.drives.wobble_cam import cam as cs
 from rotorkin.drives.wobble_cam import chambers as wch
 from rotorkin.drives.wobble_cam import forces as fo
 from rotorkin.drives.wobble_cam import kinematics as wc
+from rotorkin.drives.wobble_cam import sweep_forces as swf
 from rotorkin.drives.wobble_cam.fast import rotor_kinematics
 from rotorkin.drives.wobble_cam.sweep_cycle import fuel_air_cycle
 from rotorkin.machines import fuel_air as fa
 from rotorkin.machines import twin_rotor as tr
 
-__all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "SAMPLED_METRICS", "OPTIONAL_METRICS",
+__all__ = ["DRIVE", "KEYS", "CURVES", "ANGLE", "SAMPLED_METRICS", "optional_metrics",
            "unsupported", "metric_names", "reasons", "metrics", "curves", "period"]  # fmt: skip
 
 DRIVE = "wobble_cam"
@@ -154,8 +155,16 @@ SAMPLED_METRICS = (
     "sampled_rotor_speed_ratio_min",
     "sampled_rotor_speed_ratio_max",
 )
-#: Metrics the kernel computes on request only (``--metrics``), not by default.
-OPTIONAL_METRICS = SAMPLED_METRICS
+
+
+def optional_metrics(cfg: dict) -> tuple[str, ...]:
+    """Metrics the kernel computes on request only (``--metrics``), not by default: the
+    sampled extremes and, with the ideal cycle, the engine's dynamics and the pairs' forces
+    (:mod:`rotorkin.drives.wobble_cam.sweep_forces`, 20 001 angles per design)."""
+    if _fuel_air(cfg):
+        return SAMPLED_METRICS
+    return SAMPLED_METRICS + swf.DYNAMIC + swf.FORCES
+
 
 #: Curves over one period (``keep_curves``): the study's columns of the same names.
 CURVES = (
@@ -362,9 +371,13 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
             val.update(_sampled_full(p, tilt, alpha, spin, n_f, beta, samples, threads))
         elif names & sampled:
             val.update(_sampled(p, tilt, alpha, spin, samples, threads))
-    if names & set(_MACHINE_METRICS):
+    dynamic = names & set(swf.DYNAMIC + swf.FORCES)
+    if names & set(_MACHINE_METRICS) or dynamic:
         val.update(_machine(p, n_f, cycles, ga, gb, beta, kind_a, a_lo, a_hi, b_lo, b_hi,
                             threads))  # fmt: skip
+    if dynamic:
+        val.update(swf.dynamics(p, names, samples, threads, val["indicated_work_J"], _cam_args(p),
+                                p.extra.get("piston_width")))  # fmt: skip
     for name in names:
         out[name] = full(val[name], n)
     return out
