@@ -161,3 +161,17 @@ def test_a_refused_design_in_a_column_is_refused_as_it_would_be_alone():
     assert many.value.name == "compression_ratio" and str(many.value).startswith(
         "compression_ratio = 2 "
     )
+
+
+def test_pistons_as_manufactured_keep_their_width_and_set_the_ratio():
+    nominal = wc.piston_layout(wc.WobbleCam(np.radians(45.0)), 10.0)
+    same = wc.piston_layout(wc.WobbleCam(np.radians(45.0)), 10.0, nominal.piston_width)
+    assert same.piston_width == nominal.piston_width
+    np.testing.assert_allclose(same.compression_ratio, 10.0, rtol=1e-12)
+    # a steeper plate swings the rails further: the same pistons compress more
+    tilts = np.radians([[45.0], [47.0]])
+    held = wc.piston_layout(wc.WobbleCam(tilts), 10.0, nominal.piston_width)
+    np.testing.assert_array_equal(held.piston_width, nominal.piston_width)
+    kind = held.design_kind[1, 0].lower()
+    lo, hi = (getattr(held, f"chamber_{kind}_{end}")[1, 0] for end in ("min", "max"))
+    assert held.compression_ratio[1, 0] == hi / lo > 10.0
