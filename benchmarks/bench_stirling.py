@@ -80,8 +80,11 @@ def main() -> None:
     info = machine()
     cases = [
         _case(m, n, args.studies, args.threads)
-        for m, n in (("adiabatic", args.adiabatic), ("schmidt", args.schmidt),
-                     ("linear", args.linear))  # fmt: skip
+        for m, n in (
+            ("adiabatic", args.adiabatic),
+            ("schmidt", args.schmidt),
+            ("linear", args.linear),
+        )  # fmt: skip
         if n > 0
     ]
     print(f"{info['cpu']} ({', '.join(info['vector_isa']) or 'no AVX'}), numpy "

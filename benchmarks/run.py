@@ -12,9 +12,12 @@ own floor (b') in the same rounds (``bench_kinematics.measure``) and compares th
 fallback / floor (b') and the allocating public call / the allocating floor. A ratio
 more than ``--tolerance`` (25 %) above its baseline fails the run (exit 1). Ratios,
 not times: both sides of a ratio are measured in the same rounds, so a shared,
-loaded machine or a different CPU moves them far less than the times. The baseline
-holds ratios per kernel (``numba`` when the ``fast`` extra is installed, else
-``numpy``); a kernel without a baseline is reported, not gated. Each run can be
+loaded machine moves them far less than the times. A different CPU does move them (an
+Intel Xeon's transcendental functions cost other multiples of each other than an AMD
+EPYC's: the guide bar's ratio is 1.67 on one, 2.43 on the other, for the same code),
+so the baseline holds ratios per CPU model and per kernel (``numba`` when the ``fast``
+extra is installed, else ``numpy``); a CPU or kernel without a baseline is reported, not
+gated. Each run can be
 appended to ``benchmarks/results/history.jsonl`` (``--record``: commit, date, machine,
 load, ratios), the record of the figures over commits.
 
@@ -87,9 +90,15 @@ def short(drives=None, rounds: int = 80, budget: float = 6.0, cap: int = 1000,
     }
 
 
+def reference(result: dict, baseline: dict):
+    """The baseline ratios of ``result``'s kernel on its CPU model (None: none recorded)."""
+    cpu = baseline.get("cpus", {}).get(result["machine"]["cpu"], {})
+    return cpu.get("kernels", {}).get(result["kernel"])
+
+
 def compare(result: dict, baseline: dict, tolerance: float = TOLERANCE) -> list[str]:
     """Regressions: lines ``drive ratio: now vs baseline (+x %)`` past ``tolerance``."""
-    ref = baseline.get("kernels", {}).get(result["kernel"])
+    ref = reference(result, baseline)
     if ref is None:
         return []
     bad = []
@@ -104,11 +113,13 @@ def compare(result: dict, baseline: dict, tolerance: float = TOLERANCE) -> list[
 
 
 def update_baseline(result: dict, path: Path = BASELINE) -> Path:
-    """Store ``result``'s ratios as the baseline of its kernel (other kernels kept)."""
+    """Store ``result``'s ratios as the baseline of its kernel on its CPU model (others kept)."""
     data = json.loads(path.read_text()) if path.exists() else {}
-    data.setdefault("about", "ratios of benchmarks/run.py --short (lower is better), per kernel")
-    data.setdefault("kernels", {})[result["kernel"]] = result["ratios"]
-    data.setdefault("recorded", {})[result["kernel"]] = {
+    data.setdefault("about", "ratios of benchmarks/run.py --short (lower is better), per CPU "
+                    "model and kernel")  # fmt: skip
+    cpu = data.setdefault("cpus", {}).setdefault(result["machine"]["cpu"], {})
+    cpu.setdefault("kernels", {})[result["kernel"]] = result["ratios"]
+    cpu.setdefault("recorded", {})[result["kernel"]] = {
         "commit": result["commit"],
         "date": result["date"],
         "points": result["points"],
@@ -292,8 +303,9 @@ def main(argv=None) -> int:
         print(f"baseline of kernel {result['kernel']} written to {path}")
         return 0
     baseline = json.loads(args.baseline.read_text()) if args.baseline.exists() else {}
-    if result["kernel"] not in baseline.get("kernels", {}):
-        print(f"no baseline for kernel {result['kernel']} in {args.baseline}: not gated")
+    if reference(result, baseline) is None:
+        print(f"no baseline for kernel {result['kernel']} on {result['machine']['cpu']} in "
+              f"{args.baseline}: not gated")  # fmt: skip
         return 0
     bad = compare(result, baseline, args.tolerance)
     if bad:  # measured once more, the better of the two kept (noise only ever adds time)
