@@ -9,7 +9,9 @@
   the load average;
 * :func:`scaling_probe` -- how much 2 processes gain over 1 here (scalar and SIMD work);
 * :func:`write_json` -- write a result file atomically;
-* :func:`wobble_vary` -- the `--vary` ranges of the wobble-cam sweep benchmarks.
+* :func:`wobble_vary` -- the `--vary` ranges of the wobble-cam sweep benchmarks;
+* :func:`against_study` -- the study's time per design and its largest difference from a
+  kernel's values (the like-for-like yardstick of the kernel benchmarks).
 """
 
 from __future__ import annotations
@@ -40,6 +42,7 @@ __all__ = [
     "git_commit",
     "scaling_probe",
     "write_json",
+    "against_study",
 ]
 
 
@@ -260,3 +263,20 @@ def wobble_vary(designs: int) -> dict:
         "drive.roller_axis_angle": f"80deg:100deg:{b}",
         "machine.compression_ratio": f"8:16:{c}",
     }
+
+
+def against_study(designs, metrics: dict, names, studies: int) -> tuple[float, float]:
+    """The first ``studies`` designs through the study: seconds per design, and the largest
+    relative difference of the kernel's ``metrics`` from the study's values (over the
+    finite, nonzero ones)."""
+    from rotorkin.drives import evaluate
+
+    start = time.perf_counter()
+    worst = 0.0
+    for i in range(studies):
+        summary = evaluate(designs.config(i)).summary
+        for name in names:
+            want, got = float(summary[name]), float(metrics[name][i])
+            if np.isfinite(want) and want != 0.0:
+                worst = max(worst, abs(got - want) / abs(want))
+    return (time.perf_counter() - start) / max(studies, 1), worst

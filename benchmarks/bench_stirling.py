@@ -29,12 +29,11 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import load, machine, write_json  # noqa: E402
+from _common import against_study, load, machine, write_json  # noqa: E402
 
 
 def _case(model: str, n: int, studies: int, threads: int) -> dict:
     from rotorkin.core.batch import Designs
-    from rotorkin.drives import evaluate
     from rotorkin.drives.rhomboid_cam import sweep as kernel
     from rotorkin.io.config import load_config
     from rotorkin.sweep.engine import evaluate_designs
@@ -52,15 +51,7 @@ def _case(model: str, n: int, studies: int, threads: int) -> dict:
     start, cpu = time.perf_counter(), time.process_time()
     res = evaluate_designs(p, names, threads=threads)
     wall, cpu = time.perf_counter() - start, time.process_time() - cpu
-    start = time.perf_counter()
-    worst = 0.0
-    for i in range(studies):
-        summary = evaluate(p.config(i)).summary
-        for name in names:
-            want, got = float(summary[name]), float(res["metrics"][name][i])
-            if np.isfinite(want) and want != 0.0:
-                worst = max(worst, abs(got - want) / abs(want))
-    study = (time.perf_counter() - start) / studies
+    study, worst = against_study(p, res["metrics"], names, studies)
     return {"model": model, "designs": n, "metrics": len(names), "wall_s": wall, "cpu_s": cpu,
             "ms_per_design": wall / n * 1e3, "study_ms_per_design": study * 1e3,
             "ratio_vs_study": study / (wall / n), "max_rel_diff": worst,

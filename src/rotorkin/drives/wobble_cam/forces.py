@@ -317,8 +317,9 @@ def solve(
     spin = wc.spin_law(drive, theta)
     q, dq, d2q, _ = wc.rotor_angles(drive, theta)
     jr = [np.asarray(j, dtype=float) for j in rotor_inertia]
+    # D_k, (2, n)
     need = np.stack([jr[k] * (d2q[k] * omega**2 + dq[k] * omega_dot) - moments[k]
-                     for k in (0, 1)])  # D_k, (2, n)  # fmt: skip
+                     for k in (0, 1)])  # fmt: skip
 
     # geometry: roller directions, rail normals, groove normals (fixed frame), plate axis
     c = wc.roller_offsets_against(drive, theta)

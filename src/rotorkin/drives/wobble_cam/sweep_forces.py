@@ -85,6 +85,10 @@ def dynamics(p, names, samples: int, threads, work, cam_args: dict, width=None) 
     ctx = {"theta": theta, "omega": omega, "omega_mean": omega_mean, "grid": grid,
            "grid_omega": shaft_speed(grid, speed, 2.0 * np.pi), "cfg": p.cfg,
            "cam_args": cam_args}  # fmt: skip
+    if forces and fits.any():  # the force parameters and contact model: one for the sweep
+        cam = cs.SphericalCam(float(cols["radius"][np.argmax(fits)]), **cam_args)
+        ctx |= {"cam": cam, "fp": fo.force_params(p.cfg, cam),
+                "model": pr.ContactModel.from_config(p.cfg)}  # fmt: skip
     out = {k: np.full(n, np.nan) for k in keys}
     kinds = np.stack([spin, pistons.astype(float), fits.astype(float)], axis=-1)
     for n_spin, count, fit in np.unique(kinds, axis=0):
@@ -116,9 +120,8 @@ def _block(c: dict, n_spin: float, pistons: int, want, ctx: dict) -> dict:
     val = eng.dynamics_summary(machine, state, theta, omega, ctx["omega_mean"])
     val |= time_peaks(wc.motion(drive, ctx["grid"]), ctx["grid_omega"], _SLUGS)
     if set(want) & set(FORCES):
-        cam = cs.SphericalCam(float(c["radius"][0, 0]), **ctx["cam_args"])
-        fp = fo.force_params(ctx["cfg"], cam)  # the same for every design of the sweep
-        model = pr.ContactModel.from_config(ctx["cfg"])
+        cam, fp, model = ctx["cam"], ctx["fp"], ctx["model"]  # what solve and pairs read of
+        # the cam (roller radius, groove depth) does not depend on the sphere radius
         f = fo.solve(drive, cam, fp, theta, state.member_torque, machine.member_inertias,
                      omega[0], omega[1])  # fmt: skip
         found = fo.pairs(f, cam, fp, model)
