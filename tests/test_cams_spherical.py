@@ -556,3 +556,32 @@ def test_near_others_counts_what_the_neighbour_lists_find(example, tilt):
         got = ch.near_others(roller)
         assert want.any()
         assert np.array_equal(got, want)
+
+
+@pytest.mark.parametrize("tilt", [45.0, 30.0])
+def test_wall_gaps_search_batched_equals_one_step_at_a_time(example, tilt, monkeypatch):
+    """The gaps' ends bisected several steps a search equal the steps taken one by one
+    (one search each), bit for bit: the same midpoints, the same brackets."""
+    from rotorkin.drives.wobble_cam import cam_walls
+
+    drive, cam = example
+    drive = wc.WobbleCam(
+        plate_tilt=np.radians(tilt),
+        roller_axis_angle=drive.roller_axis_angle,
+        spin_ratio=drive.spin_ratio,
+        sphere_radius=drive.sphere_radius,
+        pistons_per_rotor=drive.pistons_per_rotor,
+    )
+    batched = cam_walls.wall_gaps(drive, cam)
+    monkeypatch.setattr(cam_walls, "_LEVELS", 1)
+    one_by_one = cam_walls.wall_gaps(drive, cam)
+    assert batched and batched == one_by_one
+    # and the scan's search is the wall test of every sample alone: each gap's ends
+    # bracket a change of the wall, a step of the scan inside and outside it
+    ch = cam_walls._Channels(drive, cam)
+    step = ch.period / cam_walls.SCAN
+    for g in batched:
+        ends = np.array([g.start, g.end])
+        inside = cam_walls._missing(ch, cam, g.roller, ends + [step / 4, -step / 4], g.wall)
+        outside = cam_walls._missing(ch, cam, g.roller, ends + [-step / 4, step / 4], g.wall)
+        assert inside.all() and not outside.any()

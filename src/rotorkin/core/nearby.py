@@ -64,20 +64,14 @@ class PointGrid:
         key = (rel[..., 0] * self.shape[1] + rel[..., 1]) * self.shape[2] + rel[..., 2]
         return np.where(inside, key, -1)
 
-    def _groups(self, queries, radius):
-        """The queries cell by cell, each cell's queries against the points around it.
+    def _cells_of(self, queries, radius):
+        """The queries cell by cell, with the points in the 27 cells around each cell.
 
-        Yields ``(rows, cand, d2)``: the queries in one cell (indices), the points in the
-        27 cells around it (indices), and their squared distances ``(len(rows),
-        len(cand))``, written ``|q|^2 + |p|^2 - 2 q.p`` (one matrix product a cell;
-        rounding ~1e-16 of the squared norms) except within rounding of ``radius^2``,
-        where ``d2 <= radius^2`` is made to say what ``|q - p| <= radius`` says. A cell
-        whose surroundings hold no point is not yielded.
+        Yields ``(rows, cand)``: the queries in one cell (indices) and the points around
+        it (indices). A cell whose surroundings hold no point is not yielded.
         """
-        radius = float(radius)
-        if radius > self.cell:
-            raise ValueError(f"radius = {radius} is above the grid's cell {self.cell}")
-        r2 = radius * radius
+        if float(radius) > self.cell:
+            raise ValueError(f"radius = {float(radius)} is above the grid's cell {self.cell}")
         cells = self._cells(queries)
         own = self._key(cells)
         by_cell = np.argsort(own, kind="stable")
@@ -90,10 +84,22 @@ class PointGrid:
         c, s = count.ravel(), start.ravel()
         slot = np.repeat(s - (np.cumsum(c) - c), c) + np.arange(c.sum())
         cands = np.split(self.order[slot], np.cumsum(total)[:-1])
-        qq = np.einsum("ij,ij->i", queries, queries)
         for g in np.flatnonzero(total):
-            rows = by_cell[bounds[g] : bounds[g + 1]]
-            cand = cands[g]
+            yield by_cell[bounds[g] : bounds[g + 1]], cands[g]
+
+    def _groups(self, queries, radius):
+        """The queries cell by cell, each cell's queries against the points around it.
+
+        Yields ``(rows, cand, d2)``: :meth:`_cells_of`'s rows and candidates, and their
+        squared distances ``(len(rows), len(cand))``, written ``|q|^2 + |p|^2 - 2 q.p``
+        (one matrix product a cell; rounding ~1e-16 of the squared norms) except within
+        rounding of ``radius^2``, where ``d2 <= radius^2`` is made to say what
+        ``|q - p| <= radius`` says.
+        """
+        radius = float(radius)
+        r2 = radius * radius
+        qq = np.einsum("ij,ij->i", queries, queries)
+        for rows, cand in self._cells_of(queries, radius):
             scale = qq[rows, None] + self._squares[cand]
             d2 = scale - 2.0 * (queries[rows] @ self.points[cand].T)
             # within rounding of the radius: measured point to point, so that the
@@ -145,13 +151,22 @@ class PointGrid:
         queries = _as_points(queries)
         distance = np.full(len(queries), np.inf)
         index = np.full(len(queries), len(self.points), dtype=np.intp)
-        r2 = float(radius) ** 2
-        for rows, cand, d2 in self._groups(queries, radius):
-            k = np.argmin(d2, axis=1)
-            hit = d2[np.arange(len(rows)), k] <= r2
-            index[rows[hit]] = cand[k[hit]]
-        found = np.flatnonzero(index < len(self.points))
-        distance[found] = np.linalg.norm(queries[found] - self.points[index[found]], axis=1)
+        radius = float(radius)
+        # the nearest of a cell's candidates maximises q.p - |p|^2 / 2 (|q|^2 is common
+        # to a row): one matrix product and one pass a cell; whether it lies within the
+        # radius is then measured point to point
+        half = 0.5 * self._squares
+        rows, best = [], []
+        for cell_rows, cand in self._cells_of(queries, radius):
+            score = queries[cell_rows] @ self.points[cand].T
+            score -= half[cand]
+            rows.append(cell_rows)
+            best.append(cand[np.argmax(score, axis=1)])
+        if rows:
+            rows, best = np.concatenate(rows), np.concatenate(best)
+            d = np.linalg.norm(queries[rows] - self.points[best], axis=1)
+            hit = d <= radius
+            index[rows[hit]], distance[rows[hit]] = best[hit], d[hit]
         return distance, index
 
     def close_pairs(self, radius):

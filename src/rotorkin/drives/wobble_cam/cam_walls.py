@@ -60,6 +60,8 @@ CONTACT_POINTS = 5
 SCAN = 2048
 #: Bisection steps on each end of a gap.
 _BISECT = 36
+#: Bisection steps taken per search (a divisor of :data:`_BISECT`).
+_LEVELS = 3
 
 
 @dataclass(frozen=True)
@@ -194,6 +196,29 @@ def _missing(channels, cam, roller, theta, wall):
     return inside.reshape(len(lam), -1).any(axis=0).reshape(theta.shape)
 
 
+def _bisected(channels, cam, roller, wall, a, b, levels):
+    """``levels`` bisection steps of every bracket (a: the wall there, b: missing) at once.
+
+    Every midpoint the steps could visit (``2^levels - 1`` a bracket, computed as the
+    steps compute them, ``0.5 (a + b)``) is searched in one call; the steps then walk
+    them. The brackets returned are those of the steps taken one by one.
+    """
+    ends = [a, b]
+    for _ in range(levels):  # the midpoints between every pair of neighbours, in order
+        mids = [0.5 * (lo + hi) for lo, hi in zip(ends[:-1], ends[1:], strict=True)]
+        ends = [x for pair in zip(ends[:-1], mids, strict=True) for x in pair] + [ends[-1]]
+    ends = np.stack(ends)  # (2^levels + 1, brackets)
+    inner = ends[1:-1]
+    miss = _missing(channels, cam, roller[None, :], inner, wall[None, :])
+    k = np.arange(len(a))
+    lo, hi = np.zeros(len(a), dtype=int), np.full(len(a), len(ends) - 1)
+    for _ in range(levels):
+        mid = (lo + hi) // 2
+        flag = miss[mid - 1, k]
+        lo, hi = np.where(flag, lo, mid), np.where(flag, mid, hi)
+    return ends[lo, k], ends[hi, k]
+
+
 def _runs(mask):
     """Runs of True in a periodic boolean array: list of (first, last) indices."""
     n = len(mask)
@@ -227,17 +252,23 @@ def wall_gaps(drive: wc.WobbleCam, cam, crossings=None) -> list[WallGap]:
     period = channels.period
     step = period / SCAN
     theta = (np.arange(SCAN) + 0.5) * step
-    brackets = []  # (roller, wall, outside, inside): both ends of every run of the scan
-    whole = []  # walls missing over the whole period
+    # the scan: every roller's samples near another branch, both walls, in one search
+    rows = []  # (roller, wall, sample)
     for roller in range(4):
         near = channels.near_others(roller)
         near |= np.roll(near, 1) | np.roll(near, -1)  # the scan samples sit between them
-        if not near.any():
-            continue
+        at = np.flatnonzero(near)
         for wall in (0, 1):
-            miss = np.zeros(SCAN, dtype=bool)
-            miss[near] = _missing(channels, cam, roller, theta[near], wall)
-            for i, j in _runs(miss):
+            rows.append(np.stack(np.broadcast_arrays(roller, wall, at)))
+    brackets = []  # (roller, wall, outside, inside): both ends of every run of the scan
+    whole = []  # walls missing over the whole period
+    rows = np.concatenate(rows, axis=1)
+    if rows.size:
+        missing = _missing(channels, cam, rows[0], theta[rows[2]], rows[1])
+        miss = np.zeros((4, 2, SCAN), dtype=bool)
+        miss[rows[0], rows[1], rows[2]] = missing
+        for roller, wall in np.ndindex(4, 2):
+            for i, j in _runs(miss[roller, wall]):
                 if (i, j) == (0, SCAN - 1):  # the wall is nowhere (the grooves cut it away)
                     whole.append(WallGap(roller, wall, 0.0, period, period))
                     continue
@@ -246,10 +277,8 @@ def wall_gaps(drive: wc.WobbleCam, cam, crossings=None) -> list[WallGap]:
     out = whole
     if brackets:
         roller, wall, a, b = (np.array(x) for x in zip(*brackets, strict=True))
-        for _ in range(_BISECT):  # a: the wall there, b: missing
-            m = 0.5 * (a + b)
-            miss = _missing(channels, cam, roller, m, wall)
-            a, b = np.where(miss, a, m), np.where(miss, m, b)
+        for _ in range(_BISECT // _LEVELS):  # a: the wall there, b: missing
+            a, b = _bisected(channels, cam, roller, wall, a, b, _LEVELS)
         ends = 0.5 * (a + b)
         for k in range(0, len(ends), 2):
             lo, hi = ends[k], ends[k + 1]
