@@ -63,10 +63,43 @@ def half_angle_trig(t):
 
 
 @formula
+def crank_atan_argument(c, s, lam):
+    """:func:`atan_argument` of a crank-driven mechanism."""
+    return -(lam * s) / (1.0 + lam * c)
+
+
+@formula
+def guide_atan_argument(c, s, lam):
+    """:func:`atan_argument` of a guide-driven mechanism."""
+    ls = lam * s
+    return ls / np.sqrt(1.0 - ls * ls)
+
+
+@formula
 def atan_argument(c, s, lam, guide):
     """The driven angle minus the driving angle is the arctangent of this (see module)."""
+    return select(guide, guide_atan_argument(c, s, lam), crank_atan_argument(c, s, lam))
+
+
+@formula
+def crank_rates_point(c, s, lam, k):
+    """The crank-driven law of :func:`driven_rates_point`: ``g', g'', g'''``."""
+    lc = lam * c
+    dd = 1.0 + 2.0 * lc + lam * lam
+    r = 1.0 / dd
+    r2 = r * r
+    return (1.0 + lc) * r, k * s * r2, k * (dd * c + 4.0 * lam * (s * s)) * (r2 * r)
+
+
+@formula
+def guide_rates_point(c, s, lam, k):
+    """The guide-driven law of :func:`driven_rates_point`: ``h', h'', h'''``."""
     ls = lam * s
-    return select(guide, ls / np.sqrt(1.0 - ls * ls), -ls / (1.0 + lam * c))
+    iw = 1.0 / np.sqrt(1.0 - ls * ls)
+    iw2 = iw * iw
+    iw3 = iw2 * iw
+    return (1.0 + (lam * c) * iw, -(k * s) * iw3,
+            -(k * c) * (1.0 + 2.0 * (ls * ls)) * (iw3 * iw2))  # fmt: skip
 
 
 @formula
@@ -76,23 +109,21 @@ def driven_rates_point(c, s, lam, k, guide):
     With ``k = lambda (1 - lambda^2)``: crank-driven ``g' = (1 + lambda c)/D``,
     ``g'' = k s/D^2``, ``g''' = k (D c + 4 lambda s^2)/D^3``, ``D = 1 + 2 lambda c + lambda^2``;
     guide-driven ``h' = 1 + lambda c/W``, ``h'' = -k s/W^3``,
-    ``h''' = -k c (1 + 2 lambda^2 s^2)/W^5``. One division per law (reciprocals).
+    ``h''' = -k c (1 + 2 lambda^2 s^2)/W^5``. One division per law (reciprocals). numpy
+    evaluates both laws on a block and selects; the compiled loops evaluate each point's
+    own law only (:func:`_rates`).
     """
-    lc = lam * c
-    dd = 1.0 + 2.0 * lc + lam * lam
-    r = 1.0 / dd
-    r2 = r * r
-    g1 = (1.0 + lc) * r
-    g2 = k * s * r2
-    g3 = k * (dd * c + 4.0 * lam * (s * s)) * (r2 * r)
-    ls = lam * s
-    iw = 1.0 / np.sqrt(1.0 - ls * ls)
-    iw2 = iw * iw
-    iw3 = iw2 * iw
-    h1 = 1.0 + lc * iw
-    h2 = -(k * s) * iw3
-    h3 = -(k * c) * (1.0 + 2.0 * (ls * ls)) * (iw3 * iw2)
+    h1, h2, h3 = guide_rates_point(c, s, lam, k)
+    g1, g2, g3 = crank_rates_point(c, s, lam, k)
     return select(guide, h1, g1), select(guide, h2, g2), select(guide, h3, g3)
+
+
+@formula
+def _rates(c, s, lam, k, guide):
+    """:func:`driven_rates_point` of one point in a compiled loop: its own law only."""
+    if guide:
+        return guide_rates_point(c, s, lam, k)
+    return crank_rates_point(c, s, lam, k)
 
 
 @compiled_loop
@@ -100,9 +131,13 @@ def _atan_loop(t1, t2, lam, guide, r1, r2):
     for i in range(r1.shape[0]):
         c1, s1 = half_angle_trig(t1[i])
         c2, s2 = half_angle_trig(t2[i])
-        la, gd = at(lam, i), at(guide, i)
-        r1[i] = atan_argument(c1, s1, la, gd)
-        r2[i] = atan_argument(c2, s2, la, gd)
+        la = at(lam, i)
+        if at(guide, i):  # each point's own law (one design: a loop-invariant branch)
+            r1[i] = guide_atan_argument(c1, s1, la)
+            r2[i] = guide_atan_argument(c2, s2, la)
+        else:
+            r1[i] = crank_atan_argument(c1, s1, la)
+            r2[i] = crank_atan_argument(c2, s2, la)
 
 
 @compiled_loop
@@ -113,10 +148,10 @@ def _angle_loop(x1, x2, t1, t2, e1, e2, lam, k, guide, iu, w1, w2, w3, o0, o1, o
         c2, s2 = half_angle_trig(t2[i])
         la, kk, gd = at(lam, i), at(k, i), at(guide, i)
         iuu, v1, v2, v3 = at(iu, i), at(w1, i), at(w2, i), at(w3, i)
-        f1, f2, f3 = driven_rates_point(c1, s1, la, kk, gd)
+        f1, f2, f3 = _rates(c1, s1, la, kk, gd)
         o0[i] = (x1[i] + e1[i]) * iuu
         o2[i], o4[i], o6[i] = f1 * v1, f2 * v2, f3 * v3
-        f1, f2, f3 = driven_rates_point(c2, s2, la, kk, gd)
+        f1, f2, f3 = _rates(c2, s2, la, kk, gd)
         o1[i] = (x2[i] + e2[i]) * iuu
         o3[i], o5[i], o7[i] = f1 * v1, f2 * v2, f3 * v3
 
@@ -128,9 +163,9 @@ def _rate_loop(t1, t2, lam, k, guide, w1, w2, w3, o0, o1, o2, o3, o4, o5):
         c2, s2 = half_angle_trig(t2[i])
         la, kk, gd = at(lam, i), at(k, i), at(guide, i)
         v1, v2, v3 = at(w1, i), at(w2, i), at(w3, i)
-        f1, f2, f3 = driven_rates_point(c1, s1, la, kk, gd)
+        f1, f2, f3 = _rates(c1, s1, la, kk, gd)
         o0[i], o2[i], o4[i] = f1 * v1, f2 * v2, f3 * v3
-        f1, f2, f3 = driven_rates_point(c2, s2, la, kk, gd)
+        f1, f2, f3 = _rates(c2, s2, la, kk, gd)
         o1[i], o3[i], o5[i] = f1 * v1, f2 * v2, f3 * v3
 
 
