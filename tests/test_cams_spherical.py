@@ -536,20 +536,25 @@ def _near_others_listed(ch, roller):
     return out
 
 
+def _tilted(example, tilt):
+    """The example's drive at another plate tilt [deg], and its cam."""
+    drive, cam = example
+    return wc.WobbleCam(
+        plate_tilt=np.radians(tilt),
+        roller_axis_angle=drive.roller_axis_angle,
+        spin_ratio=drive.spin_ratio,
+        sphere_radius=drive.sphere_radius,
+        pistons_per_rotor=drive.pistons_per_rotor,
+    ), cam
+
+
 @pytest.mark.parametrize("tilt", [45.0, 30.0, 60.0])
 def test_near_others_counts_what_the_neighbour_lists_find(example, tilt):
     """The grid's search (all within reach less the own stretch of groove) flags the
     same samples as measuring every axis sample."""
     from rotorkin.drives.wobble_cam import cam_walls
 
-    drive, cam = example
-    drive = wc.WobbleCam(
-        plate_tilt=np.radians(tilt),
-        roller_axis_angle=drive.roller_axis_angle,
-        spin_ratio=drive.spin_ratio,
-        sphere_radius=drive.sphere_radius,
-        pistons_per_rotor=drive.pistons_per_rotor,
-    )
+    drive, cam = _tilted(example, tilt)
     ch = cam_walls._Channels(drive, cam)
     for roller in range(4):
         want = _near_others_listed(ch, roller)
@@ -564,14 +569,7 @@ def test_wall_gaps_search_batched_equals_one_step_at_a_time(example, tilt, monke
     (one search each), bit for bit: the same midpoints, the same brackets."""
     from rotorkin.drives.wobble_cam import cam_walls
 
-    drive, cam = example
-    drive = wc.WobbleCam(
-        plate_tilt=np.radians(tilt),
-        roller_axis_angle=drive.roller_axis_angle,
-        spin_ratio=drive.spin_ratio,
-        sphere_radius=drive.sphere_radius,
-        pistons_per_rotor=drive.pistons_per_rotor,
-    )
+    drive, cam = _tilted(example, tilt)
     batched = cam_walls.wall_gaps(drive, cam)
     monkeypatch.setattr(cam_walls, "_LEVELS", 1)
     one_by_one = cam_walls.wall_gaps(drive, cam)
