@@ -167,3 +167,27 @@ def test_flywheel_sinusoidal_torque():
 def test_flywheel_coefficient_must_be_a_fraction(coefficient):
     with pytest.raises(ParameterError, match="machine.speed_fluctuation"):
         flywheel_inertia(1.0, 100.0, coefficient)
+
+
+def test_shaft_torque_summary_of_known_curves():
+    """A torque 2 + sin(theta) and, with inertia, 2 + sin(theta) - 0.5 sin(2 theta), over
+    a turn: ripple and extremes from their closed forms, for a column of two designs."""
+    from rotorkin.analysis.torque import SHAFT_TORQUE_KEYS, shaft_torque_summary
+
+    theta = np.linspace(0.0, 2.0 * np.pi, 100_001)
+    scale = np.array([[1.0], [3.0]])
+    torque = scale * (2.0 + np.sin(theta))
+    net = scale * (2.0 + np.sin(theta) - 0.5 * np.sin(2.0 * theta))
+    s = shaft_torque_summary(torque, net)
+    assert tuple(s) == SHAFT_TORQUE_KEYS
+    # net' = cos t - cos 2t = 0 where cos t = 1 or -1/2: the largest at t = 2 pi / 3;
+    # net(-t) = 4 - net(t), so the smallest is 4 less the largest
+    hi = 2.0 + np.sin(2 * np.pi / 3) - 0.5 * np.sin(4 * np.pi / 3)
+    np.testing.assert_allclose(s["shaft_torque_max_Nm"], scale[:, 0] * 3.0, rtol=1e-9)
+    np.testing.assert_allclose(s["shaft_torque_min_Nm"], scale[:, 0] * 1.0, rtol=1e-9)
+    np.testing.assert_allclose(s["torque_ripple"], [1.0, 1.0], rtol=1e-9)
+    np.testing.assert_allclose(s["shaft_torque_with_inertia_max_Nm"], scale[:, 0] * hi, rtol=1e-9)
+    np.testing.assert_allclose(s["shaft_torque_with_inertia_min_Nm"], scale[:, 0] * (4.0 - hi),
+                               rtol=1e-9)  # fmt: skip
+    np.testing.assert_allclose(s["torque_ripple_with_inertia"], [(2 * hi - 4.0) / 2.0] * 2,
+                               rtol=1e-9)  # fmt: skip

@@ -20,6 +20,8 @@ __all__ = [
     "kinetic_energy",
     "cycle_integral",
     "torque_ripple",
+    "SHAFT_TORQUE_KEYS",
+    "shaft_torque_summary",
 ]
 
 
@@ -169,3 +171,31 @@ def torque_ripple(torque, axis=-1):
     zero = np.abs(mean) <= 1e-12 * span
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(zero, np.nan, span / np.abs(mean))
+
+
+#: The keys of :func:`shaft_torque_summary`, in order.
+SHAFT_TORQUE_KEYS = (
+    "torque_ripple",
+    "torque_ripple_with_inertia",
+    "shaft_torque_max_Nm",
+    "shaft_torque_min_Nm",
+    "shaft_torque_with_inertia_max_Nm",
+    "shaft_torque_with_inertia_min_Nm",
+)
+
+
+def shaft_torque_summary(torque, with_inertia) -> dict:
+    """Ripple and extremes of a shaft torque over a period, without and with inertia.
+
+    ``torque`` is the torque of the loads alone (gas, fluid), ``with_inertia`` the same
+    less the torque that accelerates the moving parts; both ``(..., n)`` over one period
+    (ends included). Returns :data:`SHAFT_TORQUE_KEYS` -> arrays ``(...)``.
+    """
+    return {
+        "torque_ripple": torque_ripple(torque),
+        "torque_ripple_with_inertia": torque_ripple(with_inertia),
+        "shaft_torque_max_Nm": np.max(torque, axis=-1),
+        "shaft_torque_min_Nm": np.min(torque, axis=-1),
+        "shaft_torque_with_inertia_max_Nm": np.max(with_inertia, axis=-1),
+        "shaft_torque_with_inertia_min_Nm": np.min(with_inertia, axis=-1),
+    }

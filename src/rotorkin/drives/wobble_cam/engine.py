@@ -23,10 +23,11 @@ import numpy as np
 from rotorkin.analysis import engine_cycle as ec
 from rotorkin.analysis.flywheel import energy_fluctuation, flywheel_inertia
 from rotorkin.analysis.torque import (
+    SHAFT_TORQUE_KEYS,
     equivalent_inertia,
     inertia_torque,
     kinetic_energy,
-    torque_ripple,
+    shaft_torque_summary,
 )
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.machines import twin_rotor as tr
@@ -233,12 +234,7 @@ def dynamics(machine: tr.TwinRotor, state: tr.EngineState, omega, omega_dot):
 
 #: The keys of :func:`dynamics_summary`, in order.
 DYNAMICS_KEYS = (
-    "torque_ripple",
-    "torque_ripple_with_inertia",
-    "shaft_torque_max_Nm",
-    "shaft_torque_min_Nm",
-    "shaft_torque_with_inertia_max_Nm",
-    "shaft_torque_with_inertia_min_Nm",
+    *SHAFT_TORQUE_KEYS,
     "rotor_gas_torque_peak_Nm",
     "equivalent_inertia_mean_kgm2",
     "energy_fluctuation_J",
@@ -281,12 +277,7 @@ def dynamics_summary(machine: tr.TwinRotor, state: tr.EngineState, theta, omega,
     with np.errstate(divide="ignore", invalid="ignore"):
         unbound = np.where(held > 0, d_e / np.where(held > 0, held, 1.0), np.nan)
     return {
-        "torque_ripple": torque_ripple(torque),
-        "torque_ripple_with_inertia": torque_ripple(net),
-        "shaft_torque_max_Nm": np.max(torque, axis=-1),
-        "shaft_torque_min_Nm": np.min(torque, axis=-1),
-        "shaft_torque_with_inertia_max_Nm": np.max(net, axis=-1),
-        "shaft_torque_with_inertia_min_Nm": np.min(net, axis=-1),
+        **shaft_torque_summary(torque, net),
         "rotor_gas_torque_peak_Nm": np.max(np.abs(state.member_torque), axis=(0, -1)),
         "equivalent_inertia_mean_kgm2": j_mean,
         "energy_fluctuation_J": d_e,
