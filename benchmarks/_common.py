@@ -271,6 +271,7 @@ def against_study(designs, metrics: dict, names, studies: int) -> tuple[float, f
     finite, nonzero ones)."""
     from rotorkin.drives import evaluate
 
+    studies = min(int(studies), designs.n)  # no more than the kernel ran
     start = time.perf_counter()
     worst = 0.0
     for i in range(studies):
@@ -280,3 +281,16 @@ def against_study(designs, metrics: dict, names, studies: int) -> tuple[float, f
             if np.isfinite(want) and want != 0.0:
                 worst = max(worst, abs(got - want) / abs(want))
     return (time.perf_counter() - start) / max(studies, 1), worst
+
+
+def report_against_study(path, info: dict, cases: list, label: str, width: int) -> None:
+    """Print the kernel-against-study cases (one line each, named by ``case[label]``) under
+    the machine's line, and write them with the machine to ``path``."""
+    print(f"{info['cpu']} ({', '.join(info['vector_isa']) or 'no AVX'}), numpy "
+          f"{info['numpy']}, load {info['load_average']} -> {load()}")  # fmt: skip
+    for c in cases:
+        print(f"{c[label]:{width}s} {c['designs']:5d} designs x {c['metrics']} metrics: "
+              f"{c['wall_s']:.1f} s ({c['ms_per_design']:.1f} ms/design); the study "
+              f"{c['study_ms_per_design']:.0f} ms/design: {c['ratio_vs_study']:.1f}x; "
+              f"max rel diff {c['max_rel_diff']:.1e}")  # fmt: skip
+    write_json(path, {"machine": info, "cases": cases})

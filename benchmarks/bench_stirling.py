@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import against_study, load, machine, write_json  # noqa: E402
+from _common import against_study, machine, report_against_study  # noqa: E402
 
 
 def _case(model: str, n: int, studies: int, threads: int) -> dict:
@@ -78,14 +78,7 @@ def main() -> None:
         )  # fmt: skip
         if n > 0
     ]
-    print(f"{info['cpu']} ({', '.join(info['vector_isa']) or 'no AVX'}), numpy "
-          f"{info['numpy']}, load {info['load_average']} -> {load()}")  # fmt: skip
-    for c in cases:
-        print(f"{c['model']:9s} {c['designs']:5d} designs x {c['metrics']} metrics: "
-              f"{c['wall_s']:.1f} s ({c['ms_per_design']:.1f} ms/design); the study "
-              f"{c['study_ms_per_design']:.0f} ms/design: {c['ratio_vs_study']:.0f}x; "
-              f"max rel diff {c['max_rel_diff']:.1e}")  # fmt: skip
-    write_json(args.out, {"machine": info, "cases": cases})
+    report_against_study(args.out, info, cases, "model", 9)
 
 
 if __name__ == "__main__":
