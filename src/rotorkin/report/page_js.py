@@ -14,7 +14,8 @@ Playback runs by elapsed time (``requestAnimationFrame``): the frame shown is th
 one the clock has reached at the chosen speed, so a slow machine skips frames
 instead of slowing down. ``window.ROTORKIN`` exposes ``ready``, ``errors``,
 ``plots``, ``deferred``, ``scene``, ``frame``, ``playing``, ``drawn`` (frames drawn),
-``timing`` and ``show(frame)`` (returns a promise) for scripts and tests.
+``timing``, ``retried`` (the messages of failed parses of plotly.js that a second parse
+made good) and ``show(frame)`` (returns a promise) for scripts and tests.
 """
 
 PAGE_JS = r"""
@@ -22,8 +23,13 @@ PAGE_JS = r"""
   "use strict";
   var t0 = performance.now();
   var R = window.ROTORKIN = {ready: false, errors: [], plots: [], scene: null, frame: 0,
-                             playing: false, drawn: 0, deferred: [], timing: {script: t0}};
-  window.addEventListener("error", function (ev) { R.errors.push(String(ev.message)); });
+                             playing: false, drawn: 0, deferred: [], timing: {script: t0},
+                             retried: []};
+  window.addEventListener("error", function (ev) {
+    // a failed parse of plotly.js from its Blob URL is retried (startPlotly), not an error yet
+    if (R.plotlyUrl && ev.filename === R.plotlyUrl) R.retried.push(String(ev.message));
+    else R.errors.push(String(ev.message));
+  });
   window.addEventListener("unhandledrejection", function (ev) {
     R.errors.push("unhandled rejection: " + String(ev.reason));
   });
@@ -367,17 +373,26 @@ PAGE_JS = r"""
   }
   function startPlotly() {
     var src = $("plotly-src");
-    var url = URL.createObjectURL(new Blob([src.textContent], {type: "text/javascript"}));
-    var s = document.createElement("script");
-    s.src = url;
-    s.onload = function () { R.timing.plotly = performance.now(); drawAll(); };
-    s.onerror = function () {  // Blob URLs refused (a strict viewer): run it as an inline script
+    function loaded() { R.timing.plotly = performance.now(); drawAll(); }
+    // plotly.js evaluated again in the global scope, then as an inline script: when the
+    // viewer refuses Blob URLs, or when the first parse failed (Chromium 156 was seen to
+    // reject the unchanged text now and then, a SyntaxError at one fixed place in it;
+    // parsed again, it loads)
+    function again() {
+      try { (0, eval)(src.textContent); } catch (e) { R.retried.push(String(e)); }
+      if (window.Plotly) { loaded(); return; }
       var inline = document.createElement("script");
       inline.text = src.textContent;
       document.body.appendChild(inline);
-      if (window.Plotly) { R.timing.plotly = performance.now(); drawAll(); }
-      else R.errors.push("plotly.js did not load");
-    };
+      if (window.Plotly) loaded();
+      else R.errors.push("plotly.js did not load: " + R.retried.join("; "));
+    }
+    var url = URL.createObjectURL(new Blob([src.textContent], {type: "text/javascript"}));
+    var s = document.createElement("script");
+    R.plotlyUrl = url;
+    s.src = url;
+    s.onload = function () { if (window.Plotly) loaded(); else setTimeout(again, 0); };
+    s.onerror = again;
     document.body.appendChild(s);
   }
   // start plotly once the text has been painted (or after half a second at most)
