@@ -758,6 +758,25 @@ def test_spin_correction_that_reverses_the_spin_is_refused():
         wc.WobbleCam(np.radians(45.0), spin_a=(0.0, 0.0, 0.0, 1.0))  # 4 * 1.0 > |n| = 2
 
 
+@pytest.mark.parametrize(
+    ("kwargs", "name", "admissible"),
+    [
+        # coefficients that are not numbers: named, whatever the law would do
+        ({"spin_b": (0.0, float("nan"))}, "spin_b", "finite coefficients"),
+        ({"spin_a": (float("inf"),), "spin_b": (0.1,)}, "spin_a", "finite coefficients"),
+        # a field before the law in the order of checking is named first
+        ({"spin_a": (float("nan"),), "plate_tilt": 70 * D}, "plate_tilt", "eq. 20"),
+        ({"spin_a": (0.0, 0.0, 0.0, 1.0), "spin_ratio": 0.3}, "spin_ratio", "multiple of 0.5"),
+        ({"spin_a": (0.0, 0.0, 0.0, 1.0)}, "spin_a", "monotone"),
+    ],
+)
+def test_spin_correction_errors_in_order(kwargs, name, admissible):
+    kwargs = {"plate_tilt": 45 * D, **kwargs}
+    with pytest.raises(ParameterError) as info:
+        wc.WobbleCam(**kwargs)
+    assert info.value.name == name and admissible in str(info.value), str(info.value)
+
+
 # --------------------------------------------------------------------------------------------
 # one source of defaults: the schema
 # --------------------------------------------------------------------------------------------

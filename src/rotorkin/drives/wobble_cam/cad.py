@@ -490,14 +490,16 @@ def checks(cfg: dict) -> list:
     refuses it with, naming the key and what is admissible): every command flags what
     ``export --format step`` refuses.
     """
-    found = cam_checks.checks(cfg)
-    if "cam" in cfg:
-        try:
-            layout_from_config(cfg)
-            bad, key, where = 0.0, "cam.bore_diameter", ""
-        except ParameterError as exc:
-            bad, key, where = 1.0, exc.name, str(exc)
-        found.append(Check(ASSEMBLY_CHECK, key, bad, 0.0, "", True, where))
+    if "cam" not in cfg:
+        return []
+    parts = sph.from_config(cfg)  # the drive and the cam, built and validated once
+    found = cam_checks.checks(cfg, parts)
+    try:
+        layout_from_config(cfg, parts)
+        bad, key, where = 0.0, "cam.bore_diameter", ""
+    except ParameterError as exc:
+        bad, key, where = 1.0, exc.name, str(exc)
+    found.append(Check(ASSEMBLY_CHECK, key, bad, 0.0, "", True, where))
     return found
 
 

@@ -138,8 +138,11 @@ def _need(ok: bool, key: str, value: float, admissible: str) -> None:
         raise ParameterError(key, fmt_mm(value), admissible)
 
 
-def layout_from_config(cfg: dict) -> Layout:
+def layout_from_config(cfg: dict, parts: tuple | None = None) -> Layout:
     """The layout of a validated wobble-cam config (SI); errors name the config key.
+
+    ``parts``: the config's ``(drive, cam)`` if built already
+    (:func:`rotorkin.drives.wobble_cam.cam.from_config`).
 
     Raises
     ------
@@ -151,7 +154,7 @@ def layout_from_config(cfg: dict) -> Layout:
         rails must clear the shell), ``machine.compression_ratio``, and those of
         :func:`rotorkin.drives.wobble_cam.cam.from_config`.
     """
-    drive, cam = sph.from_config(cfg)
+    drive, cam = parts or sph.from_config(cfg)
     machine = _machine(cfg)
     try:
         layout = eng.piston_layout(drive, machine)

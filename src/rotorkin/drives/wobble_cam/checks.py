@@ -18,7 +18,7 @@ from rotorkin.studies.checks import Check
 __all__ = ["checks"]
 
 
-def checks(cfg: dict) -> list[Check]:
+def checks(cfg: dict, parts: tuple | None = None) -> list[Check]:
     """The cam's checks: the roller radius against the grooves' undercut limit.
 
     The walls' offset ``h = rho + c/2`` (running clearance ``c``) must stay below
@@ -26,10 +26,11 @@ def checks(cfg: dict) -> list[Check]:
     (:func:`rotorkin.drives.wobble_cam.cam.check_roller_radius`): the roller radius below
     that less ``c/2``; a larger roller makes a cusp in the inner groove wall. Raises
     :class:`ParameterError` for proportions that no tilt admits (named by config key).
+    ``parts``: the config's ``(drive, cam)`` if built already (``cam.from_config``).
     """
     if "cam" not in cfg:
         return []
-    drive, cam = cs.from_config(cfg)
+    drive, cam = parts or cs.from_config(cfg)
     kmax, theta, roller = cs.sharpest_bend(drive)
     # the walls' offset h = rho + c/2 must stay below the limit: rho below it less c/2
     walls = cam.inner_radius / np.sqrt(1.0 + (drive.sphere_radius * kmax) ** 2)

@@ -290,13 +290,18 @@ class WobbleCam:
     def __post_init__(self):
         _check_pistons(self.pistons_per_rotor)
         args = (self.plate_tilt, self.roller_axis_angle, self.spin_ratio, self.sphere_radius)
-        self._refuse(violation(*args, self.pistons_per_rotor))
-        for name in ("spin_a", "spin_b"):
-            coeffs = np.asarray(getattr(self, name), dtype=float).ravel()
-            if not np.all(np.isfinite(coeffs)):
-                raise ParameterError(name, str(list(coeffs)), "finite coefficients [rad]")
-            object.__setattr__(self, name, tuple(float(c) for c in coeffs))
-        self._refuse(violation(*args, self.pistons_per_rotor, self.spin_a, self.spin_b))
+        coeffs = {
+            k: np.asarray(getattr(self, k), dtype=float).ravel() for k in ("spin_a", "spin_b")
+        }
+        finite = all(np.all(np.isfinite(c)) for c in coeffs.values())
+        # one pass over the fields in CHECKED's order; the spin law's monotony last, and
+        # only with finite coefficients
+        law = (coeffs["spin_a"], coeffs["spin_b"]) if finite else ((), ())
+        self._refuse(violation(*args, self.pistons_per_rotor, *law))
+        for name, c in coeffs.items():
+            if not np.all(np.isfinite(c)):
+                raise ParameterError(name, str(list(c)), "finite coefficients [rad]")
+            object.__setattr__(self, name, tuple(float(v) for v in c))
 
     def _refuse(self, code) -> None:
         """Raise the error of the first refused field (of the first refused design: the
