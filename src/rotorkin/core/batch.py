@@ -10,6 +10,7 @@ from __future__ import annotations
 import contextlib
 import copy
 import dataclasses
+import math
 import os
 from concurrent.futures import ThreadPoolExecutor
 from contextvars import ContextVar
@@ -19,6 +20,7 @@ import numpy as np
 __all__ = [
     "Designs",
     "full",
+    "distinct",
     "DEFAULT_SAMPLES",
     "BLOCK_ELEMENTS",
     "sample_grid",
@@ -108,6 +110,55 @@ def _copied(value):
 def full(value, n: int, dtype=float) -> np.ndarray:
     """``value`` (scalar or (n,)) broadcast to a fresh array of shape (n,)."""
     return np.array(np.broadcast_to(np.asarray(value, dtype=dtype), (n,)))
+
+
+def distinct(columns, n: int) -> tuple[list[np.ndarray], np.ndarray]:
+    """The distinct rows of per-design values, and which of them each design is.
+
+    ``columns``: scalars or arrays (n,) (e.g. a drive's plate tilt and roller axis
+    angle). Returns the columns of the m distinct rows, arrays (m,), and ``inverse``
+    (n,) with ``column[i] == row[inverse[i]]``: work on the m rows, then index the
+    results with ``inverse``. Values are compared bit for bit (``-0.0`` is not ``0.0``;
+    a NaN is the same NaN only with its bits). Each column's values are numbered by one
+    sort; a row is the tuple of its numbers, counted without a sort where there are at
+    most ``max(n, _DIRECT_CODES)`` tuples.
+    """
+    arrays = [np.asarray(c, dtype=float) for c in columns]
+    numbered = {}  # column -> (its sorted distinct bit patterns, each design's number)
+    for k, a in enumerate(arrays):
+        if a.ndim == 0:
+            continue
+        bits = np.ascontiguousarray(np.broadcast_to(a, (n,))).view(np.int64)
+        v = np.sort(bits)
+        v = v[np.concatenate(([True], v[1:] != v[:-1]))]
+        if v.size == n:  # every row differs
+            return [np.array(np.broadcast_to(a, (n,))) for a in arrays], np.arange(n)
+        numbered[k] = (v, np.searchsorted(v, bits) if v.size > 1 else None)
+    used = [k for k, (v, d) in numbered.items() if d is not None]
+    sizes = [numbered[k][0].size for k in used]
+    if not used:  # one row
+        return [a.reshape(-1)[:1].copy() for a in arrays], np.zeros(n, dtype=np.intp)
+    if math.prod(sizes) <= max(_DIRECT_CODES, n):
+        code = np.ravel_multi_index([numbered[k][1] for k in used], sizes)
+        present = np.zeros(math.prod(sizes), dtype=bool)
+        present[code] = True
+        keys = np.flatnonzero(present)
+        number = np.zeros(present.size, dtype=np.intp)
+        number[keys] = np.arange(keys.size)
+        row_digits = dict(zip(used, np.unravel_index(keys, sizes), strict=True))
+        out = [numbered[k][0][row_digits[k]].view(float) if k in row_digits
+               else np.full(keys.size, a.reshape(-1)[0]) for k, a in enumerate(arrays)]  # fmt: skip
+        return out, number[code]
+    code = np.zeros(n, dtype=np.int64)
+    for k, size in zip(used, sizes, strict=True):  # numbered afresh after each column
+        code = np.unique(code * size + numbered[k][1], return_inverse=True)[1].reshape(-1)
+    _, first, inverse = np.unique(code, return_index=True, return_inverse=True)
+    out = [np.broadcast_to(a, (n,))[first].copy() for a in arrays]
+    return out, inverse.reshape(-1).astype(np.intp, copy=False)
+
+
+#: Row codes up to which :func:`distinct` counts rows directly (one byte per code).
+_DIRECT_CODES = 1 << 24
 
 
 def sample_grid(period, samples: int) -> np.ndarray:

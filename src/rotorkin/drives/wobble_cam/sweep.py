@@ -39,6 +39,7 @@ from rotorkin.analysis.timing import shaft_speed
 from rotorkin.core.batch import (
     Designs,
     block_progress,
+    distinct,
     flag,
     full,
     run_blocks,
@@ -476,23 +477,32 @@ def _spin_tables(p, n_spin: float, theta):
 
 def _sampled(p, tilt, alpha, spin, samples: int, threads) -> dict:
     """Peaks of |Phi''|, |Phi'''| (and extremes of Phi' for a corrected spin law) per design."""
-    n = p.n
-    tilt, alpha, spin = (full(v, n) for v in (tilt, alpha, spin))
-    theta = sample_grid(2.0 * np.pi, samples)
-    linear = not (p.cfg["drive"].get("spin_a") or p.cfg["drive"].get("spin_b"))
-    out = {k: np.empty(n) for k in ("acc", "jerk", "r_min", "r_max")}
-    for n_spin in np.unique(spin):  # one table per spin ratio (usually one)
-        rows = np.flatnonzero(spin == n_spin)
-        law = float(n_spin) if linear else _spin_tables(p, float(n_spin), theta)
-        fn = _general_block(theta, law, tilt[rows], alpha[rows])
-        res = run_blocks(fn, rows.size, samples, threads)
-        for key, values in res.items():
-            out[key][rows] = values
+    out = _rotor_extremes(p, tilt, alpha, spin, samples, threads, _general_block)
     val = {"rotor_accel_peak_per_rad": out["acc"], "rotor_jerk_peak_per_rad2": out["jerk"]}
-    if not linear:
+    if not _linear(p):
         val["rotor_speed_ratio_min"] = out["r_min"]
         val["rotor_speed_ratio_max"] = out["r_max"]
     return val
+
+
+def _linear(p) -> bool:
+    """Whether the spin law is ``varphi = n theta`` (no correction)."""
+    return not (p.cfg["drive"].get("spin_a") or p.cfg["drive"].get("spin_b"))
+
+
+def _rotor_extremes(p, tilt, alpha, spin, samples: int, threads, block) -> dict:
+    """The reductions of ``block`` per design (n,), evaluated once per distinct (spin
+    ratio, plate tilt, roller axis angle): the only values the rotors' motion depends on."""
+    (spin, tilt, alpha), which = distinct((spin, tilt, alpha), p.n)
+    theta = sample_grid(2.0 * np.pi, samples)
+    out = {}
+    for n_spin in np.unique(spin):  # one table per spin ratio (usually one)
+        rows = np.flatnonzero(spin == n_spin)
+        law = float(n_spin) if _linear(p) else _spin_tables(p, float(n_spin), theta)
+        res = run_blocks(block(theta, law, tilt[rows], alpha[rows]), rows.size, samples, threads)
+        for key, values in res.items():
+            out.setdefault(key, np.empty(spin.size))[rows] = values
+    return {key: values[which] for key, values in out.items()}
 
 
 def _general_block(theta, law, tilt, alpha):
@@ -527,80 +537,56 @@ def _rotor_peaks(theta, law, tilt, alpha):
 # --------------------------------------------------------------------------------------------
 # every curve on the sampled grid, reduced (SAMPLED_METRICS)
 # --------------------------------------------------------------------------------------------
-_FULL_KEYS = ("acc", "jerk", "r_min", "r_max", "s_min", "s_max", "a_min", "a_max", "b_min",
-              "b_max", "va_min", "va_max", "vb_min", "vb_max")  # fmt: skip
-
-
 def _sampled_full(p, tilt, alpha, spin, n_f, beta, samples: int, threads) -> dict:
     """Every kinematic curve of each design on ``samples`` angles, reduced to extremes and peaks.
 
     Per design and angle: both rotor angles ``Phi_k`` and ``Phi_k'``, ``Phi_k''``,
-    ``Phi_k'''``, the slider angle ``Phi_2 - Phi_1``, the chamber angles of both kinds
-    (eq. 18-19) and their volumes ``K delta + V_c``. Returns the peaks of
-    :func:`_sampled` (the same evaluation) and :data:`SAMPLED_METRICS`.
+    ``Phi_k'''`` and the slider angle ``s = Phi_2 - Phi_1``, reduced (once per distinct
+    rotor motion, :func:`_rotor_extremes`). The chamber angles of both kinds (eq. 18-19),
+    ``delta_A = s - lo_a`` and ``delta_B = hi_b - s``, and their volumes ``K delta + V_c``
+    (``K > 0``) are monotone in ``s`` in every rounded step, so their extremes are those
+    of the slider angle carried through the same steps: equal, bit for bit, to the
+    extremes of the curves. Returns the peaks of :func:`_sampled` (the same evaluation)
+    and :data:`SAMPLED_METRICS`.
     """
-    n = p.n
-    tilt, alpha, spin, n_f, beta = (full(v, n) for v in (tilt, alpha, spin, n_f, beta))
-    kvol = full(_section(p), n)
-    vc = full(p.float("machine.clearance_volume"), n)
+    kvol, vc = _section(p), p.float("machine.clearance_volume")
     lo, hi = wc.slider_angle_limits(n_f)
     lo_a, hi_b = lo + beta, hi - beta  # delta_A = s - lo_a, delta_B = hi_b - s (eq. 18-19)
-    theta = sample_grid(2.0 * np.pi, samples)
-    linear = not (p.cfg["drive"].get("spin_a") or p.cfg["drive"].get("spin_b"))
-    out = {k: np.empty(n) for k in _FULL_KEYS}
-    per = (tilt, alpha, lo_a, hi_b, kvol, vc)
-    for n_spin in np.unique(spin):
-        rows = np.flatnonzero(spin == n_spin)
-        law = float(n_spin) if linear else _spin_tables(p, float(n_spin), theta)
-        fn = _full_general_block(theta, law, *(v[rows] for v in per))
-        res = run_blocks(fn, rows.size, samples, threads)
-        for key, values in res.items():
-            out[key][rows] = values
+    out = _rotor_extremes(p, tilt, alpha, spin, samples, threads, _full_general_block)
+    s_min, s_max = out["s_min"], out["s_max"]
+    a_min, a_max = s_min - lo_a, s_max - lo_a
+    b_min, b_max = hi_b - s_max, hi_b - s_min
     deg, mm3 = np.degrees, 1e6
     val = {
         "rotor_accel_peak_per_rad": out["acc"],
         "rotor_jerk_peak_per_rad2": out["jerk"],
-        "sampled_slider_angle_min_deg": deg(out["s_min"]),
-        "sampled_slider_angle_max_deg": deg(out["s_max"]),
-        "sampled_chamber_a_angle_min_deg": deg(out["a_min"]),
-        "sampled_chamber_a_angle_max_deg": deg(out["a_max"]),
-        "sampled_chamber_b_angle_min_deg": deg(out["b_min"]),
-        "sampled_chamber_b_angle_max_deg": deg(out["b_max"]),
-        "sampled_chamber_a_volume_min_cm3": out["va_min"] * mm3,
-        "sampled_chamber_a_volume_max_cm3": out["va_max"] * mm3,
-        "sampled_chamber_b_volume_min_cm3": out["vb_min"] * mm3,
-        "sampled_chamber_b_volume_max_cm3": out["vb_max"] * mm3,
+        "sampled_slider_angle_min_deg": deg(s_min),
+        "sampled_slider_angle_max_deg": deg(s_max),
+        "sampled_chamber_a_angle_min_deg": deg(a_min),
+        "sampled_chamber_a_angle_max_deg": deg(a_max),
+        "sampled_chamber_b_angle_min_deg": deg(b_min),
+        "sampled_chamber_b_angle_max_deg": deg(b_max),
+        "sampled_chamber_a_volume_min_cm3": (a_min * kvol + vc) * mm3,
+        "sampled_chamber_a_volume_max_cm3": (a_max * kvol + vc) * mm3,
+        "sampled_chamber_b_volume_min_cm3": (b_min * kvol + vc) * mm3,
+        "sampled_chamber_b_volume_max_cm3": (b_max * kvol + vc) * mm3,
         "sampled_rotor_speed_ratio_min": out["r_min"],
         "sampled_rotor_speed_ratio_max": out["r_max"],
     }
-    if not linear:
+    if not _linear(p):
         val["rotor_speed_ratio_min"] = out["r_min"]
         val["rotor_speed_ratio_max"] = out["r_max"]
     return val
 
 
-def _reduce_chambers(res, q1, q2, w, lo_a, hi_b, kvol, vc) -> None:
-    """Slider, chamber-angle and volume curves from the rotor angles (in place), reduced."""
-    np.subtract(q2, q1, out=q2)  # slider angle alpha' = Phi_2 - Phi_1
-    res["s_min"], res["s_max"] = q2.min(axis=1), q2.max(axis=1)
-    for kind in ("a", "b"):
-        if kind == "a":
-            np.subtract(q2, lo_a, out=w)  # delta_A = alpha' - 2 gamma - beta
-        else:
-            np.subtract(hi_b, q2, out=w)  # delta_B = 2 pi/N + 2 gamma - alpha' - beta
-        res[f"{kind}_min"], res[f"{kind}_max"] = w.min(axis=1), w.max(axis=1)
-        np.multiply(w, kvol, out=w)
-        np.add(w, vc, out=w)  # V = K delta + V_c
-        res[f"v{kind}_min"], res[f"v{kind}_max"] = w.min(axis=1), w.max(axis=1)
-
-
-def _full_general_block(theta, law, tilt, alpha, lo_a, hi_b, kvol, vc):
-    """Block evaluator of every curve (the library's fused path), reduced per design."""
+def _full_general_block(theta, law, tilt, alpha):
+    """Block evaluator of every rotor curve (the library's fused path), reduced per design:
+    the peaks of :func:`_rotor_peaks` and the slider angle's extremes."""
 
     def fn(lo, hi):
         res, q = _rotor_peaks(theta, law, tilt[lo:hi, None], alpha[lo:hi, None])
-        _reduce_chambers(res, q[0], q[1].copy(), np.empty_like(q[0]), lo_a[lo:hi, None],
-                         hi_b[lo:hi, None], kvol[lo:hi, None], vc[lo:hi, None])  # fmt: skip
+        s = np.subtract(q[1], q[0], out=q[1])  # slider angle alpha' = Phi_2 - Phi_1
+        res["s_min"], res["s_max"] = s.min(axis=1), s.max(axis=1)
         return res
 
     return fn
