@@ -125,6 +125,24 @@ def test_kernel_equals_the_study_on_other_bases(sets):
     assert assert_equal_to_study(p, got, DYNAMIC, ROUND_OFF) == n
 
 
+@pytest.mark.parametrize(
+    "swept",
+    [
+        {"machine.bore": (0.03, 0.07), "machine.polytropic_exponent": (1.0, 1.4)},
+        {"run.speed": (5.0, 400.0)},
+    ],
+    ids=["machine", "speed"],
+)
+def test_kernel_equals_the_study_where_no_drive_value_varies(swept):
+    """Every design on the base's discs: the drive's curves still carry the design axis."""
+    cfg, _ = _base()
+    n = 5
+    rng = np.random.default_rng(8)
+    p = Designs(cfg, {k: rng.uniform(*lims, n) for k, lims in swept.items()}, n)
+    got = kernel.metrics(p, DYNAMIC, DEFAULT_SAMPLES, 1)
+    assert assert_equal_to_study(p, got, DYNAMIC, ROUND_OFF) == n
+
+
 def test_a_speed_profile_of_the_base_config_goes_through_the_kernel():
     _, raw = _base()
     raw["run"]["speed"] = ["500 rpm", "700 rpm", "650 rpm", "450 rpm"]

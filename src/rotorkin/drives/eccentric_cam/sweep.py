@@ -26,7 +26,7 @@ import numpy as np
 from rotorkin.analysis import pairs as ap
 from rotorkin.analysis.pairs import KINDS, ContactModel
 from rotorkin.analysis.timing import SPEED_MAX, SPEED_MIN
-from rotorkin.core.batch import flag, full, run_blocks, sample_grid
+from rotorkin.core.batch import distinct, flag, full, run_blocks, sample_grid
 from rotorkin.drives.eccentric_cam import kinematics as ec
 from rotorkin.drives.eccentric_cam.curves import drive_curves
 from rotorkin.drives.eccentric_cam.forces import forces_summary
@@ -257,9 +257,7 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
     peaks = {"piston_velocity_peak_mm_per_rad", "piston_accel_peak_mm_per_rad2",
              "piston_jerk_peak_mm_per_rad3"}  # fmt: skip
     if names & peaks:
-        val.update(
-            _peaks(full(drive.contact_radius, n), full(drive.eccentricity, n), samples, threads)
-        )
+        val.update(_peaks(drive.contact_radius, drive.eccentricity, n, samples, threads))
     if names & _DYNAMIC:
         val.update(_dynamic(p, sorted(names & _DYNAMIC), samples, threads))
     return {name: full(val[name], n) for name in names}
@@ -297,8 +295,12 @@ def _dynamic_follower(p, follower: str, names, samples, threads) -> dict:
             return v[lo:hi, None] if np.ndim(v) else v
 
         v = {k: col(x) for k, x in values.items()}
-        drive = ec.EccentricCam(v["drive.disc_radius"], v["drive.eccentricity"], follower,
-                                v["drive.roller_radius"])  # fmt: skip
+        # the disc as columns (d, 1) even where no drive value varies: every curve then
+        # carries the design axis, as the machine's values do (members first: (2, d, m))
+        rd, e = (
+            np.broadcast_to(v[k], (hi - lo, 1)) for k in ("drive.disc_radius", "drive.eccentricity")
+        )
+        drive = ec.EccentricCam(rd, e, follower, v["drive.roller_radius"])
         reactor = opposed_piston(drive, **{k: col(x) for k, x in machine.items()})
         mass = v["machine.piston_mass"]
         inertia = (v["machine.inertia_shaft"], np.stack([mass, mass]) if np.ndim(mass) else
@@ -322,7 +324,10 @@ def _dynamic_follower(p, follower: str, names, samples, threads) -> dict:
     return run_blocks(fn, n, samples, threads)
 
 
-def _peaks(rc, e, samples, threads) -> dict:
+def _peaks(rc, e, n: int, samples, threads) -> dict:
+    """The travel's sampled peaks per design (n,), once per distinct (contact radius,
+    eccentricity): the only values the piston's travel depends on."""
+    (rc, e), which = distinct((rc, e), n)
     beta = sample_grid(2.0 * np.pi, samples)
 
     def fn(lo, hi):
@@ -331,9 +336,9 @@ def _peaks(rc, e, samples, threads) -> dict:
 
     res = run_blocks(fn, e.size, samples, threads)
     return {
-        "piston_velocity_peak_mm_per_rad": res["v"] * 1e3,
-        "piston_accel_peak_mm_per_rad2": res["a"] * 1e3,
-        "piston_jerk_peak_mm_per_rad3": res["j"] * 1e3,
+        "piston_velocity_peak_mm_per_rad": res["v"][which] * 1e3,
+        "piston_accel_peak_mm_per_rad2": res["a"][which] * 1e3,
+        "piston_jerk_peak_mm_per_rad3": res["j"][which] * 1e3,
     }
 
 
