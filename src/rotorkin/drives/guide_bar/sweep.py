@@ -26,7 +26,7 @@ import numpy as np
 
 from rotorkin.analysis import pairs as ap
 from rotorkin.analysis.timing import shaft_speed
-from rotorkin.core.batch import Designs, flag, full, run_blocks, sample_grid
+from rotorkin.core.batch import Designs, distinct, flag, full, run_blocks, sample_grid
 from rotorkin.drives.guide_bar import forces as gb_forces
 from rotorkin.drives.guide_bar import kinematics as gb
 from rotorkin.drives.guide_bar import pump as gb_pump
@@ -319,18 +319,22 @@ def _dynamics(p, samples: int, threads, work=None) -> dict:
 
 
 def _sampled(p, samples, threads) -> dict:
+    """The sampled peaks per design (n,), once per distinct drive and impeller torques."""
     n = p.n
-    cols = {k: full(p.float(k), n) for k in ("drive.lambda", "drive.gear_ratio",
-            "drive.input_gear_ratio", "drive.phase", "loads.impeller_torque_1",
-            "loads.impeller_torque_2")}  # fmt: skip
+    keys = ("drive.lambda", "drive.gear_ratio", "drive.input_gear_ratio", "drive.phase",
+            "loads.impeller_torque_1", "loads.impeller_torque_2")  # fmt: skip
     # one driver for all designs: one formula evaluated; else both, picked per design
     varies = p.varies("drive.driver")
-    driver = full(np.asarray(p["drive.driver"]), n, dtype=str) if varies else p["drive.driver"]
+    drivers = np.unique(np.asarray(p["drive.driver"]))
+    code = np.searchsorted(drivers, p["drive.driver"]).astype(float) if varies else 0.0
+    columns, which = distinct([p.float(k) for k in keys] + [code], n)
+    cols = dict(zip(keys, columns[:-1], strict=True))
+    driver = drivers[columns[-1].astype(int)] if varies else p["drive.driver"]
     shared_grid = not p.varies("drive.input_gear_ratio")
     grid = sample_grid(period(p), samples) if shared_grid else None
 
     def fn(lo, hi):
-        lam, u, i12, ph, m7, m8 = (cols[k][lo:hi, None] for k in cols)
+        lam, u, i12, ph, m7, m8 = (cols[k][lo:hi, None] for k in keys)
         params = gb.GuideBar(lam, u, i12, ph, driver[lo:hi, None] if varies else driver)
         theta = grid if shared_grid else sample_grid(gb.period(params), samples)
         d1, d2, d3 = gb.impeller_rates(params, theta)  # (2, block, samples)
@@ -342,7 +346,8 @@ def _sampled(p, samples, threads) -> dict:
             "impeller_jerk_peak_per_rad2": np.abs(d3).max(axis=2).max(axis=0),
         }
 
-    return run_blocks(fn, n, samples, threads)
+    res = run_blocks(fn, columns[0].size, samples, threads)
+    return {k: v[which] for k, v in res.items()}
 
 
 def curves(p, points: int):
