@@ -39,7 +39,7 @@ import numpy as np
 
 from rotorkin.analysis import pairs as ap
 from rotorkin.analysis.timing import shaft_speed
-from rotorkin.core.batch import flag, full, run_blocks, sample_grid
+from rotorkin.core.batch import distinct, flag, full, run_blocks, sample_grid
 from rotorkin.drives.rhomboid_cam import engine
 from rotorkin.drives.rhomboid_cam import forces as rf
 from rotorkin.drives.rhomboid_cam import kinematics as rc
@@ -196,7 +196,7 @@ def metrics(p, names, samples: int, threads: int | None = None) -> dict:
     if _stirling(p.cfg):  # the hot and the cold set: twice one set's displacement
         val["displacement_cm3_per_rev"] = 2.0 * val["displacement_cm3_per_rev"]
     if names & set(rs.PEAK_KEYS):
-        val.update(_sampled(full(L, n), full(pm, n), samples, threads))
+        val.update(_sampled(L, pm, n, samples, threads))
     if names & set(_DYNAMIC + _STIRLING):
         val.update(_dynamics(p, samples, threads))
     return {name: full(val[name], n) for name in names}
@@ -307,14 +307,17 @@ def _circuits(p, params, machine, c, gas, turning):
     return rbs.stirling_solution(machine, loads, motion, rc.period(params), turning // 2, swept)
 
 
-def _sampled(L, psi_min, samples, threads) -> dict:
-    """The :data:`~.summary.PEAK_KEYS` on ``samples`` shaft angles per design, in blocks."""
+def _sampled(L, psi_min, n: int, samples, threads) -> dict:
+    """The :data:`~.summary.PEAK_KEYS` on ``samples`` shaft angles per design (n,), in
+    blocks, once per distinct (link length, minimum rhomboid angle)."""
+    (L, psi_min), which = distinct((L, psi_min), n)
     alpha = sample_grid(np.pi, samples)
 
     def fn(lo, hi):
         return rc.law_peaks(L[lo:hi, None], psi_min[lo:hi, None], (), (), alpha)
 
-    return rs.peak_summary(run_blocks(fn, L.size, samples, threads))
+    peaks = rs.peak_summary(run_blocks(fn, L.size, samples, threads))
+    return {k: np.asarray(v)[which] for k, v in peaks.items()}
 
 
 def curves(p, points: int):
