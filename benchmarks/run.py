@@ -205,6 +205,7 @@ def sweep_cli_markdown(cli: dict) -> str:
         f"| {mem['command']} | {mem['designs']} | {mem['result_MiB']:.0f} | "
         f"{mem['peak_rss_MiB']:.0f} | {mem['baseline_peak_rss_MiB']:.0f} | "
         f"{mem['rss_over_result']:.2f} | {mem['wall_s']:.1f} |",
+        *_own_motions_row(mem),
         "",
         "| command | designs | wall s | compute alone s | fixed s | in the run: compute | "
         "interpreter | imports | spec checks | overview figure | sweep.nc |",
@@ -219,6 +220,16 @@ def sweep_cli_markdown(cli: dict) -> str:
         f"Load {cli['load_before'][0]:.1f} at start, {cli['load_after'][0]:.1f} at end; "
         f"best of {fixed['rounds']} rounds.",
     ])  # fmt: skip
+
+
+def _own_motions_row(mem: dict) -> list[str]:
+    """The row of the sweep whose designs each have their own rotor motion (if measured)."""
+    own = mem.get("own_motions")
+    if not own:
+        return []
+    return [f"| {own['command']} | {own['designs']} | {own['result_MiB']:.0f} | "
+            f"{own['peak_rss_MiB']:.0f} | {mem['baseline_peak_rss_MiB']:.0f} | "
+            f"{own['rss_over_result']:.2f} | {own['wall_s']:.1f} |"]  # fmt: skip
 
 
 def cycle_markdown(result: dict) -> str:
