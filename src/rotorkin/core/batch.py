@@ -121,7 +121,7 @@ def distinct(columns, n: int) -> tuple[list[np.ndarray], np.ndarray]:
     results with ``inverse``. Values are compared bit for bit (``-0.0`` is not ``0.0``;
     a NaN is the same NaN only with its bits). Each column's values are numbered by one
     sort; a row is the tuple of its numbers, counted without a sort where there are at
-    most ``max(n, _DIRECT_CODES)`` tuples.
+    most ``max(4 n, _DIRECT_CODES)`` tuples (a byte and an index per tuple).
     """
     arrays = [np.asarray(c, dtype=float) for c in columns]
     numbered = {}  # column -> (its sorted distinct bit patterns, each design's number)
@@ -138,7 +138,7 @@ def distinct(columns, n: int) -> tuple[list[np.ndarray], np.ndarray]:
     sizes = [numbered[k][0].size for k in used]
     if not used:  # one row
         return [a.reshape(-1)[:1].copy() for a in arrays], np.zeros(n, dtype=np.intp)
-    if math.prod(sizes) <= max(_DIRECT_CODES, n):
+    if math.prod(sizes) <= max(_DIRECT_CODES, 4 * n):
         code = np.ravel_multi_index([numbered[k][1] for k in used], sizes)
         present = np.zeros(math.prod(sizes), dtype=bool)
         present[code] = True
@@ -157,8 +157,8 @@ def distinct(columns, n: int) -> tuple[list[np.ndarray], np.ndarray]:
     return out, inverse.reshape(-1).astype(np.intp, copy=False)
 
 
-#: Row codes up to which :func:`distinct` counts rows directly (one byte per code).
-_DIRECT_CODES = 1 << 24
+#: Row codes up to which :func:`distinct` counts rows directly, at least (beyond 4 n).
+_DIRECT_CODES = 1 << 20
 
 
 def sample_grid(period, samples: int) -> np.ndarray:
