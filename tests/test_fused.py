@@ -284,7 +284,8 @@ def test_rhomboid_compiled_equals_numpy_and_reference(args):
 # --------------------------------------------------------------------------------------------
 def test_large_inputs_over_blocks_and_threads_equal_the_numpy_path():
     """Several blocks with a ragged end, 1 and 2 threads, a strided view: same values."""
-    size = 5 * fused.BLOCK + 77
+    size = 2 * fused.COMPILED_BLOCK + 3 * fused.BLOCK + 77  # 2 threads: 2 ragged ranges
+    assert size >= fused.MIN_PARALLEL
     theta = np.random.default_rng(11).uniform(-9, 9, 2 * size)[::2]  # a strided view
     calls = [
         lambda k, t: rotor_kinematics(0.6, 1.4, -1.5, theta, chamber=(0.2, 4), kernel=k, threads=t)[
@@ -296,6 +297,9 @@ def test_large_inputs_over_blocks_and_threads_equal_the_numpy_path():
         ),  # fmt: skip
         lambda k, t: rc_fused.law_fused(
             0.4, 0.0, np.array([0.02]), np.array([0.01]), theta, blades=True, kernel=k, threads=t
+        ),  # fmt: skip
+        lambda k, t: ng_fused.motion_fused(
+            2, 2, 0.2, 0.4, 0.6, 0.5, 0.7, 0.1, theta, kernel=k, threads=t
         ),  # fmt: skip
     ]
     for call in calls:

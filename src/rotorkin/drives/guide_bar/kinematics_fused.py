@@ -127,33 +127,41 @@ def _rates(c, s, lam, k, guide):
 
 
 @compiled_loop
-def _atan_loop(t1, t2, lam, guide, r1, r2):
+def _driving_loop(theta, i12, phase, x1, x2, h1, h2):
+    """The driving angles ``x_1 = theta/i12``, ``x_2 = x_1 + Sigma`` and their halves."""
+    for i in range(x1.shape[0]):
+        a = at(theta, i) / at(i12, i)
+        b = a + at(phase, i)
+        x1[i], x2[i], h1[i], h2[i] = a, b, a * 0.5, b * 0.5
+
+
+@compiled_loop
+def _atan_rate_loop(t1, t2, lam, k, guide, w1, w2, w3, r1, r2, o2, o3, o4, o5, o6, o7):
+    """The arctangents' arguments and every derivative: ``c``, ``s`` once per point."""
     for i in range(r1.shape[0]):
         c1, s1 = half_angle_trig(t1[i])
         c2, s2 = half_angle_trig(t2[i])
-        la = at(lam, i)
-        if at(guide, i):  # each point's own law (one design: a loop-invariant branch)
+        la, kk, gd = at(lam, i), at(k, i), at(guide, i)
+        v1, v2, v3 = at(w1, i), at(w2, i), at(w3, i)
+        if gd:  # each point's own law (one design: a loop-invariant branch)
             r1[i] = guide_atan_argument(c1, s1, la)
             r2[i] = guide_atan_argument(c2, s2, la)
         else:
             r1[i] = crank_atan_argument(c1, s1, la)
             r2[i] = crank_atan_argument(c2, s2, la)
+        f1, f2, f3 = _rates(c1, s1, la, kk, gd)
+        o2[i], o4[i], o6[i] = f1 * v1, f2 * v2, f3 * v3
+        f1, f2, f3 = _rates(c2, s2, la, kk, gd)
+        o3[i], o5[i], o7[i] = f1 * v1, f2 * v2, f3 * v3
 
 
 @compiled_loop
-def _angle_loop(x1, x2, t1, t2, e1, e2, lam, k, guide, iu, w1, w2, w3, o0, o1, o2, o3, o4, o5, o6,
-                o7):  # fmt: skip
+def _angle_loop(x1, x2, e1, e2, iu, o0, o1):
+    """``q_k = (x_k + atan(.))/u``."""
     for i in range(o0.shape[0]):
-        c1, s1 = half_angle_trig(t1[i])
-        c2, s2 = half_angle_trig(t2[i])
-        la, kk, gd = at(lam, i), at(k, i), at(guide, i)
-        iuu, v1, v2, v3 = at(iu, i), at(w1, i), at(w2, i), at(w3, i)
-        f1, f2, f3 = _rates(c1, s1, la, kk, gd)
+        iuu = at(iu, i)
         o0[i] = (x1[i] + e1[i]) * iuu
-        o2[i], o4[i], o6[i] = f1 * v1, f2 * v2, f3 * v3
-        f1, f2, f3 = _rates(c2, s2, la, kk, gd)
         o1[i] = (x2[i] + e2[i]) * iuu
-        o3[i], o5[i], o7[i] = f1 * v1, f2 * v2, f3 * v3
 
 
 @compiled_loop
@@ -192,15 +200,18 @@ def _driving(x, m):
 
 def _angle_block(x, o, compiled):
     m = o.shape[1]
-    xs, t = _driving(x, m)
     design = (x["lam"], x["k"], x["guide"])
     scale = (x["iu"], x["w1"], x["w2"], x["w3"])
-    if compiled:
-        e = np.empty((2, m))
-        _atan_loop(t[0], t[1], x["lam"], x["guide"], e[0], e[1])
+    if compiled:  # 5 calls a block: x_k, tan, arguments and derivatives, arctan, q_k
+        w = np.empty((6, m))
+        xs, t, e = w[0:2], w[2:4], w[4:6]
+        _driving_loop(x["theta"], x["i12"], x["phase"], *xs, *t)
+        np.tan(t, out=t)
+        _atan_rate_loop(*t, *design, *scale[1:], *e, *o[2:])
         np.arctan(e, out=e)
-        _angle_loop(xs[0], xs[1], t[0], t[1], e[0], e[1], *design, *scale, *o)
+        _angle_loop(*xs, *e, scale[0], o[0], o[1])
         return
+    xs, t = _driving(x, m)
     c1, s1 = half_angle_trig(t[0])
     c2, s2 = half_angle_trig(t[1])
     e1 = np.arctan(atan_argument(c1, s1, x["lam"], x["guide"]))

@@ -59,43 +59,57 @@ def rotor_point(t, c, s, atan, n, m, e, pa, beta, offset):
 
 
 @compiled_loop
-def _atan_loop(tau1, tau2, e, beta, root, r1, r2):
-    for i in range(r1.shape[0]):
-        ee, bb, rr = at(e, i), at(beta, i), at(root, i)
-        c, s = half_angle_trig(tau1[i])
-        r1[i] = atan_argument(c, s, ee, bb, rr)
-        c, s = half_angle_trig(tau2[i])
-        r2[i] = atan_argument(c, s, ee, bb, rr)
+def _driving_loop(n, theta, sigma, t1, t2, h1, h2):
+    """``t_1 = n theta``, ``t_2 = n (theta + sigma)`` and their halves."""
+    for i in range(t1.shape[0]):
+        nn, th = at(n, i), at(theta, i)
+        a = nn * th
+        b = nn * (th + at(sigma, i))
+        t1[i], t2[i], h1[i], h2[i] = a, b, a * 0.5, b * 0.5
 
 
 @compiled_loop
-def _rotor_loop(t1, t2, tau1, tau2, e1, e2, n, m, e, pa, beta, offset, o0, o1, o2, o3, o4, o5,
-                o6, o7):  # fmt: skip
-    for i in range(o0.shape[0]):
+def _atan_ratio_loop(t1, t2, tau1, tau2, n, m, e, pa, beta, root, r1, r2, o2, o3, o4, o5, o6,
+                     o7):  # fmt: skip
+    """The arctangents' arguments and ``R, R', R''`` of both rotors: ``c``, ``s`` once."""
+    for i in range(r1.shape[0]):
         nn, mm, ee, pp, bb = at(n, i), at(m, i), at(e, i), at(pa, i), at(beta, i)
+        rr = at(root, i)
         c, s = half_angle_trig(tau1[i])
-        o0[i], o2[i], o4[i], o6[i] = rotor_point(t1[i], c, s, e1[i], nn, mm, ee, pp, bb, 0.0)
+        r1[i] = atan_argument(c, s, ee, bb, rr)
+        _, o2[i], o4[i], o6[i] = rotor_point(t1[i], c, s, 0.0, nn, mm, ee, pp, bb, 0.0)
         c, s = half_angle_trig(tau2[i])
-        o1[i], o3[i], o5[i], o7[i] = rotor_point(
-            t2[i], c, s, e2[i], nn, mm, ee, pp, bb, at(offset, i)
-        )
+        r2[i] = atan_argument(c, s, ee, bb, rr)
+        _, o3[i], o5[i], o7[i] = rotor_point(t2[i], c, s, 0.0, nn, mm, ee, pp, bb, 0.0)
+
+
+@compiled_loop
+def _angle_loop(t1, t2, e1, e2, m, offset, o0, o1):
+    """``phi2(t_k) - offset_k = (t_k + 2 atan(.))/m - offset_k``."""
+    for i in range(o0.shape[0]):
+        mm = at(m, i)
+        o0[i] = (t1[i] + 2.0 * e1[i]) / mm
+        o1[i] = (t2[i] + 2.0 * e2[i]) / mm - at(offset, i)
 
 
 def _block(x, o, compiled):
     m = o.shape[1]
+    design = (x["e"], x["beta"], x["root"])
+    if compiled:  # 5 calls a block: t_k, tan, arguments and ratios, arctan, angles
+        w = np.empty((6, m))
+        t, tau, e = w[0:2], w[2:4], w[4:6]
+        _driving_loop(x["n"], x["theta"], x["sigma"], *t, *tau)
+        np.tan(tau, out=tau)
+        _atan_ratio_loop(*t, *tau, x["n"], x["m"], x["e"], x["pa"], x["beta"], x["root"], *e,
+                         *o[2:])  # fmt: skip
+        np.arctan(e, out=e)
+        _angle_loop(*t, *e, x["m"], x["offset"], o[0], o[1])
+        return
     t = np.empty((2, m))
     np.multiply(x["n"], x["theta"], out=t[0])
     np.multiply(x["n"], x["theta"] + x["sigma"], out=t[1])
     tau = np.multiply(t, 0.5)
     np.tan(tau, out=tau)
-    design = (x["e"], x["beta"], x["root"])
-    if compiled:
-        e = np.empty((2, m))
-        _atan_loop(tau[0], tau[1], *design, e[0], e[1])
-        np.arctan(e, out=e)
-        consts = (x["n"], x["m"], x["e"], x["pa"], x["beta"], x["offset"])
-        _rotor_loop(t[0], t[1], tau[0], tau[1], e[0], e[1], *consts, *o)
-        return
     for k, offset in ((0, 0.0), (1, x["offset"])):
         c, s = half_angle_trig(tau[k])
         atan = np.arctan(atan_argument(c, s, *design))

@@ -49,13 +49,13 @@ import math
 
 import numpy as np
 
-from rotorkin.core.errors import ParameterError
 from rotorkin.core.fused import (
     BLOCK,
+    COMPILED_BLOCK,
     THREADS_ENV,
     chunks,
     default_threads,
-    shared_pool,
+    split,
     use_compiled,
 )
 from rotorkin.drives.wobble_cam import kinematics_fused as fused
@@ -64,10 +64,6 @@ __all__ = ["BLOCK", "THREADS_ENV", "default_threads", "rotor_kinematics"]
 
 #: Inputs from which the constants of the formulas follow (:func:`_coefficients`).
 _DESIGN = ("tilt", "half", "width")
-#: Points per block of the compiled loops (3 scratch arrays of 256 KiB, in the L2 cache).
-COMPILED_BLOCK = 4 * BLOCK
-#: Fewest points for which a thread pool is used.
-_MIN_PARALLEL = 8 * BLOCK
 _SCRATCH = 14
 
 
@@ -154,19 +150,7 @@ def rotor_kinematics(
     else:
         flat = False
     job = (arrays, flat, scalars, n, pistons, flat_r, flat_c, use_compiled(size, kernel))
-    nthreads = default_threads() if threads is None else int(threads)
-    if nthreads < 1:
-        raise ParameterError("threads", repr(threads), "an integer >= 1")
-    nthreads = min(nthreads, max(1, size // (_MIN_PARALLEL // 2)))
-    if nthreads == 1 or size < _MIN_PARALLEL:
-        _run(job, 0, size)
-    else:
-        step = -(-size // nthreads)
-        step = -(-step // BLOCK) * BLOCK
-        cuts = [(lo, min(size, lo + step)) for lo in range(0, size, step)]
-        futures = [shared_pool(nthreads).submit(_run, job, lo, hi) for lo, hi in cuts]
-        for f in futures:
-            f.result()
+    split(lambda lo, hi: _run(job, lo, hi), size, threads)
     return rotor, cham
 
 
