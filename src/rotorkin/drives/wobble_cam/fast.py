@@ -197,8 +197,7 @@ def _block_compiled(x, k, n, o, dch, w, lo):
     np.tan(tv, out=tv)
     trig = (k["ca"], k["sa"], k["ca2"], k["sa2"])
     fused.atan_arguments(tv, *trig, k["gamma"], e1, e2)
-    np.arctan(e1, out=e1)
-    np.arctan(e2, out=e2)
+    np.arctan(w[2:4], out=w[2:4])  # e1, e2 in one call
     m = tv.shape[0]
     outs = [o[i, r, lo : lo + m] for i in range(4) for r in range(2)]
     chambers = dch is not None
