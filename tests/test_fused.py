@@ -27,6 +27,7 @@ from rotorkin.drives.noncircular_gears import kinematics as ng
 from rotorkin.drives.noncircular_gears import kinematics_fused as ng_fused
 from rotorkin.drives.rhomboid_cam import kinematics as rc
 from rotorkin.drives.rhomboid_cam import kinematics_fused as rc_fused
+from rotorkin.drives.wobble_cam import fast as wc_fast
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam import kinematics_fused as wc_fused
 from rotorkin.drives.wobble_cam.fast import rotor_kinematics
@@ -125,6 +126,49 @@ def test_wobble_corrected_spin_law_and_designs_per_point():
         q = compose(e, law)
         close(rot[:, r], np.stack([theta + q[0], 1.0 + q[1], q[2], q[3]]))
     close(ch, np.stack(wc.chamber_angles(width, rot[0, 1] - rot[0, 0], pistons=4)))
+
+
+def _bits(values: dict) -> dict:
+    return {k: np.asarray(v).view(np.int64) for k, v in values.items()}
+
+
+@pytest.mark.parametrize("law", ["linear", "corrected"])
+@pytest.mark.parametrize("designs", [1, 7, 400])
+def test_wobble_extremes_equal_the_reduced_curves(law, designs):
+    """A sweep's per-design peaks, reduced as they are evaluated (compiled), equal the
+    curves' reductions (numpy) bit for bit, NaN designs included, and the independent
+    sin/cos forms to 1e-12; 400 designs span two blocks of the compiled path."""
+    rng = np.random.default_rng(designs)
+    theta = np.linspace(0.0, 2.0 * np.pi, 360, endpoint=False)
+    spin = -2.0 if law == "linear" else wc.spin_angle(-2.0, (0.01,), (0.02,), theta)
+    tilt, alpha = rng.uniform(0.3, 1.2, designs), rng.uniform(1.0, 2.5, designs)
+    if designs > 1:
+        tilt[designs // 2] = np.nan  # a design the sweep could not evaluate
+    for a in (alpha, alpha[0]):  # per design, or one roller axis angle for all
+        got = wc_fast.rotor_extremes(tilt, a, spin, theta, kernel="numba")
+        ref = wc_fast.rotor_extremes(tilt, a, spin, theta, kernel="numpy")
+        assert list(got) == list(wc_fast.EXTREMES)
+        for key, bits in _bits(ref).items():
+            np.testing.assert_array_equal(_bits(got)[key], bits, err_msg=key)
+    law4 = (spin * theta, spin, 0.0, 0.0) if law == "linear" else spin
+    rot = []
+    for s in (-1.0, 1.0):  # Phi_k = theta + E(varphi -+ alpha/2), E by sin/cos and atan2
+        e = wc.projected_angle(tilt[:, None], law4[0] + s * 0.5 * alpha[:, None])
+        q = compose(e, law4)
+        rot.append(np.stack(np.broadcast_arrays(theta + q[0], 1.0 + q[1], q[2], q[3])))
+    rot = np.stack(rot, axis=1)  # (4, 2, designs, angles)
+    with np.errstate(invalid="ignore"):
+        ref = {"acc": np.abs(rot[2]).max(axis=(0, 2)), "jerk": np.abs(rot[3]).max(axis=(0, 2)),
+               "r_min": rot[1].min(axis=(0, 2)), "r_max": rot[1].max(axis=(0, 2)),
+               "s_min": (rot[0, 1] - rot[0, 0]).min(axis=1),
+               "s_max": (rot[0, 1] - rot[0, 0]).max(axis=1)}  # fmt: skip
+    got = wc_fast.rotor_extremes(tilt, alpha, spin, theta, kernel="numba")
+    for key, value in ref.items():
+        assert np.array_equal(np.isnan(got[key]), np.isnan(value)), key
+        ok = ~np.isnan(value)
+        scale = np.max(np.abs(value[ok]))
+        np.testing.assert_allclose(got[key][ok], value[ok], rtol=0, atol=REF_TOL * scale,
+                                   err_msg=key)  # fmt: skip
 
 
 # --------------------------------------------------------------------------------------------

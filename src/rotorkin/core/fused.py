@@ -101,17 +101,26 @@ _POOL_LOCK = threading.Lock()
 # --------------------------------------------------------------------------------------------
 # the formulas and their helpers (plain Python on numbers or arrays; compiled inside loops)
 # --------------------------------------------------------------------------------------------
-def formula(fn):
+def formula(fn=None, *, inline: bool = True):
     """Mark ``fn`` as a point formula: plain Python on numbers (or arrays).
 
     Called on numpy arrays it is the numpy path; compiled loops call it on
-    numbers (inlined). It may only use arithmetic, :func:`at`, :func:`select`
-    and other formulas. Returns ``fn`` itself.
+    numbers (inlined into the loop's own code when ``inline``; otherwise left to
+    the compiler, for helpers with branches that only compiled loops call). It may
+    only use arithmetic, :func:`at`, :func:`select` and other formulas. Returns
+    ``fn`` itself; ``@formula(inline=False)`` is the decorator with the option.
     """
-    _FORMULAS.append(fn)
+    if fn is None:
+        return lambda f: formula(f, inline=inline)
+    _FORMULAS.append((fn, inline))
     if _NUMBA:
-        _NUMBA.extending.register_jitable(inline="always")(fn)
+        _register(_NUMBA, fn, inline)
     return fn
+
+
+def _register(numba, fn, inline: bool) -> None:
+    """Teach numba a formula (IR-inlined when ``inline``)."""
+    numba.extending.register_jitable(inline="always" if inline else "never")(fn)
 
 
 def at(x, i):
@@ -153,8 +162,8 @@ def _setup_numba():
 
             return impl
 
-        for fn in _FORMULAS:
-            numba.extending.register_jitable(inline="always")(fn)
+        for fn, inline in _FORMULAS:
+            _register(numba, fn, inline)
         _NUMBA = numba
         return _NUMBA
 

@@ -60,7 +60,14 @@ from rotorkin.core.fused import (
 )
 from rotorkin.drives.wobble_cam import kinematics_fused as fused
 
-__all__ = ["BLOCK", "THREADS_ENV", "default_threads", "rotor_kinematics"]
+__all__ = [
+    "BLOCK",
+    "EXTREMES",
+    "THREADS_ENV",
+    "default_threads",
+    "rotor_extremes",
+    "rotor_kinematics",
+]
 
 #: Inputs from which the constants of the formulas follow (:func:`_coefficients`).
 _DESIGN = ("tilt", "half", "width")
@@ -334,3 +341,85 @@ def _third(b, s, a, c, k, out, factor):
     np.multiply(a, a, out=out)
     np.multiply(out, b, out=out)
     np.multiply(out, factor, out=out)
+
+
+#: Keys of :func:`rotor_extremes`, in the rows of its compiled loop.
+EXTREMES = ("acc", "jerk", "r_min", "r_max", "s_min", "s_max")
+
+
+def rotor_extremes(plate_tilt, roller_axis_angle, spin, theta, *, kernel=None) -> dict:
+    """Per design, over both rotors and the angles: the peaks a sweep keeps of the curves.
+
+    Parameters
+    ----------
+    plate_tilt, roller_axis_angle : array_like, shape (m,)
+        phi and alpha of each design [rad] (numbers: one design).
+    spin : float or sequence of 4 array_like
+        As :func:`rotor_kinematics`; the tables on ``theta``.
+    theta : array_like, shape (A,)
+        Shaft angles [rad], the same for every design.
+    kernel : {"auto", "numpy", "numba"}, optional
+        :func:`rotorkin.core.fused.use_compiled`.
+
+    Returns
+    -------
+    dict of str -> ndarray, shape (m,)
+        ``acc`` = max ``|Phi_k''|``, ``jerk`` = max ``|Phi_k'''|``, ``r_min``, ``r_max`` =
+        the extremes of ``Phi_k'`` (both rotors, every angle), ``s_min``, ``s_max`` = the
+        extremes of the slider angle ``Phi_2 - Phi_1``; NaN where a curve has a NaN.
+
+    Notes
+    -----
+    The values are those of :func:`rotor_kinematics` on designs ``(m, 1)`` against
+    ``theta``, reduced with numpy (the numpy path does exactly that), bit for bit. The
+    compiled path stores no curve: the angles' ``tan`` is taken once for all designs
+    (it does not depend on the design), each design's constants are read once, and one
+    loop over designs x angles evaluates every point and keeps its extremes, around a
+    single numpy ``arctan`` over a block of designs.
+    """
+    tilt = np.atleast_1d(np.asarray(plate_tilt, dtype=float)).reshape(-1)
+    half = 0.5 * np.atleast_1d(np.asarray(roller_axis_angle, dtype=float)).reshape(-1)
+    th = np.atleast_1d(np.asarray(theta, dtype=float)).reshape(-1)
+    m = max(tilt.size, half.size)
+    if not use_compiled(m * th.size, kernel):
+        rot, _ = rotor_kinematics(tilt[:, None], 2.0 * half[:, None], spin, th, threads=1,
+                                  kernel=kernel)  # fmt: skip
+        q, d1, d2, d3 = rot
+        s = np.subtract(q[1], q[0], out=q[1])
+        return {"acc": np.abs(d2).max(axis=(0, 2)), "jerk": np.abs(d3).max(axis=(0, 2)),
+                "r_min": d1.min(axis=(0, 2)), "r_max": d1.max(axis=(0, 2)),
+                "s_min": s.min(axis=1), "s_max": s.max(axis=1)}  # fmt: skip
+    linear = isinstance(spin, (float, int, np.number)) or np.ndim(spin) == 0
+    if linear:
+        n = float(spin)
+        tv = np.multiply(th, n)
+        vt = th * (1.0 + n)
+        u = (th, th, th)  # not read
+    else:
+        n = None
+        v, *u = (np.broadcast_to(np.asarray(s, dtype=float), th.shape) for s in spin)
+        tv = np.array(v)
+        vt = np.add(v, th)
+    np.tan(tv, out=tv)
+    # per design, as rotor_kinematics: a one-element input is a number (math), else numpy
+    design = {"tilt": tilt, "half": half}
+    k = _coefficients({key: float(a[0]) if a.size == 1 else a for key, a in design.items()},
+                      n, None)  # fmt: skip
+    slope = (k["nc"], k["a2"], k["a3"]) if linear else (k["c"], k["mck"], k["ck2"])
+    names = ("ca", "sa", "ca2", "sa2", "gamma", "h", "a0", "b0", "k")
+    per = {key: k[key] for key in names}
+    per.update(zip(("c1", "c2", "c3"), slope, strict=True))
+    out = np.empty((len(EXTREMES), m))
+    step = max(1, 4 * COMPILED_BLOCK // th.size)  # the arctangents: 2 MiB a block
+    r = np.empty(2 * min(step, m) * th.size)
+    for lo in range(0, m, step):
+        hi = min(m, lo + step)
+        x = {key: a if np.ndim(a) == 0 else a[lo:hi] for key, a in per.items()}
+        e = r[: 2 * (hi - lo) * th.size].reshape(2, hi - lo, th.size)  # C-contiguous rows
+        fused.atan_arguments_grid(tv, x["ca"], x["sa"], x["ca2"], x["sa2"], x["gamma"], *e)
+        np.arctan(e, out=e)
+        fused.extremes_grid(
+            tv, vt, e[0], e[1], x["ca"], x["sa"], x["ca2"], x["sa2"], x["h"], x["a0"],
+            x["b0"], x["k"], x["c1"], x["c2"], x["c3"], *u, linear, out[:, lo:hi],
+        )  # fmt: skip
+    return dict(zip(EXTREMES, out, strict=True))

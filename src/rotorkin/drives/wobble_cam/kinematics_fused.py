@@ -19,9 +19,19 @@ per point) arrive as arrays, constants as numbers (:func:`rotorkin.core.fused.at
 
 from __future__ import annotations
 
-from rotorkin.core.fused import at, compiled_loop, formula
+import numpy as np
 
-__all__ = ["atan_arguments", "general_outputs", "linear_outputs"]
+from rotorkin.core.fused import at, compiled_loop, formula, select
+
+__all__ = [
+    "atan_arguments",
+    "atan_arguments_grid",
+    "extremes_grid",
+    "general_outputs",
+    "general_point",
+    "linear_outputs",
+    "linear_point",
+]
 
 
 @formula
@@ -65,6 +75,53 @@ def atan_arguments(t, ca, sa, ca2, sa2, gamma, r1, r2):
         r2[i] = s2 / (g - c2)
 
 
+@formula
+def linear_point(t, vt, e1, e2, ca, sa, ca2, sa2, hh, aa0, bb0, kk, nc, a2, a3):
+    """Both rotors' ``Phi_k`` and three derivatives under the linear spin law.
+
+    ``t = tan varphi``, ``vt = theta (1 + n)``, ``e_k`` the arctangents of both rotors;
+    returns ``Phi_1, Phi_2, Phi_1', Phi_2', Phi_1'', Phi_2'', Phi_1''', Phi_2'''``.
+    """
+    s1, c1, s2, c2 = spin_trig(t, ca, sa, ca2, sa2)
+    p1 = (vt + (-hh)) + e1
+    p2 = (vt + hh) + e2
+    a, b = rates(s1, c1, aa0, bb0)
+    d11 = a * nc + 1.0
+    d31 = third(b, s1, a, c1, kk, a3)
+    d21 = (b * a) * a2
+    a, b = rates(s2, c2, aa0, bb0)
+    d12 = a * nc + 1.0
+    d32 = third(b, s2, a, c2, kk, a3)
+    d22 = (b * a) * a2
+    return p1, p2, d11, d12, d21, d22, d31, d32
+
+
+@formula
+def general_point(t, vt, e1, e2, ca, sa, ca2, sa2, hh, aa0, bb0, kk, cc, m, f, u1, u2, u3):
+    """:func:`linear_point` of any spin law with derivatives ``u1, u2, u3`` (Faa di Bruno)."""
+    s1, c1, s2, c2 = spin_trig(t, ca, sa, ca2, sa2)
+    u1s = u1 * u1
+    u1c = u1 * u1 * u1
+    u12 = 3.0 * u1 * u2
+    p1 = (vt + (-hh)) + e1
+    p2 = (vt + hh) + e2
+    a, b = rates(s1, c1, aa0, bb0)
+    f1 = a * cc
+    f2 = (b * a) * m
+    f3 = third(b, s1, a, c1, kk, f)
+    d11 = f1 * u1 + 1.0
+    d21 = f2 * u1s + f1 * u2
+    d31 = (f3 * u1c + f2 * u12) + f1 * u3
+    a, b = rates(s2, c2, aa0, bb0)
+    f1 = a * cc
+    f2 = (b * a) * m
+    f3 = third(b, s2, a, c2, kk, f)
+    d12 = f1 * u1 + 1.0
+    d22 = f2 * u1s + f1 * u2
+    d32 = (f3 * u1c + f2 * u12) + f1 * u3
+    return p1, p2, d11, d12, d21, d22, d31, d32
+
+
 @compiled_loop
 def linear_outputs(
     t, th, n1, e1, e2, ca, sa, ca2, sa2, h, a0, b0, k, nc, a2, a3, ka, kb,
@@ -76,22 +133,12 @@ def linear_outputs(
     ``Phi' = 1 + n c/D``, ``Phi'' = -n^2 c k S/D^2``, ``Phi''' = 2 n^3 c k/D^2 (k S^2/D - C)``.
     """
     for i in range(t.shape[0]):
-        s1, c1, s2, c2 = spin_trig(t[i], at(ca, i), at(sa, i), at(ca2, i), at(sa2, i))
-        hh = at(h, i)
-        aa0, bb0, kk = at(a0, i), at(b0, i), at(k, i)
-        vt = at(th, i) * n1
-        p1 = (vt + (-hh)) + e1[i]
-        p2 = (vt + hh) + e2[i]
+        p1, p2, d11[i], d12[i], d21[i], d22[i], d31[i], d32[i] = linear_point(
+            t[i], at(th, i) * n1, e1[i], e2[i], at(ca, i), at(sa, i), at(ca2, i), at(sa2, i),
+            at(h, i), at(a0, i), at(b0, i), at(k, i), at(nc, i), at(a2, i), at(a3, i),
+        )  # fmt: skip
         q1[i] = p1
         q2[i] = p2
-        a, b = rates(s1, c1, aa0, bb0)
-        d11[i] = a * at(nc, i) + 1.0
-        d31[i] = third(b, s1, a, c1, kk, at(a3, i))
-        d21[i] = (b * a) * at(a2, i)
-        a, b = rates(s2, c2, aa0, bb0)
-        d12[i] = a * at(nc, i) + 1.0
-        d32[i] = third(b, s2, a, c2, kk, at(a3, i))
-        d22[i] = (b * a) * at(a2, i)
         if chambers:
             d = p2 - p1
             da[i] = d + at(ka, i)
@@ -105,32 +152,109 @@ def general_outputs(
 ):  # fmt: skip
     """Outputs of any spin law with derivatives ``g1, g2, g3`` (Faa di Bruno to order 3)."""
     for i in range(t.shape[0]):
-        s1, c1, s2, c2 = spin_trig(t[i], at(ca, i), at(sa, i), at(ca2, i), at(sa2, i))
-        hh = at(h, i)
-        aa0, bb0, kk, cc, m, f = at(a0, i), at(b0, i), at(k, i), at(c, i), at(mck, i), at(ck2, i)
-        u1, u2, u3 = at(g1, i), at(g2, i), at(g3, i)
-        u1s = u1 * u1
-        u1c = u1 * u1 * u1
-        u12 = 3.0 * u1 * u2
-        p1 = (vt[i] + (-hh)) + e1[i]
-        p2 = (vt[i] + hh) + e2[i]
+        p1, p2, d11[i], d12[i], d21[i], d22[i], d31[i], d32[i] = general_point(
+            t[i], vt[i], e1[i], e2[i], at(ca, i), at(sa, i), at(ca2, i), at(sa2, i), at(h, i),
+            at(a0, i), at(b0, i), at(k, i), at(c, i), at(mck, i), at(ck2, i), at(g1, i),
+            at(g2, i), at(g3, i),
+        )  # fmt: skip
         q1[i] = p1
         q2[i] = p2
-        a, b = rates(s1, c1, aa0, bb0)
-        f1 = a * cc
-        f2 = (b * a) * m
-        f3 = third(b, s1, a, c1, kk, f)
-        d11[i] = f1 * u1 + 1.0
-        d21[i] = f2 * u1s + f1 * u2
-        d31[i] = (f3 * u1c + f2 * u12) + f1 * u3
-        a, b = rates(s2, c2, aa0, bb0)
-        f1 = a * cc
-        f2 = (b * a) * m
-        f3 = third(b, s2, a, c2, kk, f)
-        d12[i] = f1 * u1 + 1.0
-        d22[i] = f2 * u1s + f1 * u2
-        d32[i] = (f3 * u1c + f2 * u12) + f1 * u3
         if chambers:
             d = p2 - p1
             da[i] = d + at(ka, i)
             db[i] = at(kb, i) - d
+
+
+# --------------------------------------------------------------------------------------------
+# designs x angles, reduced per design (the sweeps' peaks: no curve is stored)
+# --------------------------------------------------------------------------------------------
+@formula(inline=False)
+def _up(acc, v):
+    """``max(acc, v)`` as numpy's maximum: a NaN, once met, is the result."""
+    if v > acc or v != v:
+        return v
+    return acc
+
+
+@formula(inline=False)
+def _down(acc, v):
+    """``min(acc, v)`` as numpy's minimum (a NaN wins)."""
+    if v < acc or v != v:
+        return v
+    return acc
+
+
+@formula
+def _larger(a, b):
+    """``numpy.maximum(a, b)`` without a branch (a NaN in either is the result)."""
+    return select((a > b) | (a != a), a, b)
+
+
+@formula
+def _smaller(a, b):
+    """``numpy.minimum(a, b)`` without a branch."""
+    return select((a < b) | (a != a), a, b)
+
+
+@compiled_loop
+def atan_arguments_grid(t, ca, sa, ca2, sa2, gamma, r1, r2):
+    """:func:`atan_arguments` of designs (rows of ``r_k``) at the angles' ``t`` (columns)."""
+    for d in range(r1.shape[0]):
+        cad, sad, ca2d, sa2d, g = at(ca, d), at(sa, d), at(ca2, d), at(sa2, d), at(gamma, d)
+        for j in range(r1.shape[1]):
+            s1, c1, s2, c2 = spin_trig(t[j], cad, sad, ca2d, sa2d)
+            r1[d, j] = s1 / (g - c1)
+            r2[d, j] = s2 / (g - c2)
+
+
+@compiled_loop
+def extremes_grid(t, vt, e1, e2, ca, sa, ca2, sa2, h, a0, b0, k, c1, c2, c3, u1, u2, u3,
+                  linear, out):  # fmt: skip
+    """Per design (rows of ``e_k``), over both rotors and the angles (columns): the largest
+    ``|Phi''|`` and ``|Phi'''|``, the extremes of ``Phi'`` and of the slider angle
+    ``Phi_2 - Phi_1``, into ``out`` (6, designs).
+
+    ``linear``: :func:`linear_point` with ``c1, c2, c3 = n c, -n^2 c k, 2 n^3 c k`` and
+    ``vt = theta (1 + n)``; else :func:`general_point` with ``c1, c2, c3 = c, -c k,
+    2 c k`` and the spin law's derivatives ``u_k`` at the angles. Per design, a loop over
+    the angles without reductions (it vectorises) keeps the rotors' larger (smaller)
+    values in a scratch row each, then one pass reduces the rows.
+    """
+    inf = np.inf
+    w = np.empty((5, e1.shape[1]))
+    for d in range(e1.shape[0]):
+        cad, sad, ca2d, sa2d = at(ca, d), at(sa, d), at(ca2, d), at(sa2, d)
+        hh, aa0, bb0, kk = at(h, d), at(a0, d), at(b0, d), at(k, d)
+        k1, k2, k3 = at(c1, d), at(c2, d), at(c3, d)
+        if linear:
+            for j in range(e1.shape[1]):
+                p1, p2, d11, d12, d21, d22, d31, d32 = linear_point(
+                    t[j], vt[j], e1[d, j], e2[d, j], cad, sad, ca2d, sa2d, hh, aa0, bb0, kk,
+                    k1, k2, k3,
+                )  # fmt: skip
+                w[0, j] = _larger(abs(d21), abs(d22))
+                w[1, j] = _larger(abs(d31), abs(d32))
+                w[2, j] = _smaller(d11, d12)
+                w[3, j] = _larger(d11, d12)
+                w[4, j] = p2 - p1
+        else:
+            for j in range(e1.shape[1]):
+                p1, p2, d11, d12, d21, d22, d31, d32 = general_point(
+                    t[j], vt[j], e1[d, j], e2[d, j], cad, sad, ca2d, sa2d, hh, aa0, bb0, kk,
+                    k1, k2, k3, u1[j], u2[j], u3[j],
+                )  # fmt: skip
+                w[0, j] = _larger(abs(d21), abs(d22))
+                w[1, j] = _larger(abs(d31), abs(d32))
+                w[2, j] = _smaller(d11, d12)
+                w[3, j] = _larger(d11, d12)
+                w[4, j] = p2 - p1
+        acc, jerk, r_min, r_max, s_min, s_max = -inf, -inf, inf, -inf, inf, -inf
+        for j in range(e1.shape[1]):
+            acc = _up(acc, w[0, j])
+            jerk = _up(jerk, w[1, j])
+            r_min = _down(r_min, w[2, j])
+            r_max = _up(r_max, w[3, j])
+            s_min = _down(s_min, w[4, j])
+            s_max = _up(s_max, w[4, j])
+        out[0, d], out[1, d], out[2, d] = acc, jerk, r_min
+        out[3, d], out[4, d], out[5, d] = r_max, s_min, s_max

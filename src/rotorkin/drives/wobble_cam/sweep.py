@@ -11,8 +11,9 @@ same names), computed for arrays of designs:
   evaluated on ``samples`` shaft angles per design (a design x angle array, in
   blocks) and reduced to their peaks, as the study does on its 20001-point grid,
   by the library's own fused kinematics
-  (:func:`rotorkin.drives.wobble_cam.fast.rotor_kinematics`, designs ``(m, 1)``
-  against the angles): the same functions as the study, for either spin law.
+  (:func:`rotorkin.drives.wobble_cam.fast.rotor_extremes`: the closed forms of
+  :func:`~rotorkin.drives.wobble_cam.fast.rotor_kinematics` for designs x angles,
+  reduced as they are evaluated): the same functions as the study, for either spin law.
 * on request (:data:`SAMPLED_METRICS`, ``--metrics``; the sweep benchmark's
   workload): every kinematic curve per design and sampled angle -- both rotor
   angles and their three derivatives, the slider angle, the chamber angles of
@@ -50,7 +51,7 @@ from rotorkin.drives.wobble_cam import chambers as wch
 from rotorkin.drives.wobble_cam import forces as fo
 from rotorkin.drives.wobble_cam import kinematics as wc
 from rotorkin.drives.wobble_cam import sweep_forces as swf
-from rotorkin.drives.wobble_cam.fast import rotor_kinematics
+from rotorkin.drives.wobble_cam.fast import rotor_extremes
 from rotorkin.drives.wobble_cam.sweep_cycle import fuel_air_cycle
 from rotorkin.machines import fuel_air as fa
 from rotorkin.machines import twin_rotor as tr
@@ -477,7 +478,7 @@ def _spin_tables(p, n_spin: float, theta):
 
 def _sampled(p, tilt, alpha, spin, samples: int, threads) -> dict:
     """Peaks of |Phi''|, |Phi'''| (and extremes of Phi' for a corrected spin law) per design."""
-    out = _rotor_extremes(p, tilt, alpha, spin, samples, threads, _general_block)
+    out = _rotor_extremes(p, tilt, alpha, spin, samples, threads)
     val = {"rotor_accel_peak_per_rad": out["acc"], "rotor_jerk_peak_per_rad2": out["jerk"]}
     if not _linear(p):
         val["rotor_speed_ratio_min"] = out["r_min"]
@@ -490,48 +491,27 @@ def _linear(p) -> bool:
     return not (p.cfg["drive"].get("spin_a") or p.cfg["drive"].get("spin_b"))
 
 
-def _rotor_extremes(p, tilt, alpha, spin, samples: int, threads, block) -> dict:
-    """The reductions of ``block`` per design (n,), evaluated once per distinct (spin
-    ratio, plate tilt, roller axis angle): the only values the rotors' motion depends on."""
+def _rotor_extremes(p, tilt, alpha, spin, samples: int, threads) -> dict:
+    """:func:`~rotorkin.drives.wobble_cam.fast.rotor_extremes` per design (n,), evaluated
+    once per distinct (spin ratio, plate tilt, roller axis angle): the only values the
+    rotors' motion depends on; blocks of designs on ``threads``."""
     (spin, tilt, alpha), which = distinct((spin, tilt, alpha), p.n)
     theta = sample_grid(2.0 * np.pi, samples)
     out = {}
     for n_spin in np.unique(spin):  # one table per spin ratio (usually one)
         rows = np.flatnonzero(spin == n_spin)
         law = float(n_spin) if _linear(p) else _spin_tables(p, float(n_spin), theta)
-        res = run_blocks(block(theta, law, tilt[rows], alpha[rows]), rows.size, samples, threads)
+        block = _extremes_block(theta, law, tilt[rows], alpha[rows])
+        res = run_blocks(block, rows.size, samples, threads)
         for key, values in res.items():
             out.setdefault(key, np.empty(spin.size))[rows] = values
     return {key: values[which] for key, values in out.items()}
 
 
-def _general_block(theta, law, tilt, alpha):
-    """Block evaluator of the rotor peaks: the library's fused path, reduced per design.
-
-    ``law``: the spin ratio n (linear law) or the spin law's 4 tables on ``theta``.
-    """
-
-    def fn(lo, hi):
-        return _rotor_peaks(theta, law, tilt[lo:hi, None], alpha[lo:hi, None])[0]
-
-    return fn
-
-
-def _rotor_peaks(theta, law, tilt, alpha):
-    """Peaks of the rotors' second and third derivatives, extremes of the first, and Phi.
-
-    :func:`rotorkin.drives.wobble_cam.fast.rotor_kinematics` on designs ``(m, 1)``
-    against the grid; returns the reductions and the rotor angles ``(2, m, samples)``.
-    """
-    rot, _ = rotor_kinematics(tilt, alpha, law, theta, threads=1)
-    q, d1, d2, d3 = rot
-    res = {
-        "acc": np.abs(d2).max(axis=(0, 2)),
-        "jerk": np.abs(d3).max(axis=(0, 2)),
-        "r_min": d1.min(axis=(0, 2)),
-        "r_max": d1.max(axis=(0, 2)),
-    }
-    return res, q
+def _extremes_block(theta, law, tilt, alpha):
+    """Block evaluator: :func:`~rotorkin.drives.wobble_cam.fast.rotor_extremes` of the
+    designs ``lo:hi`` (``law``: the spin ratio n, or the spin law's 4 tables on ``theta``)."""
+    return lambda lo, hi: rotor_extremes(tilt[lo:hi], alpha[lo:hi], law, theta)
 
 
 # --------------------------------------------------------------------------------------------
@@ -552,7 +532,7 @@ def _sampled_full(p, tilt, alpha, spin, n_f, beta, samples: int, threads) -> dic
     kvol, vc = _section(p), p.float("machine.clearance_volume")
     lo, hi = wc.slider_angle_limits(n_f)
     lo_a, hi_b = lo + beta, hi - beta  # delta_A = s - lo_a, delta_B = hi_b - s (eq. 18-19)
-    out = _rotor_extremes(p, tilt, alpha, spin, samples, threads, _full_general_block)
+    out = _rotor_extremes(p, tilt, alpha, spin, samples, threads)
     s_min, s_max = out["s_min"], out["s_max"]
     a_min, a_max = s_min - lo_a, s_max - lo_a
     b_min, b_max = hi_b - s_max, hi_b - s_min
@@ -577,19 +557,6 @@ def _sampled_full(p, tilt, alpha, spin, n_f, beta, samples: int, threads) -> dic
         val["rotor_speed_ratio_min"] = out["r_min"]
         val["rotor_speed_ratio_max"] = out["r_max"]
     return val
-
-
-def _full_general_block(theta, law, tilt, alpha):
-    """Block evaluator of every rotor curve (the library's fused path), reduced per design:
-    the peaks of :func:`_rotor_peaks` and the slider angle's extremes."""
-
-    def fn(lo, hi):
-        res, q = _rotor_peaks(theta, law, tilt[lo:hi, None], alpha[lo:hi, None])
-        s = np.subtract(q[1], q[0], out=q[1])  # slider angle alpha' = Phi_2 - Phi_1
-        res["s_min"], res["s_max"] = s.min(axis=1), s.max(axis=1)
-        return res
-
-    return fn
 
 
 # --------------------------------------------------------------------------------------------
