@@ -128,6 +128,14 @@ def test_wobble_corrected_spin_law_and_designs_per_point():
     close(ch, np.stack(wc.chamber_angles(width, rot[0, 1] - rot[0, 0], pistons=4)))
 
 
+def test_wobble_extremes_refuse_mismatched_designs():
+    theta = np.linspace(0.0, 1.0, 5)
+    with pytest.raises(ValueError, match=r"plate_tilt \(3\) and roller_axis_angle \(2\)"):
+        wc_fast.rotor_extremes(np.full(3, 0.5), np.full(2, 1.5), -2.0, theta)
+    with pytest.raises(ValueError, match=r"theta \(0\) at least one angle"):
+        wc_fast.rotor_extremes(0.5, 1.5, -2.0, np.array([]))
+
+
 def _bits(values: dict) -> dict:
     return {k: np.asarray(v).view(np.int64) for k, v in values.items()}
 

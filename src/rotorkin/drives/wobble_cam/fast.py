@@ -378,11 +378,16 @@ def rotor_extremes(plate_tilt, roller_axis_angle, spin, theta, *, kernel=None) -
     single numpy ``arctan`` over a block of designs.
     """
     tilt = np.atleast_1d(np.asarray(plate_tilt, dtype=float)).reshape(-1)
-    half = 0.5 * np.atleast_1d(np.asarray(roller_axis_angle, dtype=float)).reshape(-1)
+    alpha = np.atleast_1d(np.asarray(roller_axis_angle, dtype=float)).reshape(-1)
     th = np.atleast_1d(np.asarray(theta, dtype=float)).reshape(-1)
-    m = max(tilt.size, half.size)
+    m = max(tilt.size, alpha.size)
+    if {tilt.size, alpha.size} - {1, m} or th.size == 0:
+        raise ValueError(
+            f"rotor_extremes: plate_tilt ({tilt.size}) and roller_axis_angle ({alpha.size}) "
+            f"need one value or one per design, theta ({th.size}) at least one angle"
+        )
     if not use_compiled(m * th.size, kernel):
-        rot, _ = rotor_kinematics(tilt[:, None], 2.0 * half[:, None], spin, th, threads=1,
+        rot, _ = rotor_kinematics(tilt[:, None], alpha[:, None], spin, th, threads=1,
                                   kernel=kernel)  # fmt: skip
         q, d1, d2, d3 = rot
         s = np.subtract(q[1], q[0], out=q[1])
@@ -402,7 +407,7 @@ def rotor_extremes(plate_tilt, roller_axis_angle, spin, theta, *, kernel=None) -
         vt = np.add(v, th)
     np.tan(tv, out=tv)
     # per design, as rotor_kinematics: a one-element input is a number (math), else numpy
-    design = {"tilt": tilt, "half": half}
+    design = {"tilt": tilt, "half": 0.5 * alpha}
     k = _coefficients({key: float(a[0]) if a.size == 1 else a for key, a in design.items()},
                       n, None)  # fmt: skip
     slope = (k["nc"], k["a2"], k["a3"]) if linear else (k["c"], k["mck"], k["ck2"])
