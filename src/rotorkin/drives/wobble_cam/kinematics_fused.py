@@ -97,6 +97,16 @@ def linear_point(t, vt, e1, e2, ca, sa, ca2, sa2, hh, aa0, bb0, kk, nc, a2, a3):
 
 
 @formula
+def _general_rotor(s, c, aa0, bb0, kk, cc, m, f, u1, u1s, u1c, u2, u12, u3):
+    """``Phi'``, ``Phi''``, ``Phi'''`` of one rotor under any spin law (Faa di Bruno)."""
+    a, b = rates(s, c, aa0, bb0)
+    f1 = a * cc
+    f2 = (b * a) * m
+    f3 = third(b, s, a, c, kk, f)
+    return f1 * u1 + 1.0, f2 * u1s + f1 * u2, (f3 * u1c + f2 * u12) + f1 * u3
+
+
+@formula
 def general_point(t, vt, e1, e2, ca, sa, ca2, sa2, hh, aa0, bb0, kk, cc, m, f, u1, u2, u3):
     """:func:`linear_point` of any spin law with derivatives ``u1, u2, u3`` (Faa di Bruno)."""
     s1, c1, s2, c2 = spin_trig(t, ca, sa, ca2, sa2)
@@ -105,20 +115,8 @@ def general_point(t, vt, e1, e2, ca, sa, ca2, sa2, hh, aa0, bb0, kk, cc, m, f, u
     u12 = 3.0 * u1 * u2
     p1 = (vt + (-hh)) + e1
     p2 = (vt + hh) + e2
-    a, b = rates(s1, c1, aa0, bb0)
-    f1 = a * cc
-    f2 = (b * a) * m
-    f3 = third(b, s1, a, c1, kk, f)
-    d11 = f1 * u1 + 1.0
-    d21 = f2 * u1s + f1 * u2
-    d31 = (f3 * u1c + f2 * u12) + f1 * u3
-    a, b = rates(s2, c2, aa0, bb0)
-    f1 = a * cc
-    f2 = (b * a) * m
-    f3 = third(b, s2, a, c2, kk, f)
-    d12 = f1 * u1 + 1.0
-    d22 = f2 * u1s + f1 * u2
-    d32 = (f3 * u1c + f2 * u12) + f1 * u3
+    d11, d21, d31 = _general_rotor(s1, c1, aa0, bb0, kk, cc, m, f, u1, u1s, u1c, u2, u12, u3)
+    d12, d22, d32 = _general_rotor(s2, c2, aa0, bb0, kk, cc, m, f, u1, u1s, u1c, u2, u12, u3)
     return p1, p2, d11, d12, d21, d22, d31, d32
 
 
