@@ -224,28 +224,22 @@ def extremes_grid(t, vt, e1, e2, ca, sa, ca2, sa2, h, a0, b0, k, c1, c2, c3, u1,
         cad, sad, ca2d, sa2d = at(ca, d), at(sa, d), at(ca2, d), at(sa2, d)
         hh, aa0, bb0, kk = at(h, d), at(a0, d), at(b0, d), at(k, d)
         k1, k2, k3 = at(c1, d), at(c2, d), at(c3, d)
-        if linear:
-            for j in range(e1.shape[1]):
+        for j in range(e1.shape[1]):  # no reduction here: the loop vectorises
+            if linear:
                 p1, p2, d11, d12, d21, d22, d31, d32 = linear_point(
                     t[j], vt[j], e1[d, j], e2[d, j], cad, sad, ca2d, sa2d, hh, aa0, bb0, kk,
                     k1, k2, k3,
                 )  # fmt: skip
-                w[0, j] = _larger(abs(d21), abs(d22))
-                w[1, j] = _larger(abs(d31), abs(d32))
-                w[2, j] = _smaller(d11, d12)
-                w[3, j] = _larger(d11, d12)
-                w[4, j] = p2 - p1
-        else:
-            for j in range(e1.shape[1]):
+            else:
                 p1, p2, d11, d12, d21, d22, d31, d32 = general_point(
                     t[j], vt[j], e1[d, j], e2[d, j], cad, sad, ca2d, sa2d, hh, aa0, bb0, kk,
                     k1, k2, k3, u1[j], u2[j], u3[j],
                 )  # fmt: skip
-                w[0, j] = _larger(abs(d21), abs(d22))
-                w[1, j] = _larger(abs(d31), abs(d32))
-                w[2, j] = _smaller(d11, d12)
-                w[3, j] = _larger(d11, d12)
-                w[4, j] = p2 - p1
+            w[0, j] = _larger(abs(d21), abs(d22))
+            w[1, j] = _larger(abs(d31), abs(d32))
+            w[2, j] = _smaller(d11, d12)
+            w[3, j] = _larger(d11, d12)
+            w[4, j] = p2 - p1
         acc, jerk, r_min, r_max, s_min, s_max = -inf, -inf, inf, -inf, inf, -inf
         for j in range(e1.shape[1]):
             acc = _up(acc, w[0, j])
