@@ -119,7 +119,7 @@ def register(app) -> None:
             help='Run on the dask cluster at tcp://HOST:PORT (the "dask" extra).')] = None,
         chunk: Annotated[int | None, typer.Option(
             "--chunk", metavar="N",
-            help="Designs per chunk (default: from a 64 MiB budget).")] = None,
+            help="Designs per chunk (default: from a 32 MiB budget).")] = None,
         out: Annotated[Path | None, typer.Option(
             "--out", "-o", metavar="DIR", parser=out_folder,
             help="Output folder; default ./rotorkin-out/<name>-sweep.")] = None,

@@ -83,7 +83,7 @@ __all__ = [
 ]
 
 #: Default memory budget of one chunk's results [bytes].
-MEMORY_BUDGET = 64 * 2**20
+MEMORY_BUDGET = 32 * 2**20
 #: Largest chunk (designs), so that progress and resumption stay fine-grained.
 MAX_CHUNK = 65_536
 #: Most designs in one sweep (the grid's size); beyond, split the sweep.
@@ -384,7 +384,9 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
         on_status(f"resuming: {len(done)} of {spec.n_chunks} chunks already committed, "
                   f"computing {spec.n_chunks - len(done)}")  # fmt: skip
     todo = [(i, *chunk_bounds(spec, i)) for i in range(spec.n_chunks) if i not in done]
-    flat = None if chunks else _empty(spec)
+    # every chunk computed now is placed as it arrives (and committed, with a store); only
+    # the chunks of an earlier run are read back from the store at the end
+    flat = _empty(spec)
 
     with _Progress(progress, spec.size, done_designs=spec.size - sum(b - a for _, a, b in todo)) \
             as bar:  # fmt: skip
@@ -393,8 +395,7 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
             if chunks:
                 confirmed()
                 chunks.commit(index, res)
-            else:
-                _place(flat, res)
+            _place(flat, res)
             bar.finish_chunk(res["stop"] - res["start"])
 
         if client is not None:
@@ -409,7 +410,9 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
     confirmed()
     if chunks:
         release_memory()  # the chunks' freed work arrays, back before the result is assembled
-        flat = _assemble(spec, chunks)
+        _assemble(flat, spec, chunks, done)
+    elif not np.all(flat["count"] == 1):
+        _lost(flat)
     flat.pop("count", None)
     result = to_result(spec, flat)
     if chunks:
@@ -420,15 +423,16 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
 
 
 def _empty(spec: SweepSpec) -> dict:
+    # not filled: every design is placed once (``count``, checked), the pages are touched then
     flat = {
-        "metrics": {m: np.full(spec.size, np.nan) for m in spec.metrics},
+        "metrics": {m: np.empty(spec.size) for m in spec.metrics},
         "reason": np.zeros(spec.size, dtype=np.int16),
         "violations": np.zeros(spec.size, dtype=np.int16),
         "count": np.zeros(spec.size, dtype=np.int8),
     }
     if spec.keep_curves:
         kern = kernel_of(spec.drive_type, spec.base_cfg)
-        flat["curves"] = {c: np.full((spec.size, spec.points), np.nan) for c in kern.CURVES}
+        flat["curves"] = {c: np.empty((spec.size, spec.points)) for c in kern.CURVES}
         flat["angle"] = None
     return flat
 
@@ -453,19 +457,22 @@ def _place(flat: dict, res: dict) -> None:
             flat["angle"][idx] = angle
 
 
-def _assemble(spec: SweepSpec, chunks) -> dict:
-    """Read every committed chunk into flat arrays; check each design appears exactly once."""
-    flat = _empty(spec)
+def _assemble(flat: dict, spec: SweepSpec, chunks, earlier) -> None:
+    """Place the chunks committed by an earlier run (``earlier``) into ``flat``, read from
+    the store; check each design appears exactly once."""
     missing = sorted(set(range(spec.n_chunks)) - chunks.committed())
     if missing:
         raise RuntimeError(f"sweep chunks missing after the run: {missing[:5]}")
-    for i in range(spec.n_chunks):
+    for i in sorted(earlier):
         _place(flat, chunks.read(i))
         release_memory()  # the chunk's buffer: not kept in the heap beside the result
     if not np.all(flat["count"] == 1):
-        bad = np.flatnonzero(flat["count"] != 1)
-        raise RuntimeError(f"{bad.size} designs lost or duplicated in the sweep chunks")
-    return flat
+        _lost(flat)
+
+
+def _lost(flat: dict) -> None:
+    bad = np.flatnonzero(flat["count"] != 1)
+    raise RuntimeError(f"{bad.size} designs lost or duplicated in the sweep chunks")
 
 
 #: Seconds between two moves of the progress bar within a chunk.

@@ -15,9 +15,9 @@ folder (other keys, values, metrics, samples or chunk size) has its own chunk
 folder: it neither reuses nor deletes another spec's chunks.
 The chunk files go once ``sweep.nc`` is written.
 
-Files are netCDF-3 (64-bit offsets): the chunks written with :mod:`scipy.io`, the
-result streamed by :mod:`rotorkin.sweep.netcdf` (no netCDF4, zarr or xarray library
-is needed), read back by :mod:`xarray` or any netCDF reader.
+Files are netCDF-3 (64-bit offsets), streamed by :mod:`rotorkin.sweep.netcdf` (no
+netCDF4, zarr or xarray library is needed); the chunks are read back with
+:mod:`scipy.io`, the result by :mod:`xarray` or any netCDF reader.
 """
 
 from __future__ import annotations
@@ -59,6 +59,13 @@ def spec_hash(manifest: dict) -> str:
     """SHA-256 of the canonical JSON of a sweep's manifest."""
     text = json.dumps(manifest, sort_keys=True, separators=(",", ":"))
     return hashlib.sha256(text.encode()).hexdigest()
+
+
+class _Var:
+    """A variable for :func:`rotorkin.sweep.netcdf.write_netcdf3`: dims, data, no attributes."""
+
+    def __init__(self, dims, data):
+        self.dims, self.data, self.attrs = dims, np.ascontiguousarray(data), {}
 
 
 def _tmp(path: Path) -> Path:
@@ -126,32 +133,25 @@ class ChunkStore:
         return {i for i in out if i < self.manifest["chunks"]}
 
     def commit(self, index: int, res: dict) -> Path:
-        """Write chunk ``index`` (a :func:`~rotorkin.sweep.engine.compute_chunk` result)."""
-        from scipy.io import netcdf_file
+        """Write chunk ``index`` (a :func:`~rotorkin.sweep.engine.compute_chunk` result),
+        streamed and atomically (:func:`rotorkin.sweep.netcdf.write_netcdf3`: no copy of
+        the chunk is held while writing)."""
+        from rotorkin.sweep.netcdf import write_netcdf3
 
-        final = self.path(index)
-        tmp = _tmp(final)
         n = int(res["stop"] - res["start"])
-        with netcdf_file(tmp, "w", version=2) as f:
-            f.start, f.stop, f.spec_hash = int(res["start"]), int(res["stop"]), self.key
-            f.createDimension("design", n)
-            v = f.createVariable("design", "i", ("design",))
-            v[:] = np.asarray(res["design"], dtype=np.int32)
-            v = f.createVariable("reason", "h", ("design",))
-            v[:] = np.asarray(res["reason"], dtype=np.int16)
-            v = f.createVariable("violations", "h", ("design",))
-            v[:] = np.asarray(res.get("violations", np.zeros(n)), dtype=np.int16)
-            for name, values in res["metrics"].items():
-                f.createVariable(f"m:{name}", "d", ("design",))[:] = values
-            if "curves" in res:
-                angle = np.asarray(res["angle"], dtype=float)
-                f.createDimension("point", angle.shape[-1])
-                dims = ("point",) if angle.ndim == 1 else ("design", "point")
-                f.createVariable("angle", "d", dims)[:] = angle
-                for name, values in res["curves"].items():
-                    f.createVariable(f"c:{name}", "d", ("design", "point"))[:] = values
-        os.replace(tmp, final)
-        return final
+        var = {
+            "design": _Var(("design",), np.asarray(res["design"], dtype=np.int32)),
+            "reason": _Var(("design",), np.asarray(res["reason"], dtype=np.int16)),
+            "violations": _Var(("design",), np.asarray(res.get("violations", np.zeros(n)),
+                                                      dtype=np.int16)),  # fmt: skip
+        }
+        var.update({f"m:{k}": _Var(("design",), v) for k, v in res["metrics"].items()})
+        if "curves" in res:
+            angle = np.asarray(res["angle"], dtype=float)
+            var["angle"] = _Var(("point",) if angle.ndim == 1 else ("design", "point"), angle)
+            var.update({f"c:{k}": _Var(("design", "point"), v) for k, v in res["curves"].items()})
+        attrs = {"start": int(res["start"]), "stop": int(res["stop"]), "spec_hash": self.key}
+        return write_netcdf3(self.path(index), var, attrs)
 
     def read(self, index: int) -> dict:
         """A committed chunk back as a result dict (in memory, big-endian; the file is closed)."""
