@@ -139,11 +139,11 @@ class ChunkStore:
         from rotorkin.sweep.netcdf import write_netcdf3
 
         n = int(res["stop"] - res["start"])
+        violations = res.get("violations", np.zeros(n))
         var = {
             "design": _Var(("design",), np.asarray(res["design"], dtype=np.int32)),
             "reason": _Var(("design",), np.asarray(res["reason"], dtype=np.int16)),
-            "violations": _Var(("design",), np.asarray(res.get("violations", np.zeros(n)),
-                                                      dtype=np.int16)),  # fmt: skip
+            "violations": _Var(("design",), np.asarray(violations, dtype=np.int16)),
         }
         var.update({f"m:{k}": _Var(("design",), v) for k, v in res["metrics"].items()})
         if "curves" in res:
