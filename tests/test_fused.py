@@ -141,13 +141,14 @@ def _bits(values: dict) -> dict:
 
 
 @pytest.mark.parametrize("law", ["linear", "corrected"])
-@pytest.mark.parametrize("designs", [1, 7, 400])
-def test_wobble_extremes_equal_the_reduced_curves(law, designs):
+@pytest.mark.parametrize(("designs", "angles"), [(1, 360), (7, 360), (400, 360), (70, 5000)])
+def test_wobble_extremes_equal_the_reduced_curves(law, designs, angles):
     """A sweep's per-design peaks, reduced as they are evaluated (compiled), equal the
     curves' reductions (numpy) bit for bit, NaN designs included, and the independent
-    sin/cos forms to 1e-12; 400 designs span two blocks of the compiled path."""
+    sin/cos forms to 1e-12; 400 designs at 360 angles span two tiles of designs, 70
+    designs at 5000 angles two tiles of designs by three of angles."""
     rng = np.random.default_rng(designs)
-    theta = np.linspace(0.0, 2.0 * np.pi, 360, endpoint=False)
+    theta = np.linspace(0.0, 2.0 * np.pi, angles, endpoint=False)
     spin = -2.0 if law == "linear" else wc.spin_angle(-2.0, (0.01,), (0.02,), theta)
     tilt, alpha = rng.uniform(0.3, 1.2, designs), rng.uniform(1.0, 2.5, designs)
     if designs > 1:

@@ -101,26 +101,22 @@ _POOL_LOCK = threading.Lock()
 # --------------------------------------------------------------------------------------------
 # the formulas and their helpers (plain Python on numbers or arrays; compiled inside loops)
 # --------------------------------------------------------------------------------------------
-def formula(fn=None, *, inline: bool = True):
+def formula(fn):
     """Mark ``fn`` as a point formula: plain Python on numbers (or arrays).
 
     Called on numpy arrays it is the numpy path; compiled loops call it on
-    numbers (inlined into the loop's own code when ``inline``; otherwise left to
-    the compiler, for helpers with branches that only compiled loops call). It may
-    only use arithmetic, :func:`at`, :func:`select` and other formulas. Returns
-    ``fn`` itself; ``@formula(inline=False)`` is the decorator with the option.
+    numbers, inlined into the loop's own code. It may only use arithmetic,
+    :func:`at`, :func:`select` and other formulas. Returns ``fn`` itself.
     """
-    if fn is None:
-        return lambda f: formula(f, inline=inline)
-    _FORMULAS.append((fn, inline))
+    _FORMULAS.append(fn)
     if _NUMBA:
-        _register(_NUMBA, fn, inline)
+        _register(_NUMBA, fn)
     return fn
 
 
-def _register(numba, fn, inline: bool) -> None:
-    """Teach numba a formula (IR-inlined when ``inline``)."""
-    numba.extending.register_jitable(inline="always" if inline else "never")(fn)
+def _register(numba, fn) -> None:
+    """Teach numba a formula (inlined into the loops that call it)."""
+    numba.extending.register_jitable(inline="always")(fn)
 
 
 def at(x, i):
@@ -162,8 +158,8 @@ def _setup_numba():
 
             return impl
 
-        for fn, inline in _FORMULAS:
-            _register(numba, fn, inline)
+        for fn in _FORMULAS:
+            _register(numba, fn)
         _NUMBA = numba
         return _NUMBA
 

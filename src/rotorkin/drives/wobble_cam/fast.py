@@ -345,6 +345,10 @@ def _third(b, s, a, c, k, out, factor):
 
 #: Keys of :func:`rotor_extremes`, in the rows of its compiled loop.
 EXTREMES = ("acc", "jerk", "r_min", "r_max", "s_min", "s_max")
+#: Where each of them starts before the first angle (a maximum at -inf, a minimum at +inf).
+_START = np.array([-np.inf, -np.inf, np.inf, -np.inf, np.inf, -np.inf])[:, None]
+#: Fewest designs of a tile of :func:`rotor_extremes` (its compiled loops run over them).
+_MIN_DESIGNS = 64
 
 
 def rotor_extremes(plate_tilt, roller_axis_angle, spin, theta, *, kernel=None) -> dict:
@@ -373,9 +377,11 @@ def rotor_extremes(plate_tilt, roller_axis_angle, spin, theta, *, kernel=None) -
     The values are those of :func:`rotor_kinematics` on designs ``(m, 1)`` against
     ``theta``, reduced with numpy (the numpy path does exactly that), bit for bit. The
     compiled path stores no curve: the angles' ``tan`` is taken once for all designs
-    (it does not depend on the design), each design's constants are read once, and one
-    loop over designs x angles evaluates every point and keeps its extremes, around a
-    single numpy ``arctan`` over a block of designs.
+    (it does not depend on the design); on tiles of designs x angles, one compiled loop
+    writes the arctangents' arguments, one numpy ``arctan`` takes them, and one compiled
+    loop evaluates every point and folds it into its design's running extremes. Both
+    loops run over designs innermost, so that they vectorise, the updates of the
+    extremes too (elementwise, with numpy's rule for NaN).
     """
     tilt = np.atleast_1d(np.asarray(plate_tilt, dtype=float)).reshape(-1)
     alpha = np.atleast_1d(np.asarray(roller_axis_angle, dtype=float)).reshape(-1)
@@ -415,16 +421,29 @@ def rotor_extremes(plate_tilt, roller_axis_angle, spin, theta, *, kernel=None) -
     per = {key: k[key] for key in names}
     per.update(zip(("c1", "c2", "c3"), slope, strict=True))
     out = np.empty((len(EXTREMES), m))
-    step = max(1, 4 * COMPILED_BLOCK // th.size)  # the arctangents: 2 MiB a block
-    r = np.empty(2 * min(step, m) * th.size)
-    for lo in range(0, m, step):
-        hi = min(m, lo + step)
+    # tiles of designs x angles: a few hundred designs (the inner loops run over them, and
+    # vectorise) by as many angles as make 2 MiB of arctangents; each design's running
+    # extremes are folded over its angles' tiles
+    points = 4 * COMPILED_BLOCK
+    designs = min(m, max(_MIN_DESIGNS, points // th.size))
+    angles = max(1, points // designs)
+    r = np.empty(2 * designs * min(angles, th.size))
+    acc = np.empty((len(EXTREMES), designs))
+    for lo in range(0, m, designs):
+        hi = min(m, lo + designs)
         x = {key: a if np.ndim(a) == 0 else a[lo:hi] for key, a in per.items()}
-        e = r[: 2 * (hi - lo) * th.size].reshape(2, hi - lo, th.size)  # C-contiguous rows
-        fused.atan_arguments_grid(tv, x["ca"], x["sa"], x["ca2"], x["sa2"], x["gamma"], *e)
-        np.arctan(e, out=e)
-        fused.extremes_grid(
-            tv, vt, e[0], e[1], x["ca"], x["sa"], x["ca2"], x["sa2"], x["h"], x["a0"],
-            x["b0"], x["k"], x["c1"], x["c2"], x["c3"], *u, linear, out[:, lo:hi],
-        )  # fmt: skip
+        run = acc[:, : hi - lo] if hi - lo == designs else np.empty((len(EXTREMES), hi - lo))
+        run[:] = _START
+        for a0 in range(0, th.size, angles):
+            a1 = min(th.size, a0 + angles)
+            e = r[: 2 * (a1 - a0) * (hi - lo)].reshape(2, a1 - a0, hi - lo)  # C-contiguous
+            tj = tv[a0:a1]
+            fused.atan_arguments_grid(tj, x["ca"], x["sa"], x["ca2"], x["sa2"], x["gamma"], *e)
+            np.arctan(e, out=e)
+            fused.extremes_grid(
+                tj, vt[a0:a1], e[0], e[1], x["ca"], x["sa"], x["ca2"], x["sa2"], x["h"],
+                x["a0"], x["b0"], x["k"], x["c1"], x["c2"], x["c3"],
+                *(v[a0:a1] for v in u), linear, run,
+            )  # fmt: skip
+        out[:, lo:hi] = run
     return dict(zip(EXTREMES, out, strict=True))

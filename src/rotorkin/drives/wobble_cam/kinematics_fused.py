@@ -19,8 +19,6 @@ per point) arrive as arrays, constants as numbers (:func:`rotorkin.core.fused.at
 
 from __future__ import annotations
 
-import numpy as np
-
 from rotorkin.core.fused import at, compiled_loop, formula, select
 
 __all__ = [
@@ -166,22 +164,6 @@ def general_outputs(
 # --------------------------------------------------------------------------------------------
 # designs x angles, reduced per design (the sweeps' peaks: no curve is stored)
 # --------------------------------------------------------------------------------------------
-@formula(inline=False)
-def _up(acc, v):
-    """``max(acc, v)`` as numpy's maximum: a NaN, once met, is the result."""
-    if v > acc or v != v:
-        return v
-    return acc
-
-
-@formula(inline=False)
-def _down(acc, v):
-    """``min(acc, v)`` as numpy's minimum (a NaN wins)."""
-    if v < acc or v != v:
-        return v
-    return acc
-
-
 @formula
 def _larger(a, b):
     """``numpy.maximum(a, b)`` without a branch (a NaN in either is the result)."""
@@ -196,57 +178,47 @@ def _smaller(a, b):
 
 @compiled_loop
 def atan_arguments_grid(t, ca, sa, ca2, sa2, gamma, r1, r2):
-    """:func:`atan_arguments` of designs (rows of ``r_k``) at the angles' ``t`` (columns)."""
-    for d in range(r1.shape[0]):
-        cad, sad, ca2d, sa2d, g = at(ca, d), at(sa, d), at(ca2, d), at(sa2, d), at(gamma, d)
-        for j in range(r1.shape[1]):
-            s1, c1, s2, c2 = spin_trig(t[j], cad, sad, ca2d, sa2d)
-            r1[d, j] = s1 / (g - c1)
-            r2[d, j] = s2 / (g - c2)
+    """:func:`atan_arguments` at the angles' ``t`` (rows of ``r_k``) of designs (columns)."""
+    for j in range(r1.shape[0]):
+        tj = t[j]
+        for d in range(r1.shape[1]):
+            s1, c1, s2, c2 = spin_trig(tj, at(ca, d), at(sa, d), at(ca2, d), at(sa2, d))
+            g = at(gamma, d)
+            r1[j, d] = s1 / (g - c1)
+            r2[j, d] = s2 / (g - c2)
 
 
 @compiled_loop
 def extremes_grid(t, vt, e1, e2, ca, sa, ca2, sa2, h, a0, b0, k, c1, c2, c3, u1, u2, u3,
-                  linear, out):  # fmt: skip
-    """Per design (rows of ``e_k``), over both rotors and the angles (columns): the largest
-    ``|Phi''|`` and ``|Phi'''|``, the extremes of ``Phi'`` and of the slider angle
-    ``Phi_2 - Phi_1``, into ``out`` (6, designs).
+                  linear, acc):  # fmt: skip
+    """Fold angles (rows of ``e_k``) into each design's (columns) running extremes ``acc``
+    (6, designs), over both rotors: the largest ``|Phi''|`` and ``|Phi'''|``, the
+    extremes of ``Phi'`` and of the slider angle ``Phi_2 - Phi_1``.
 
     ``linear``: :func:`linear_point` with ``c1, c2, c3 = n c, -n^2 c k, 2 n^3 c k`` and
     ``vt = theta (1 + n)``; else :func:`general_point` with ``c1, c2, c3 = c, -c k,
-    2 c k`` and the spin law's derivatives ``u_k`` at the angles. Per design, a loop over
-    the angles without reductions (it vectorises) keeps the rotors' larger (smaller)
-    values in a scratch row each, then one pass reduces the rows.
+    2 c k`` and the spin law's derivatives ``u_k`` at the angles. The inner loop runs
+    over designs: each update of ``acc`` is elementwise (``numpy.maximum``'s NaN rule),
+    so it vectorises; ``acc`` is C-contiguous, started at -inf/+inf by the caller.
     """
-    inf = np.inf
-    w = np.empty((5, e1.shape[1]))
-    for d in range(e1.shape[0]):
-        cad, sad, ca2d, sa2d = at(ca, d), at(sa, d), at(ca2, d), at(sa2, d)
-        hh, aa0, bb0, kk = at(h, d), at(a0, d), at(b0, d), at(k, d)
-        k1, k2, k3 = at(c1, d), at(c2, d), at(c3, d)
-        for j in range(e1.shape[1]):  # no reduction here: the loop vectorises
+    for j in range(e1.shape[0]):
+        tj, vj = t[j], vt[j]
+        for d in range(e1.shape[1]):
             if linear:
                 p1, p2, d11, d12, d21, d22, d31, d32 = linear_point(
-                    t[j], vt[j], e1[d, j], e2[d, j], cad, sad, ca2d, sa2d, hh, aa0, bb0, kk,
-                    k1, k2, k3,
+                    tj, vj, e1[j, d], e2[j, d], at(ca, d), at(sa, d), at(ca2, d), at(sa2, d),
+                    at(h, d), at(a0, d), at(b0, d), at(k, d), at(c1, d), at(c2, d), at(c3, d),
                 )  # fmt: skip
             else:
                 p1, p2, d11, d12, d21, d22, d31, d32 = general_point(
-                    t[j], vt[j], e1[d, j], e2[d, j], cad, sad, ca2d, sa2d, hh, aa0, bb0, kk,
-                    k1, k2, k3, u1[j], u2[j], u3[j],
+                    tj, vj, e1[j, d], e2[j, d], at(ca, d), at(sa, d), at(ca2, d), at(sa2, d),
+                    at(h, d), at(a0, d), at(b0, d), at(k, d), at(c1, d), at(c2, d), at(c3, d),
+                    u1[j], u2[j], u3[j],
                 )  # fmt: skip
-            w[0, j] = _larger(abs(d21), abs(d22))
-            w[1, j] = _larger(abs(d31), abs(d32))
-            w[2, j] = _smaller(d11, d12)
-            w[3, j] = _larger(d11, d12)
-            w[4, j] = p2 - p1
-        acc, jerk, r_min, r_max, s_min, s_max = -inf, -inf, inf, -inf, inf, -inf
-        for j in range(e1.shape[1]):
-            acc = _up(acc, w[0, j])
-            jerk = _up(jerk, w[1, j])
-            r_min = _down(r_min, w[2, j])
-            r_max = _up(r_max, w[3, j])
-            s_min = _down(s_min, w[4, j])
-            s_max = _up(s_max, w[4, j])
-        out[0, d], out[1, d], out[2, d] = acc, jerk, r_min
-        out[3, d], out[4, d], out[5, d] = r_max, s_min, s_max
+            s = p2 - p1
+            acc[0, d] = _larger(acc[0, d], _larger(abs(d21), abs(d22)))
+            acc[1, d] = _larger(acc[1, d], _larger(abs(d31), abs(d32)))
+            acc[2, d] = _smaller(acc[2, d], _smaller(d11, d12))
+            acc[3, d] = _larger(acc[3, d], _larger(d11, d12))
+            acc[4, d] = _smaller(acc[4, d], s)
+            acc[5, d] = _larger(acc[5, d], s)
