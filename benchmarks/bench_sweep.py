@@ -153,6 +153,7 @@ def timed(owner, name, label):
 import atexit
 import rotorkin.cli as cli
 import rotorkin.cli.sweep
+import rotorkin.render.figures as render
 import rotorkin.report.figures_sweep as figures
 import rotorkin.sweep as sweep
 import rotorkin.sweep.engine as engine
@@ -167,7 +168,8 @@ timed(sweep.CheckAhead, "__init__", "spec_checks")
 timed(sweep.CheckAhead, "confirm", "spec_checks")
 timed(figures, "fig_overview", "overview_figure")
 timed(figures, "overview_task", "overview_figure")
-timed(rotorkin.cli.sweep, "draw", "overview_figure")
+# the wait for the figure, drawn by the drawing process while sweep.nc is written
+timed(render.Drawing, "paths", "overview_figure")
 timed(SweepResult, "to_netcdf", "write_netcdf")
 command = cli.main
 

@@ -321,7 +321,7 @@ def test_log_axes_in_plain_numbers_on_the_ticks_matplotlib_labels():
 
 
 _AHEAD_SCRIPT = """
-import functools, json, os, sys
+import functools, json, os, sys, time
 from pathlib import Path
 from rotorkin.render import figures
 
@@ -329,6 +329,13 @@ def square(outdir, name, value):
     fig, ax = figures.pyplot().subplots(figsize=(2.5, 2))
     ax.plot([0.0, 1.0], [0.0, value])
     return figures.save(fig, Path(outdir) / name, layout=(0.6, 0.5, 0.2, 0.3))
+
+def gated(outdir, name):  # drawn once the caller has gone on (it makes the file "go")
+    for _ in range(3000):
+        if (Path(outdir) / "go").exists():
+            return square(outdir, name, 1.0)
+        time.sleep(0.01)
+    raise RuntimeError("the caller waited for the drawing")
 
 def tasks(outdir, local=False):
     if local:  # a closure over a local: cannot travel by pickle
@@ -369,6 +376,25 @@ try:
 except ChildProcessError:
     out["unused_left"] = False
 out["unused_pid"] = pid
+d = Path("soon")
+d.mkdir()
+with figures.drawing_ahead(style):  # the caller goes on while the drawing process draws
+    drawing = figures.draw_soon([functools.partial(gated, d, "g.png"), *tasks(d)])
+    (d / "go").touch()
+    out["soon"] = [p.name for p in drawing.paths()]
+d = Path("abandoned")
+d.mkdir()
+try:
+    with figures.drawing_ahead(style):  # an error before the wait: the drawing ends too
+        drawing = figures.draw_soon([functools.partial(gated, d, "g.png")])
+        raise KeyError("between")
+except KeyError:
+    pass
+try:
+    os.waitpid(-1, os.WNOHANG)
+    out["abandoned_left"] = True
+except ChildProcessError:
+    out["abandoned_left"] = False
 print(json.dumps(out))
 """
 
@@ -376,7 +402,8 @@ print(json.dumps(out))
 def test_figures_drawn_ahead_are_the_files_drawn_here(tmp_path):
     """Inside drawing_ahead the process forked before the work draws the tasks: this
     process never imports pyplot, the files are those one process draws with the block's
-    style; tasks that do not pickle are drawn here; no process is left behind."""
+    style; tasks that do not pickle are drawn here; draw_soon returns while they are
+    drawn; no process is left behind, even by a drawing nobody waited for."""
     done = subprocess.run([sys.executable, "-c", _AHEAD_SCRIPT], capture_output=True,
                           text=True, cwd=tmp_path, timeout=300,
                           env={**os.environ, "PYTHONPATH": SRC, "MPLBACKEND": "Agg"})  # fmt: skip
@@ -389,6 +416,9 @@ def test_figures_drawn_ahead_are_the_files_drawn_here(tmp_path):
     assert out["serial"]["helper"] is False and out["serial"]["paths"] == names
     assert out["unused_pid"] is not None and out["unused_left"] is False
     assert out["recorded"] == 5
+    assert out["soon"] == ["g.png", *names]
+    assert out["abandoned_left"] is False
+    assert not (tmp_path / "abandoned" / "g.png").exists()
     for name in names:
         ahead = (tmp_path / "ahead" / name).read_bytes()
         assert ahead == (tmp_path / "serial" / name).read_bytes()

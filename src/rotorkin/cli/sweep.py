@@ -35,7 +35,7 @@ from rotorkin.core.errors import ConfigError
 from rotorkin.drives import REGISTRY, spec_of
 from rotorkin.io.config import apply_sets, load_config
 from rotorkin.io.output import check_out, staged_output
-from rotorkin.render.figures import draw, drawing_ahead
+from rotorkin.render.figures import draw_soon, drawing_ahead
 from rotorkin.report import figures_sweep as fs
 from rotorkin.sweep import CheckAhead, build_spec, compute
 from rotorkin.sweep.checks import skipped as skipped_checks
@@ -200,6 +200,14 @@ def register(app) -> None:
             ):
                 for recipe, spec in specs:
                     if recipe is None:
+                        overview = []  # drawn by the drawing process while sweep.nc is written
+
+                        def draw_overview(result, spec=spec, overview=overview):
+                            task = fs.overview_task(
+                                result, _headline(spec.base_cfg), stage / "sweep_overview.png"
+                            )
+                            overview.append(draw_soon([task] if task else []))
+
                         main_ds = compute(
                             spec,
                             store=outdir,
@@ -207,12 +215,10 @@ def register(app) -> None:
                             progress=not quiet,
                             on_status=lambda m: _note(m, quiet),
                             confirm=checked.confirm,
+                            on_result=draw_overview,
                         )
                         written.append("sweep.nc")
-                        task = fs.overview_task(
-                            main_ds, _headline(spec.base_cfg), stage / "sweep_overview.png"
-                        )
-                        written += [path.name for path in draw([task] if task else [])]
+                        written += [path.name for path in overview[0].paths()]
                         (stage / "README.txt").write_text(
                             _readme(
                                 main_ds, f"rotorkin sweep of {name}: {spec.size} designs", written

@@ -30,6 +30,8 @@ from rotorkin.core import forked
 
 __all__ = [
     "draw",
+    "draw_soon",
+    "Drawing",
     "drawing_ahead",
     "figure_workers",
     "FigureError",
@@ -69,6 +71,9 @@ _HELPER: _Helper | None = None
 #: The matplotlib settings of the current :func:`drawing_ahead` block, applied once.
 _STYLE: dict | None = None
 
+#: Drawing processes given their tasks by :func:`draw_soon`, not yet waited for.
+_HANDED: list[_Helper] = []
+
 
 @contextlib.contextmanager
 def drawing_ahead(style: dict | None = None):
@@ -102,6 +107,8 @@ def drawing_ahead(style: dict | None = None):
             helper, _HELPER = _HELPER, None
             if helper is not None:  # no draw took it: not worth waiting for its imports
                 _end_helper(helper, kill=True)
+            while _HANDED:  # a drawing started and not waited for (an error came between)
+                _end_helper(_HANDED.pop(), kill=True)
 
 
 def _fork_helper(style: dict | None) -> _Helper | None:
@@ -200,8 +207,9 @@ def _warm_up() -> None:
         plt.close(fig)
 
 
-def _draw_ahead(helper: _Helper, tasks: list, workers, slowest) -> list[Path] | None:
-    """The tasks drawn by :func:`drawing_ahead`'s process; None: draw them here."""
+def _send(helper: _Helper, tasks: list, workers, slowest) -> None:
+    """Hand the tasks to :func:`drawing_ahead`'s process (nothing, if they do not pickle:
+    it then ends without a result and they are drawn here)."""
     try:
         try:
             payload = pickle.dumps((tasks, workers, tuple(slowest)), protocol=5)
@@ -214,6 +222,14 @@ def _draw_ahead(helper: _Helper, tasks: list, workers, slowest) -> list[Path] | 
         os.close(helper.tasks_w)
         forked.PRIVATE.discard(helper.tasks_w)
         helper.tasks_w = -1
+    except BaseException:
+        _end_helper(helper, kill=True)
+        raise
+
+
+def _collect(helper: _Helper) -> list[Path] | None:
+    """The paths :func:`drawing_ahead`'s process drew; None: draw the tasks here."""
+    try:
         data = forked.read_all(helper.out_r)
     except BaseException:
         _end_helper(helper, kill=True)
@@ -593,17 +609,52 @@ def draw(
     with its one-line message), after every child has ended; the files already
     written are left to the caller's staging folder. A SIGTERM ends the children.
     """
+    return draw_soon(tasks, workers, slowest).paths()
+
+
+class Drawing:
+    """Figure tasks being drawn (:func:`draw_soon`); :meth:`paths` waits for them."""
+
+    def __init__(self, tasks: list, workers, slowest, helper: _Helper | None):
+        self.tasks, self.workers, self.slowest = tasks, workers, tuple(slowest)
+        self._helper = helper
+
+    def paths(self) -> list[Path]:
+        """The paths written, in the order of the tasks (as :func:`draw` returns them)."""
+        helper, self._helper = self._helper, None
+        if helper is not None:
+            _HANDED.remove(helper)
+            done = _collect(helper)
+            if done is not None:
+                return done
+        return _draw_here(self.tasks, self.workers, self.slowest)
+
+
+def draw_soon(
+    tasks: Sequence[Callable], workers: int | None = None, slowest: Sequence[int] = ()
+) -> Drawing:
+    """:func:`draw`, returning at once where :func:`drawing_ahead`'s process draws them.
+
+    The caller goes on with other work (writing its data files) while that process
+    draws, then calls :meth:`Drawing.paths`. Without that process the tasks are drawn
+    when :meth:`Drawing.paths` is called. A drawing not waited for when the
+    :func:`drawing_ahead` block ends is ended with it (SIGTERM).
+    """
     global _HELPER
     tasks = list(tasks)
     helper, _HELPER = _HELPER, None
     if helper is not None:
         # figures recorded, or asked for in this process (one worker): not drawn there
         if tasks and _RECORDED is None and (workers is None or workers > 1):
-            done = _draw_ahead(helper, tasks, workers, slowest)
-            if done is not None:
-                return done
-        else:
-            _end_helper(helper, kill=True)
+            _send(helper, tasks, workers, slowest)
+            _HANDED.append(helper)
+            return Drawing(tasks, workers, slowest, helper)
+        _end_helper(helper, kill=True)
+    return Drawing(tasks, workers, slowest, None)
+
+
+def _draw_here(tasks: list, workers: int | None, slowest: Sequence[int]) -> list[Path]:
+    """:func:`draw` in this process (and the workers it forks)."""
     _apply_style()
     workers = min(figure_workers(workers), len(tasks))
     # the objects that exist now (the study's, the libraries') are left out of the garbage

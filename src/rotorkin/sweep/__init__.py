@@ -346,7 +346,8 @@ def execute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
 
 
 def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=None,
-            keep_chunks=False, on_status=None, confirm=None) -> SweepResult:  # fmt: skip
+            keep_chunks=False, on_status=None, confirm=None,
+            on_result=None) -> SweepResult:  # fmt: skip
     """Run a validated spec (locally or on ``client``), optionally through a chunk store.
 
     Returns the :class:`SweepResult` (numpy arrays; no xarray needed). With
@@ -354,7 +355,8 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
     result is written to ``store/sweep.nc`` (streamed, atomically). ``confirm()``, if
     given, is called once before anything is written into ``store`` (before the result
     is returned without one): an exception it raises ends the sweep there
-    (:meth:`CheckAhead.confirm`).
+    (:meth:`CheckAhead.confirm`). ``on_result(result)``, if given, is called with the
+    assembled result before ``sweep.nc`` is written (to start work on it meanwhile).
     """
     from pathlib import Path
 
@@ -415,6 +417,8 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
         _lost(flat)
     flat.pop("count", None)
     result = to_result(spec, flat)
+    if on_result is not None:
+        on_result(result)
     if chunks:
         result.to_netcdf(Path(store) / "sweep.nc")
         if not keep_chunks:
