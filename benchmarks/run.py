@@ -17,7 +17,12 @@ Intel Xeon's transcendental functions cost other multiples of each other than an
 EPYC's: the guide bar's ratio is 1.67 on one, 2.43 on the other, for the same code),
 so the baseline holds ratios per CPU model and per kernel (``numba`` when the ``fast``
 extra is installed, else ``numpy``); a CPU or kernel without a baseline is reported, not
-gated. Each run can be
+gated. One more row, ``wobble_cam_peaks``, gates the design-space sweep's kernel: the
+wobble cam's rotor peaks of :data:`PEAKS_DESIGNS` designs at :data:`PEAKS_ANGLES` angles
+(``rotorkin.drives.wobble_cam.fast.rotor_extremes``, each design its own rotor motion)
+against its floor (b'): numpy's ``arctan`` of the two arguments a point, in place (the
+only transcendental calls a point makes; the angles' ``tan`` is taken once per call).
+Each run can be
 appended to ``benchmarks/results/history.jsonl`` (``--record``: commit, date, machine,
 load, ratios), the record of the figures over commits.
 
@@ -48,7 +53,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 import bench_kinematics  # noqa: E402
-from _common import git_commit, load, machine, write_json  # noqa: E402
+from _common import git_commit, interleaved, load, machine, write_json  # noqa: E402
 from cases import CASES  # noqa: E402
 
 from rotorkin.core.fused import use_compiled  # noqa: E402
@@ -61,6 +66,9 @@ SHORT_POINTS = 200_000
 #: Ratios gated in short mode (all "lower is better").
 GATED = ("lib_over_floor", "numpy_over_floor", "alloc_over_floor_alloc")
 TOLERANCE = 0.25
+#: The row of the sweep's rotor peaks, and its designs x angles (a sweep's own tile).
+PEAKS = "wobble_cam_peaks"
+PEAKS_DESIGNS, PEAKS_ANGLES = 600, 360
 
 
 def short(drives=None, rounds: int = 80, budget: float = 6.0, cap: int = 1000,
@@ -70,11 +78,14 @@ def short(drives=None, rounds: int = 80, budget: float = 6.0, cap: int = 1000,
     info = machine()
     start = load()
     rows = {}
-    for name in drives or CASES:
-        case = CASES[name]
-        row = bench_kinematics.measure(case, SHORT_POINTS, cap, rounds, budget)
+    for name in drives or (*CASES, PEAKS):
+        if name == PEAKS:
+            row = peaks(rounds, budget)
+        else:
+            row = bench_kinematics.measure(CASES[name], SHORT_POINTS, cap, rounds, budget)
         rows[name] = row
-        echo(f"  {name:<18} " + "  ".join(f"{k} {row['ratios'][k]:.2f}" for k in GATED)
+        echo(f"  {name:<18} " + "  ".join(f"{k} {row['ratios'][k]:.2f}" for k in GATED
+                                           if k in row["ratios"])
              + f"  (load {row['load_before'][0]:.1f})")  # fmt: skip
     return {
         "points": SHORT_POINTS,
@@ -85,8 +96,47 @@ def short(drives=None, rounds: int = 80, budget: float = 6.0, cap: int = 1000,
         "load_start": start,
         "load_end": load(),
         "seconds": time.perf_counter() - t0,
-        "ratios": {name: {k: row["ratios"][k] for k in GATED} for name, row in rows.items()},
+        "ratios": {
+            name: {k: row["ratios"][k] for k in GATED if k in row["ratios"]}
+            for name, row in rows.items()
+        },
         "rows": rows,
+    }
+
+
+def peaks(rounds: int = 80, budget: float = 6.0) -> dict:
+    """The sweep's rotor peaks against their floor (b'), timed in the same rounds."""
+    import numpy as np
+
+    from rotorkin.drives.wobble_cam import fast
+
+    theta = np.linspace(0.0, 2.0 * np.pi, PEAKS_ANGLES)
+    tilt = np.linspace(np.radians(30.0), np.radians(50.0), PEAKS_DESIGNS)
+    alpha = np.linspace(np.radians(80.0), np.radians(100.0), PEAKS_DESIGNS)
+    points = PEAKS_DESIGNS * PEAKS_ANGLES
+    kernel = "numba" if use_compiled(points) else "numpy"
+    args = np.random.default_rng(0).uniform(-3.0, 3.0, 2 * points)  # S/(g - C) of both rotors
+    work = np.empty_like(args)
+    fns = {
+        "lib": lambda: fast.rotor_extremes(tilt, alpha, 1.0, theta, kernel=kernel),
+        "floor": lambda: np.arctan(args, out=work),
+    }
+    for fn in fns.values():  # warm-up: compiled loops loaded, pages touched
+        fn()
+    load0 = load()
+    stats = {}
+    best = interleaved(fns, rounds, budget, stats)
+    ns = {name: t / points * 1e9 for name, t in best.items()}
+    return {
+        "points": points,
+        "designs": PEAKS_DESIGNS,
+        "angles": PEAKS_ANGLES,
+        "kernel": kernel,
+        "rounds": stats["rounds"],
+        "ns_per_point": ns,
+        "ratios": {"lib_over_floor": ns["lib"] / ns["floor"]},
+        "load_before": load0,
+        "load_after": load(),
     }
 
 
@@ -302,7 +352,8 @@ def main(argv=None) -> int:
     if args.tables:
         write_tables()
         return 0
-    print(f"short benchmark: every drive at {SHORT_POINTS} points, ratios to floor (b')")
+    print(f"short benchmark: every drive at {SHORT_POINTS} points, the sweep's rotor peaks at "
+          f"{PEAKS_DESIGNS} x {PEAKS_ANGLES}, ratios to floor (b')")  # fmt: skip
     result = short()
     write_json(args.out, result)
     if args.record:
