@@ -620,9 +620,13 @@ class Drawing:
         self._helper = helper
 
     def paths(self) -> list[Path]:
-        """The paths written, in the order of the tasks (as :func:`draw` returns them)."""
+        """The paths written, in the order of the tasks (as :func:`draw` returns them).
+
+        Call it once. A drawing whose process ended with its :func:`drawing_ahead` block
+        is drawn here.
+        """
         helper, self._helper = self._helper, None
-        if helper is not None:
+        if helper is not None and helper in _HANDED:
             _HANDED.remove(helper)
             done = _collect(helper)
             if done is not None:

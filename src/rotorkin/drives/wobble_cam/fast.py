@@ -432,7 +432,7 @@ def rotor_extremes(plate_tilt, roller_axis_angle, spin, theta, *, kernel=None) -
     for lo in range(0, m, designs):
         hi = min(m, lo + designs)
         x = {key: a if np.ndim(a) == 0 else a[lo:hi] for key, a in per.items()}
-        run = acc[:, : hi - lo] if hi - lo == designs else np.empty((len(EXTREMES), hi - lo))
+        run = acc if hi - lo == designs else np.empty((len(EXTREMES), hi - lo))
         run[:] = _START
         for a0 in range(0, th.size, angles):
             a1 = min(th.size, a0 + angles)
