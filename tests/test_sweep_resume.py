@@ -116,3 +116,27 @@ def test_store_keeps_committed_chunks_and_drops_temporaries_and_stale_specs(tmp_
     s2.open()
     s2.commit(0, compute_chunk(spec, *chunk_bounds(spec, 0)))
     assert ChunkStore(tmp_path / ".chunks", other.manifest()).open() == set()
+
+
+@pytest.mark.parametrize("with_store", [False, True])
+def test_a_design_computed_twice_and_one_never_is_refused(tmp_path, monkeypatch, with_store):
+    """Each design must land in the result exactly once, with or without a chunk store: a
+    chunk that reports its neighbour's designs (3 counted twice, 3 never: 6) fails the sweep
+    instead of leaving designs unset (the result is not prefilled); nothing is written."""
+    import rotorkin.sweep as sweep
+
+    _, raw, _ = load_config(None, "wobble-cam-engine", ["loads.model=ideal"])
+    spec = build_spec(raw, ["machine.compression_ratio=8:12:6"], chunk_size=3, samples=90)
+    real = sweep.compute_chunk
+
+    def shifted(spec, start, stop, threads=None):
+        res = real(spec, start, stop, threads)
+        if start > 0:  # the second chunk claims the first chunk's designs
+            res["design"] = np.asarray(res["design"]) - start
+        return res
+
+    monkeypatch.setattr(sweep, "compute_chunk", shifted)
+    store = tmp_path / "out" if with_store else None
+    with pytest.raises(RuntimeError, match="6 designs lost or duplicated"):
+        sweep.compute(spec, store=store, progress=False)
+    assert not (tmp_path / "out" / "sweep.nc").exists()

@@ -411,10 +411,11 @@ def compute(spec: SweepSpec, *, store=None, client=None, progress=True, threads=
                 take(index, res)
     confirmed()
     if chunks:
-        release_memory()  # the chunks' freed work arrays, back before the result is assembled
+        release_memory()  # the chunks' freed work arrays, back before earlier chunks are read
         _assemble(flat, spec, chunks, done)
-    elif not np.all(flat["count"] == 1):
-        _lost(flat)
+    if not np.all(flat["count"] == 1):
+        bad = np.flatnonzero(flat["count"] != 1)
+        raise RuntimeError(f"{bad.size} designs lost or duplicated in the sweep chunks")
     flat.pop("count", None)
     result = to_result(spec, flat)
     if on_result is not None:
@@ -463,20 +464,13 @@ def _place(flat: dict, res: dict) -> None:
 
 def _assemble(flat: dict, spec: SweepSpec, chunks, earlier) -> None:
     """Place the chunks committed by an earlier run (``earlier``) into ``flat``, read from
-    the store; check each design appears exactly once."""
+    the store (the caller checks that each design appears exactly once)."""
     missing = sorted(set(range(spec.n_chunks)) - chunks.committed())
     if missing:
         raise RuntimeError(f"sweep chunks missing after the run: {missing[:5]}")
     for i in sorted(earlier):
         _place(flat, chunks.read(i))
         release_memory()  # the chunk's buffer: not kept in the heap beside the result
-    if not np.all(flat["count"] == 1):
-        _lost(flat)
-
-
-def _lost(flat: dict) -> None:
-    bad = np.flatnonzero(flat["count"] != 1)
-    raise RuntimeError(f"{bad.size} designs lost or duplicated in the sweep chunks")
 
 
 #: Seconds between two moves of the progress bar within a chunk.
